@@ -1,0 +1,70 @@
+// Per-context and per-share-group state. Shaders and programs are shared between contexts
+// of a share group; query objects and program pipelines are not, so they live per context.
+#pragma once
+#include <array>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "frame_row.h"
+#include "pass_counter.h"
+#include "stable_hash.h"
+
+namespace glbudget {
+
+struct ShaderInfo {
+  GLenum stage = 0;
+  std::string source;  // the strings the app passed, concatenated
+};
+
+struct ProgramInfo {
+  std::vector<GLuint> shaders;  // attached now
+  PassId pass = 0;              // from the sources at the last link
+  bool linked = false;
+};
+
+struct ShareGroup {
+  std::mutex mu;
+  std::unordered_map<GLuint, ShaderInfo> shaders;
+  std::unordered_map<GLuint, ProgramInfo> programs;
+};
+
+struct ContextState {
+  void* handle = nullptr;   // GLXContext or EGLContext
+  void* display = nullptr;  // its Display* / EGLDisplay
+  int index = 0;            // log name: order of first make-current in the process
+  std::shared_ptr<ShareGroup> group;
+  bool bound = false;        // current on some thread (guarded by the registry lock)
+  bool initialized = false;  // caps detected and counter built (first make-current)
+  GlCaps caps;
+  std::unique_ptr<PassCounter> counter;
+
+  GLuint program = 0;
+  GLuint pipeline = 0;
+  std::unordered_map<GLuint, std::array<GLuint, 6>> pipeline_stages;  // per context, not shared
+  bool list_compile_only = false;
+
+  uint64_t frame = 0;
+  int64_t next_deadline_ns = 0;  // GLBUDGET_FPS pacing
+};
+
+// The context current on this thread (null if none, or not yet initialised).
+extern thread_local ContextState* t_ctx __attribute__((tls_model("initial-exec")));
+inline ContextState* current_context() { return t_ctx; }
+
+// Context life cycle, called by the GLX and EGL hooks after the real call succeeded.
+void context_created(void* handle, void* display, void* share_with);
+void context_made_current(void* handle, void* display);  // handle null: released
+void context_destroyed(void* handle);
+void display_terminated(void* display);
+
+// Re-derives the pass of the current binding (program, pipeline or fixed function).
+void update_pass(ContextState& c);
+PassId pass_of_program(ShareGroup& g, GLuint program);  // caller holds g.mu
+
+// Every known context, for the final flush at exit.
+void for_each_context(void (*fn)(ContextState&));
+
+}  // namespace glbudget

@@ -1,0 +1,145 @@
+// The context registry: which contexts exist, their share groups, which is current where.
+#include <mutex>
+#include <unordered_map>
+
+#include "context_state.h"
+#include "frame_output.h"
+#include "gl_calls.h"
+#include "options.h"
+
+namespace glbudget {
+
+thread_local ContextState* t_ctx = nullptr;
+
+namespace {
+struct Registry {
+  std::mutex mu;
+  std::unordered_map<void*, std::unique_ptr<ContextState>> live;
+  // Destroyed contexts are kept: GLX lets a destroyed context stay current until released,
+  // and another thread may still hold a pointer. They are small.
+  std::vector<std::unique_ptr<ContextState>> destroyed;
+  int next_index = 0;
+};
+
+Registry& registry() {
+  static Registry* r = new Registry;  // never destroyed: hooks may run during exit
+  return *r;
+}
+
+ContextState& find_or_add(Registry& r, void* handle, void* display) {
+  auto& slot = r.live[handle];
+  if (!slot) {
+    slot = std::make_unique<ContextState>();
+    slot->handle = handle;
+    slot->display = display;
+    slot->group = std::make_shared<ShareGroup>();
+  }
+  return *slot;
+}
+
+void initialise(ContextState& c, Registry& r) {
+  if (c.initialized) return;
+  if (!load_gl_calls()) return;
+  c.initialized = true;
+  c.index = r.next_index++;
+  c.caps = detect_caps();
+  c.counter = std::make_unique<PassCounter>(c.caps);
+  update_pass(c);
+  frame_output_started();
+}
+
+void retire(Registry& r, void* handle, bool is_current_here) {
+  auto it = r.live.find(handle);
+  if (it == r.live.end()) return;
+  ContextState& c = *it->second;
+  if (c.counter) flush_pending_frames(c, is_current_here ? FlushMode::kReadAvailable : FlushMode::kCpuOnly);
+  r.destroyed.push_back(std::move(it->second));
+  r.live.erase(it);
+}
+}  // namespace
+
+void context_created(void* handle, void* display, void* share_with) {
+  if (!handle) return;
+  Registry& r = registry();
+  std::lock_guard lock(r.mu);
+  ContextState& c = find_or_add(r, handle, display);
+  if (share_with) {
+    auto it = r.live.find(share_with);
+    if (it != r.live.end()) c.group = it->second->group;
+  }
+}
+
+void context_made_current(void* handle, void* display) {
+  Registry& r = registry();
+  std::lock_guard lock(r.mu);
+  if (t_ctx) t_ctx->bound = false;
+  if (!handle) {
+    t_ctx = nullptr;
+    t_draw = nullptr;
+    return;
+  }
+  ContextState& c = find_or_add(r, handle, display);
+  c.bound = true;
+  initialise(c, r);
+  t_ctx = c.initialized ? &c : nullptr;
+  t_draw = c.initialized ? c.counter.get() : nullptr;
+}
+
+void context_destroyed(void* handle) {
+  Registry& r = registry();
+  std::lock_guard lock(r.mu);
+  bool current_here = t_ctx && t_ctx->handle == handle;
+  retire(r, handle, current_here);
+  // A destroyed context that is still current stays usable (GLX) until released; we stop
+  // counting on it, since its queries are about to vanish.
+  if (current_here) {
+    t_ctx = nullptr;
+    t_draw = nullptr;
+  }
+}
+
+void display_terminated(void* display) {
+  Registry& r = registry();
+  std::lock_guard lock(r.mu);
+  std::vector<void*> gone;
+  for (auto& [h, c] : r.live)
+    if (c->display == display) gone.push_back(h);
+  for (void* h : gone) retire(r, h, t_ctx && t_ctx->handle == h);
+  if (t_ctx && t_ctx->display == display) {
+    t_ctx = nullptr;
+    t_draw = nullptr;
+  }
+}
+
+void for_each_context(void (*fn)(ContextState&)) {
+  Registry& r = registry();
+  std::lock_guard lock(r.mu);
+  for (auto& [h, c] : r.live) fn(*c);
+}
+
+PassId pass_of_program(ShareGroup& g, GLuint program) {
+  auto it = g.programs.find(program);
+  if (it != g.programs.end() && it->second.linked) return it->second.pass;
+  // A program we never saw linked (it cannot draw; GL raises the error): name it by its id.
+  return fnv1a_u64(program, fnv1a("unlinked-program"));
+}
+
+void update_pass(ContextState& c) {
+  if (!c.counter) return;
+  PassId pass = kFixedFunctionPass;
+  if (c.program) {
+    std::lock_guard lock(c.group->mu);
+    pass = pass_of_program(*c.group, c.program);
+  } else if (c.pipeline) {
+    auto it = c.pipeline_stages.find(c.pipeline);
+    if (it != c.pipeline_stages.end()) {
+      std::lock_guard lock(c.group->mu);
+      uint64_t h = fnv1a("pipeline");
+      for (GLuint p : it->second) h = fnv1a_u64(p ? pass_of_program(*c.group, p) : 0, h);
+      pass = h;
+    }
+  }
+  c.counter->set_pass(pass);
+}
+
+}  // namespace glbudget

@@ -1,0 +1,169 @@
+#include "frame_log.h"
+
+#include <pthread.h>
+#include <unistd.h>
+
+#include <cinttypes>
+#include <condition_variable>
+#include <cstdio>
+#include <mutex>
+#include <vector>
+
+namespace glbudget {
+
+int format_row(const FrameRow& r, char* out, int size) {
+  char pass[24];
+  if (r.pass == kFixedFunctionPass) snprintf(pass, sizeof pass, "fixed-function");
+  else snprintf(pass, sizeof pass, "%016" PRIx64, r.pass);
+  char stat[4][24];
+  const int64_t v[4] = {r.vertices, r.fragments, r.primitives, r.gpu_ns};
+  for (int i = 0; i < 4; ++i) {
+    if (v[i] < 0) stat[i][0] = '\0';
+    else snprintf(stat[i], sizeof stat[i], "%" PRId64, v[i]);
+  }
+  return snprintf(out, size, "%" PRIu64 ",%" PRId64 ",%d,%s,%" PRIu64 ",%s,%s,%s,%s", r.frame, r.time_ns,
+                  r.context, pass, r.batches, stat[0], stat[1], stat[2], stat[3]);
+}
+
+struct FrameLog::Impl {
+  std::mutex queue_mu;  // guards queue, stop, thread_started; held only briefly
+  std::condition_variable wake;
+  std::vector<FrameRow> queue;
+  bool thread_started = false;
+  pthread_t thread{};
+
+  std::mutex file_mu;  // guards the file; held while writing
+  FILE* file = nullptr;
+  bool open_failed = false;
+  std::vector<FrameRow> writing;
+  std::string file_path;
+};
+
+FrameLog::FrameLog() : impl_(new Impl) {
+  // Keep the log consistent across fork(): no other thread may hold the locks in the child.
+  pthread_atfork([] { auto& l = get(); l.impl_->file_mu.lock(); l.impl_->queue_mu.lock(); },
+                 [] { auto& l = get(); l.impl_->queue_mu.unlock(); l.impl_->file_mu.unlock(); },
+                 [] { get().forked_child(); });
+}
+
+FrameLog& FrameLog::get() {
+  static FrameLog* log = new FrameLog;  // never destroyed: rows may arrive during exit
+  return *log;
+}
+
+void FrameLog::set_path(const std::string& path) {
+  std::lock_guard lock(impl_->file_mu);
+  path_ = path;
+  impl_->file_path = path;
+}
+
+void FrameLog::push(const FrameRow& row) {
+  if (!enabled()) return;
+  Impl& m = *impl_;
+  std::unique_lock lock(m.queue_mu);
+  m.queue.push_back(row);
+  if (!m.thread_started) {
+    m.thread_started = true;
+    pthread_create(&m.thread, nullptr, &FrameLog::writer_main, this);
+    pthread_detach(m.thread);
+  }
+  lock.unlock();
+  m.wake.notify_one();
+}
+
+void* FrameLog::writer_main(void* self) {
+  auto* log = static_cast<FrameLog*>(self);
+  Impl& m = *log->impl_;
+  for (;;) {
+    {
+      std::unique_lock lock(m.queue_mu);
+      m.wake.wait(lock, [&] { return !m.queue.empty(); });
+    }
+    std::lock_guard file_lock(m.file_mu);
+    log->write_rows_locked();
+  }
+  return nullptr;
+}
+
+bool FrameLog::open_file_locked() {
+  Impl& m = *impl_;
+  if (m.file) return true;
+  if (m.open_failed) return false;
+  m.file = fopen(m.file_path.c_str(), "w");
+  if (!m.file) {
+    m.open_failed = true;
+    std::string msg = "glbudget: cannot write GLBUDGET_LOG file '" + m.file_path + "'; frames are not logged\n";
+    (void)!write(STDERR_FILENO, msg.data(), msg.size());
+    return false;
+  }
+  fprintf(m.file, "%s\n", kFrameLogHeader);
+  return true;
+}
+
+void FrameLog::write_rows_locked() {
+  Impl& m = *impl_;
+  {
+    std::lock_guard lock(m.queue_mu);
+    m.writing.swap(m.queue);
+  }
+  if (m.writing.empty() || !open_file_locked()) {
+    m.writing.clear();
+    return;
+  }
+  char line[256];
+  for (const FrameRow& r : m.writing) {
+    format_row(r, line, sizeof line);
+    fputs(line, m.file);
+    fputc('\n', m.file);
+  }
+  m.writing.clear();
+  fflush(m.file);  // a killed process loses at most the rows of the current batch
+}
+
+void FrameLog::drain() {
+  if (!enabled()) return;
+  std::lock_guard file_lock(impl_->file_mu);
+  write_rows_locked();
+}
+
+void FrameLog::drain_from_signal() {
+  if (!enabled()) return;
+  // The signal may have interrupted a thread holding a lock: try for a while, never block.
+  for (int i = 0; i < 2000; ++i) {
+    if (impl_->file_mu.try_lock()) {
+      if (impl_->queue_mu.try_lock()) {
+        impl_->queue_mu.unlock();
+        write_rows_locked();
+        impl_->file_mu.unlock();
+        return;
+      }
+      impl_->file_mu.unlock();
+    }
+    usleep(50);
+  }
+}
+
+void FrameLog::forked_child() {
+  Impl& m = *impl_;
+  // The locks were taken in prepare by the forking thread, which is this thread now.
+  m.queue.clear();  // the parent writes its own rows
+  m.thread_started = false;
+  if (m.file) {
+    fclose(m.file);  // our FILE copy: closing it flushes nothing (the parent flushed)
+    m.file = nullptr;
+  }
+  m.open_failed = false;
+  if (!path_.empty()) {
+    std::string base = path_;
+    size_t slash = base.rfind('/');
+    size_t dot = base.rfind('.');
+    std::string pid = "." + std::to_string(getpid());
+    if (dot != std::string::npos && (slash == std::string::npos || dot > slash)) base.insert(dot, pid);
+    else base += pid;
+    m.file_path = base;
+  }
+  m.queue_mu.unlock();
+  m.file_mu.unlock();
+}
+
+}  // namespace glbudget

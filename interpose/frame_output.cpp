@@ -1,0 +1,131 @@
+#include "frame_output.h"
+
+#include <pthread.h>
+#include <signal.h>
+#include <unistd.h>
+#include <time.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cmath>
+#include <mutex>
+
+#include "context_state.h"
+#include "frame_log.h"
+#include "options.h"
+
+namespace glbudget {
+
+namespace {
+int64_t monotonic_ns() {
+  timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return int64_t(ts.tv_sec) * 1000000000 + ts.tv_nsec;
+}
+
+void emit_row(const FrameRow& row) { FrameLog::get().push(row); }
+
+void on_fatal_signal(int sig) {
+  int saved = errno;
+  FrameLog::get().drain_from_signal();
+  signal(sig, SIG_DFL);
+  errno = saved;
+  raise(sig);
+}
+
+// Only where the app has not taken the signal itself: an app's handler usually ends in
+// exit(), which reaches our atexit flush.
+void install_signal_flush(int sig) {
+  struct sigaction old {};
+  if (sigaction(sig, nullptr, &old) != 0 || old.sa_handler != SIG_DFL || (old.sa_flags & SA_SIGINFO)) return;
+  struct sigaction sa {};
+  sa.sa_handler = on_fatal_signal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESTART;
+  sigaction(sig, &sa, nullptr);
+}
+
+void pace(ContextState& c, double fps) {
+  const int64_t period = static_cast<int64_t>(std::llround(1e9 / fps));
+  const int64_t now = monotonic_ns();
+  if (c.next_deadline_ns == 0 || now > c.next_deadline_ns + period) {
+    c.next_deadline_ns = now + period;  // first frame, or fell behind: restart the cadence
+    return;
+  }
+  if (now < c.next_deadline_ns) {
+    timespec ts{static_cast<time_t>(c.next_deadline_ns / 1000000000), static_cast<long>(c.next_deadline_ns % 1000000000)};
+    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
+    }
+  }
+  c.next_deadline_ns += period;
+}
+}  // namespace
+
+void flush_pending_frames(ContextState& c, FlushMode mode) {
+  if (!c.counter) return;
+  switch (mode) {
+    case FlushMode::kCollect: c.counter->collect(emit_row, PassCounter::Collect::kAvailable); break;
+    case FlushMode::kReadAvailable: c.counter->collect(emit_row, PassCounter::Collect::kAll); break;
+    case FlushMode::kCpuOnly: c.counter->collect(emit_row, PassCounter::Collect::kCpuOnly); break;
+  }
+}
+
+namespace {
+std::atomic<bool> g_started{false};
+std::atomic<pid_t> g_pid{0};  // the process that logs; vfork/posix_spawn children differ
+
+void forked_child() {
+  g_pid = getpid();
+  // Frames still awaiting results belong to the parent, which logs them.
+  for_each_context([](ContextState& c) {
+    if (c.counter) c.counter->discard_pending();
+  });
+}
+}  // namespace
+
+void frame_output_started() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    g_pid = getpid();
+    pthread_atfork(nullptr, nullptr, forked_child);
+    g_started = true;
+    const Options& o = options();
+    FrameLog::get().set_path(o.log_path);
+    atexit(final_flush);
+    if (FrameLog::get().enabled()) {
+      install_signal_flush(SIGTERM);
+      install_signal_flush(SIGINT);
+    }
+  });
+}
+
+void swap_begin() {
+  ContextState* c = current_context();
+  if (!c) return;
+  c->counter->end_frame(++c->frame, monotonic_ns(), c->index);
+}
+
+void swap_end() {
+  ContextState* c = current_context();
+  if (!c) return;
+  flush_pending_frames(*c, FlushMode::kCollect);
+  if (options().fps > 0) pace(*c, options().fps);
+}
+
+void final_flush() {
+  // Inert in processes that never drew, and in children sharing the parent's memory
+  // (vfork, posix_spawn) on their way to exec or _exit.
+  if (!g_started || g_pid != getpid()) return;
+  static std::atomic<bool> done{false};
+  if (done.exchange(true)) return;
+  ContextState* here = current_context();
+  // The context current on the exiting thread can still answer its queries; others cannot be
+  // touched from here (they may be current elsewhere or gone), so they log CPU figures.
+  if (here) flush_pending_frames(*here, FlushMode::kReadAvailable);
+  for_each_context([](ContextState& c) {
+    if (&c != current_context() && !c.bound) flush_pending_frames(c, FlushMode::kCpuOnly);
+  });
+  FrameLog::get().drain();
+}
+
+}  // namespace glbudget

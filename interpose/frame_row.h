@@ -1,0 +1,24 @@
+// One row of the frame log: one frame of one context, one pass.
+#pragma once
+#include <cstdint>
+
+namespace glbudget {
+
+using PassId = uint64_t;
+constexpr PassId kFixedFunctionPass = 0;  // draws with no program bound
+
+struct FrameRow {
+  uint64_t frame = 0;
+  int64_t time_ns = 0;  // CLOCK_MONOTONIC at the frame's swap
+  int context = 0;      // order in which the process first made the context current
+  PassId pass = kFixedFunctionPass;
+  uint64_t batches = 0;
+  // Driver-reported figures; -1 when not measured (no query support, the app held the
+  // query target, or the result was lost with its context).
+  int64_t vertices = -1;
+  int64_t fragments = -1;
+  int64_t primitives = -1;
+  int64_t gpu_ns = -1;
+};
+
+}  // namespace glbudget

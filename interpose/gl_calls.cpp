@@ -1,0 +1,33 @@
+#include "gl_calls.h"
+
+#include "hook_table.h"
+
+namespace glbudget {
+
+GlCalls g_gl;
+
+namespace {
+template <typename T>
+void load_one(T& fn, const char* name) {
+  if (!fn) fn = reinterpret_cast<T>(resolve_gl(name));
+}
+}  // namespace
+
+bool load_gl_calls() {
+  GlCalls& g = g_gl;
+  load_one(g.GetString, "glGetString");
+  load_one(g.GetStringi, "glGetStringi");
+  load_one(g.GetIntegerv, "glGetIntegerv");
+  load_one(g.GenQueries, "glGenQueries");
+  load_one(g.DeleteQueries, "glDeleteQueries");
+  load_one(g.BeginQuery, "glBeginQuery");
+  load_one(g.EndQuery, "glEndQuery");
+  load_one(g.QueryCounter, "glQueryCounter");
+  load_one(g.GetQueryObjectuiv, "glGetQueryObjectuiv");
+  load_one(g.GetQueryObjectui64v, "glGetQueryObjectui64v");
+  load_one(g.BindBuffer, "glBindBuffer");
+  load_one(g.GetShaderiv, "glGetShaderiv");
+  return g.GetString && g.GetIntegerv;
+}
+
+}  // namespace glbudget

@@ -1,0 +1,161 @@
+// Shader and program life cycle: the sources that name a pass, and which pass is bound.
+#include <algorithm>
+
+#include "context_state.h"
+#include "hooks_generated.h"
+#include "stable_hash.h"
+
+namespace glbudget {
+
+namespace {
+// A pass is named by its shaders: the hashes of (stage, source) of each, order-independent.
+PassId program_hash(std::vector<uint64_t> shader_hashes) {
+  std::sort(shader_hashes.begin(), shader_hashes.end());
+  uint64_t h = fnv1a("program");
+  for (uint64_t s : shader_hashes) h = fnv1a_u64(s, h);
+  return h == kFixedFunctionPass ? 1 : h;
+}
+
+uint64_t shader_hash(GLenum stage, const std::string& source) {
+  return fnv1a(source, fnv1a_u64(stage, kFnvOffset));
+}
+
+std::string join_sources(GLsizei count, const GLchar* const* strings, const GLint* lengths) {
+  std::string all;
+  for (GLsizei i = 0; strings && i < count; ++i) {
+    if (!strings[i]) continue;
+    if (lengths && lengths[i] >= 0) all.append(strings[i], static_cast<size_t>(lengths[i]));
+    else all.append(strings[i]);
+  }
+  return all;
+}
+
+void refresh_if_bound(ContextState* c) {
+  if (c) update_pass(*c);
+}
+}  // namespace
+
+GLuint handle_glCreateShader(pfn_glCreateShader real, GLenum type) {
+  GLuint shader = real(type);
+  ContextState* c = current_context();
+  if (c && shader) {
+    std::lock_guard lock(c->group->mu);
+    c->group->shaders[shader] = ShaderInfo{type, {}};
+  }
+  return shader;
+}
+
+void handle_glShaderSource(pfn_glShaderSource real, GLuint shader, GLsizei count, const GLchar* const* string,
+                           const GLint* length) {
+  real(shader, count, string, length);
+  ContextState* c = current_context();
+  if (!c || count < 0) return;
+  std::lock_guard lock(c->group->mu);
+  auto it = c->group->shaders.find(shader);
+  if (it != c->group->shaders.end()) it->second.source = join_sources(count, string, length);
+}
+
+void handle_glDeleteShader(pfn_glDeleteShader real, GLuint shader) {
+  real(shader);
+  ContextState* c = current_context();
+  if (!c) return;
+  // GL defers deleting an attached shader, and a relink may still need its source: keep it
+  // while any program has it attached.
+  std::lock_guard lock(c->group->mu);
+  for (auto& [id, p] : c->group->programs)
+    if (std::find(p.shaders.begin(), p.shaders.end(), shader) != p.shaders.end()) return;
+  c->group->shaders.erase(shader);
+}
+
+void handle_glAttachShader(pfn_glAttachShader real, GLuint program, GLuint shader) {
+  real(program, shader);
+  ContextState* c = current_context();
+  if (!c) return;
+  std::lock_guard lock(c->group->mu);
+  auto& shaders = c->group->programs[program].shaders;
+  if (std::find(shaders.begin(), shaders.end(), shader) == shaders.end()) shaders.push_back(shader);
+}
+
+void handle_glDetachShader(pfn_glDetachShader real, GLuint program, GLuint shader) {
+  real(program, shader);
+  ContextState* c = current_context();
+  if (!c) return;
+  std::lock_guard lock(c->group->mu);
+  auto it = c->group->programs.find(program);
+  if (it == c->group->programs.end()) return;
+  auto& shaders = it->second.shaders;
+  shaders.erase(std::remove(shaders.begin(), shaders.end(), shader), shaders.end());
+}
+
+void handle_glLinkProgram(pfn_glLinkProgram real, GLuint program) {
+  real(program);
+  ContextState* c = current_context();
+  if (!c) return;
+  {
+    std::lock_guard lock(c->group->mu);
+    ProgramInfo& p = c->group->programs[program];
+    std::vector<uint64_t> hashes;
+    for (GLuint s : p.shaders) {
+      auto it = c->group->shaders.find(s);
+      if (it != c->group->shaders.end()) hashes.push_back(shader_hash(it->second.stage, it->second.source));
+    }
+    p.pass = program_hash(std::move(hashes));
+    p.linked = true;
+  }
+  refresh_if_bound(c);
+}
+
+GLuint handle_glCreateShaderProgramv(pfn_glCreateShaderProgramv real, GLenum type, GLsizei count,
+                                     const GLchar* const* strings) {
+  GLuint program = real(type, count, strings);
+  ContextState* c = current_context();
+  if (c && program) {
+    std::lock_guard lock(c->group->mu);
+    ProgramInfo& p = c->group->programs[program];
+    p.pass = program_hash({shader_hash(type, join_sources(count, strings, nullptr))});
+    p.linked = true;
+  }
+  return program;
+}
+
+void handle_glDeleteProgram(pfn_glDeleteProgram real, GLuint program) {
+  real(program);
+  ContextState* c = current_context();
+  if (!c || !program) return;
+  // GL keeps a program in use alive until it is unbound; so do we.
+  if (c->program == program) return;
+  std::lock_guard lock(c->group->mu);
+  c->group->programs.erase(program);
+}
+
+void handle_glUseProgram(pfn_glUseProgram real, GLuint program) {
+  real(program);
+  ContextState* c = current_context();
+  if (!c) return;
+  c->program = program;
+  update_pass(*c);
+}
+
+void handle_glBindProgramPipeline(pfn_glBindProgramPipeline real, GLuint pipeline) {
+  real(pipeline);
+  ContextState* c = current_context();
+  if (!c) return;
+  c->pipeline = pipeline;
+  update_pass(*c);
+}
+
+void handle_glUseProgramStages(pfn_glUseProgramStages real, GLuint pipeline, GLbitfield stages, GLuint program) {
+  real(pipeline, stages, program);
+  ContextState* c = current_context();
+  if (!c) return;
+  // Bits of GL_{VERTEX,FRAGMENT,GEOMETRY,TESS_CONTROL,TESS_EVALUATION,COMPUTE}_SHADER_BIT.
+  static const GLbitfield kBits[6] = {GL_VERTEX_SHADER_BIT, GL_FRAGMENT_SHADER_BIT, GL_GEOMETRY_SHADER_BIT,
+                                      GL_TESS_CONTROL_SHADER_BIT, GL_TESS_EVALUATION_SHADER_BIT,
+                                      GL_COMPUTE_SHADER_BIT};
+  auto& slots = c->pipeline_stages[pipeline];
+  for (int i = 0; i < 6; ++i)
+    if (stages & kBits[i]) slots[i] = program;
+  if (c->pipeline == pipeline) update_pass(*c);
+}
+
+}  // namespace glbudget

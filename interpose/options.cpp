@@ -1,0 +1,68 @@
+#include "options.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <mutex>
+#include <string_view>
+
+namespace glbudget {
+
+namespace {
+// Variables of the whole design (DESIGN.md), including those read by other parts of glbudget;
+// anything else that starts with GLBUDGET_ is most likely a typo, worth a warning.
+constexpr const char* kKnownVariables[] = {
+    "GLBUDGET_POWER", "GLBUDGET_ERROR", "GLBUDGET_CONFIG", "GLBUDGET_SENSOR", "GLBUDGET_FPS",
+    "GLBUDGET_LOG", "GLBUDGET_DUMP", "GLBUDGET_PROFILE", "GLBUDGET_CPU_IDLE_W", "GLBUDGET_CPU_MAX_W",
+};
+
+void warn(std::string* out, const std::string& text) { *out += "glbudget: " + text + "\n"; }
+}  // namespace
+
+Options parse_options(char** env, std::string* warnings) {
+  Options o;
+  for (char** e = env; e && *e; ++e) {
+    std::string_view entry(*e);
+    if (entry.rfind("GLBUDGET_", 0) != 0) continue;
+    size_t eq = entry.find('=');
+    std::string_view name = entry.substr(0, eq);
+    std::string value(eq == std::string_view::npos ? "" : entry.substr(eq + 1));
+    bool known = false;
+    for (const char* k : kKnownVariables) known = known || name == k;
+    if (!known) {
+      warn(warnings, "unknown variable " + std::string(name) + " ignored");
+      continue;
+    }
+    if (name == "GLBUDGET_LOG") {
+      o.log_path = value;
+    } else if (name == "GLBUDGET_FPS") {
+      if (value.empty() || value == "off" || value == "0") continue;
+      errno = 0;
+      char* end = nullptr;
+      double fps = std::strtod(value.c_str(), &end);
+      if (errno || end == value.c_str() || *end != '\0' || !std::isfinite(fps) || fps <= 0 || fps > 10000) {
+        warn(warnings, "GLBUDGET_FPS='" + value + "' is not a frame rate in (0, 10000]; pacing off");
+      } else {
+        o.fps = fps;
+      }
+    }
+  }
+  return o;
+}
+
+const Options& options() {
+  static Options parsed;
+  static std::once_flag once;
+  std::call_once(once, [] {
+    std::string warnings;
+    parsed = parse_options(environ, &warnings);
+    if (!warnings.empty()) (void)!write(STDERR_FILENO, warnings.data(), warnings.size());
+  });
+  return parsed;
+}
+
+}  // namespace glbudget

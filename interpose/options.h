@@ -1,0 +1,20 @@
+// The GLBUDGET_* environment variables the shim reads. Parsed once, at the first
+// make-current (never in processes that do not use GL). Bad values: one `glbudget:` line
+// on stderr and the default.
+#pragma once
+#include <string>
+
+namespace glbudget {
+
+struct Options {
+  std::string log_path;  // GLBUDGET_LOG: per-frame CSV; empty: no log
+  double fps = 0;        // GLBUDGET_FPS: pace swaps to this rate; 0: no pacing
+};
+
+const Options& options();
+
+// Exposed for tests of the parser: parses `env` (a NULL-terminated environ-style array),
+// writing warnings to `warn`.
+Options parse_options(char** env, std::string* warnings);
+
+}  // namespace glbudget

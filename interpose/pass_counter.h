@@ -1,0 +1,97 @@
+// Per-context measurement of each frame's work per pass: CPU-counted batches and, through
+// pools of GL queries, vertex/fragment shader invocations, primitives and GPU time. Query
+// results are collected at later swaps only once available: the shim never waits on the GPU.
+#pragma once
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <vector>
+
+#include "draw_count.h"
+#include "frame_row.h"
+#include "gl_types.h"
+
+namespace glbudget {
+
+struct GlCaps {
+  bool gles = false;
+  int major = 0, minor = 0;
+  bool pipeline_stats = false;  // ARB_pipeline_statistics_query / GL 4.6
+  bool timer = false;           // ARB_timer_query / GL 3.3 (GL_TIMESTAMP counters)
+  bool query_buffer = false;    // ARB_query_buffer_object / GL 4.4: a bound buffer redirects reads
+};
+GlCaps detect_caps();
+
+class PassCounter : public DrawCounter {
+ public:
+  // The statistics targets we use; the app may hold any of them (see app_query_*).
+  enum Stat { kVertices, kFragments, kPrimitives, kStatCount };
+  static const GLenum kStatTargets[kStatCount];
+
+  explicit PassCounter(const GlCaps& caps) : caps_(caps) {}
+
+  void set_pass(PassId pass);   // the pass later draws belong to (program change)
+  void set_counting(bool on);   // off while a display list is being compiled
+  void draw_slow(uint64_t n);
+
+  // The app begins/ends one of its own queries. Ours on that target is closed first, and
+  // segments stay unmeasured for it while the app holds it. Returns true if the target is ours.
+  bool app_query_begin(GLenum target);
+  bool app_query_end(GLenum target);
+  bool app_holds(GLenum target) const;
+  bool our_query_active(GLenum target) const;
+
+  // Frame boundary (before the real swap): closes the open segment and queues the frame.
+  void end_frame(uint64_t frame, int64_t time_ns, int context_index);
+  // Turns queued frames into rows, never waiting on the GPU:
+  //   kAvailable: frames whose results are all available (oldest first); a frame still
+  //               pending after kMaxPendingFrames is given up and logged with CPU figures;
+  //   kAll:       every frame, reading what is available (context current, e.g. at exit);
+  //   kCpuOnly:   every frame with CPU figures only, with no GL call (context not current).
+  enum class Collect { kAvailable, kAll, kCpuOnly };
+  void collect(const std::function<void(const FrameRow&)>& emit, Collect mode);
+
+  // After fork: frames queued before belong to the parent.
+  void discard_pending() {
+    pending_.clear();
+    building_ = Frame{};
+  }
+
+  size_t pending_frames() const { return pending_.size(); }
+  uint64_t frames_lost() const { return frames_lost_; }
+
+ private:
+  struct Segment {
+    PassId pass = kFixedFunctionPass;
+    uint64_t batches = 0;
+    GLuint stat_query[kStatCount] = {0, 0, 0};  // 0: not measured
+    GLuint ts_begin = 0, ts_end = 0;
+  };
+  struct Frame {
+    uint64_t number = 0;
+    int64_t time_ns = 0;
+    int context = 0;
+    std::vector<Segment> segments;
+  };
+
+  void open_segment();
+  void close_segment();
+  GLuint take_query();
+  bool frame_available(const Frame& f) const;
+  void emit_frame(Frame& f, bool read_gpu, const std::function<void(const FrameRow&)>& emit);
+  void recycle(Frame& f);
+
+  GlCaps caps_;
+  PassId pass_ = kFixedFunctionPass;
+  bool counting_ = true;
+  bool open_ = false;
+  Segment seg_;
+  unsigned app_held_ = 0;   // bit per Stat the app holds
+  unsigned ours_active_ = 0;
+  Frame building_;
+  std::deque<Frame> pending_;
+  std::vector<GLuint> free_queries_;
+  uint64_t frames_lost_ = 0;
+};
+
+}  // namespace glbudget

@@ -1,0 +1,89 @@
+// EGL entry points: context life cycle, frame boundaries, GetProcAddress interception.
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+
+#include "context_state.h"
+#include "frame_output.h"
+#include "hook_table.h"
+#include "proc_address.h"
+
+using namespace glbudget;
+
+#define EXPORT extern "C" __attribute__((visibility("default")))
+
+template <typename F>
+static F real(int id) {
+  return reinterpret_cast<F>(real_entry(id));
+}
+
+EXPORT __eglMustCastToProperFunctionPointerType eglGetProcAddress(const char* name) {
+  auto fn = real<decltype(&eglGetProcAddress)>(kHook_eglGetProcAddress);
+  if (!fn) return nullptr;
+  auto p = reinterpret_cast<void*>(fn(name));
+  return reinterpret_cast<__eglMustCastToProperFunctionPointerType>(hook_for_proc(name, p));
+}
+
+EXPORT EGLContext eglCreateContext(EGLDisplay dpy, EGLConfig config, EGLContext share, const EGLint* attribs) {
+  auto fn = real<decltype(&eglCreateContext)>(kHook_eglCreateContext);
+  if (!fn) return EGL_NO_CONTEXT;
+  EGLContext c = fn(dpy, config, share, attribs);
+  if (c != EGL_NO_CONTEXT) context_created(c, dpy, share);
+  return c;
+}
+
+EXPORT EGLBoolean eglMakeCurrent(EGLDisplay dpy, EGLSurface draw, EGLSurface read, EGLContext ctx) {
+  auto fn = real<decltype(&eglMakeCurrent)>(kHook_eglMakeCurrent);
+  if (!fn) return EGL_FALSE;
+  EGLBoolean ok = fn(dpy, draw, read, ctx);
+  if (ok) context_made_current(ctx, dpy);
+  return ok;
+}
+
+EXPORT EGLBoolean eglDestroyContext(EGLDisplay dpy, EGLContext ctx) {
+  auto fn = real<decltype(&eglDestroyContext)>(kHook_eglDestroyContext);
+  if (!fn) return EGL_FALSE;
+  context_destroyed(ctx);
+  return fn(dpy, ctx);
+}
+
+EXPORT EGLBoolean eglTerminate(EGLDisplay dpy) {
+  auto fn = real<decltype(&eglTerminate)>(kHook_eglTerminate);
+  if (!fn) return EGL_FALSE;
+  display_terminated(dpy);
+  return fn(dpy);
+}
+
+EXPORT EGLBoolean eglReleaseThread(void) {
+  auto fn = real<decltype(&eglReleaseThread)>(kHook_eglReleaseThread);
+  if (!fn) return EGL_FALSE;
+  EGLBoolean ok = fn();
+  if (ok) context_made_current(nullptr, nullptr);
+  return ok;
+}
+
+EXPORT EGLBoolean eglSwapBuffers(EGLDisplay dpy, EGLSurface surface) {
+  auto fn = real<decltype(&eglSwapBuffers)>(kHook_eglSwapBuffers);
+  if (!fn) return EGL_FALSE;
+  swap_begin();
+  EGLBoolean ok = fn(dpy, surface);
+  swap_end();
+  return ok;
+}
+
+EXPORT EGLBoolean eglSwapBuffersWithDamageKHR(EGLDisplay dpy, EGLSurface surface, const EGLint* rects, EGLint n) {
+  auto fn = real<PFNEGLSWAPBUFFERSWITHDAMAGEKHRPROC>(kHook_eglSwapBuffersWithDamageKHR);
+  if (!fn) return EGL_FALSE;
+  swap_begin();
+  EGLBoolean ok = fn(dpy, surface, rects, n);
+  swap_end();
+  return ok;
+}
+
+EXPORT EGLBoolean eglSwapBuffersWithDamageEXT(EGLDisplay dpy, EGLSurface surface, const EGLint* rects, EGLint n) {
+  auto fn = real<PFNEGLSWAPBUFFERSWITHDAMAGEEXTPROC>(kHook_eglSwapBuffersWithDamageEXT);
+  if (!fn) return EGL_FALSE;
+  swap_begin();
+  EGLBoolean ok = fn(dpy, surface, rects, n);
+  swap_end();
+  return ok;
+}

@@ -1,0 +1,87 @@
+// GLX entry points: context life cycle, frame boundaries, GetProcAddress interception.
+#include <GL/glx.h>
+
+#include "context_state.h"
+#include "frame_output.h"
+#include "hook_table.h"
+#include "proc_address.h"
+
+using namespace glbudget;
+
+#define EXPORT extern "C" __attribute__((visibility("default")))
+
+template <typename F>
+static F real(int id) {
+  return reinterpret_cast<F>(real_entry(id));
+}
+
+EXPORT __GLXextFuncPtr glXGetProcAddressARB(const GLubyte* name) {
+  auto fn = real<__GLXextFuncPtr (*)(const GLubyte*)>(kHook_glXGetProcAddressARB);
+  if (!fn) return nullptr;
+  auto p = reinterpret_cast<void*>(fn(name));
+  return reinterpret_cast<__GLXextFuncPtr>(hook_for_proc(reinterpret_cast<const char*>(name), p));
+}
+
+EXPORT __GLXextFuncPtr glXGetProcAddress(const GLubyte* name) {
+  auto fn = real<__GLXextFuncPtr (*)(const GLubyte*)>(kHook_glXGetProcAddress);
+  if (!fn) return nullptr;
+  auto p = reinterpret_cast<void*>(fn(name));
+  return reinterpret_cast<__GLXextFuncPtr>(hook_for_proc(reinterpret_cast<const char*>(name), p));
+}
+
+EXPORT GLXContext glXCreateContext(Display* dpy, XVisualInfo* vis, GLXContext share, Bool direct) {
+  auto fn = real<decltype(&glXCreateContext)>(kHook_glXCreateContext);
+  if (!fn) return nullptr;
+  GLXContext c = fn(dpy, vis, share, direct);
+  context_created(c, dpy, share);
+  return c;
+}
+
+EXPORT GLXContext glXCreateNewContext(Display* dpy, GLXFBConfig config, int type, GLXContext share, Bool direct) {
+  auto fn = real<decltype(&glXCreateNewContext)>(kHook_glXCreateNewContext);
+  if (!fn) return nullptr;
+  GLXContext c = fn(dpy, config, type, share, direct);
+  context_created(c, dpy, share);
+  return c;
+}
+
+EXPORT GLXContext glXCreateContextAttribsARB(Display* dpy, GLXFBConfig config, GLXContext share, Bool direct,
+                                             const int* attribs) {
+  using Fn = GLXContext (*)(Display*, GLXFBConfig, GLXContext, Bool, const int*);
+  auto fn = real<Fn>(kHook_glXCreateContextAttribsARB);
+  if (!fn) return nullptr;
+  GLXContext c = fn(dpy, config, share, direct, attribs);
+  context_created(c, dpy, share);
+  return c;
+}
+
+EXPORT Bool glXMakeCurrent(Display* dpy, GLXDrawable drawable, GLXContext ctx) {
+  auto fn = real<decltype(&glXMakeCurrent)>(kHook_glXMakeCurrent);
+  if (!fn) return False;
+  Bool ok = fn(dpy, drawable, ctx);
+  if (ok) context_made_current(ctx, dpy);
+  return ok;
+}
+
+EXPORT Bool glXMakeContextCurrent(Display* dpy, GLXDrawable draw, GLXDrawable read, GLXContext ctx) {
+  auto fn = real<decltype(&glXMakeContextCurrent)>(kHook_glXMakeContextCurrent);
+  if (!fn) return False;
+  Bool ok = fn(dpy, draw, read, ctx);
+  if (ok) context_made_current(ctx, dpy);
+  return ok;
+}
+
+EXPORT void glXDestroyContext(Display* dpy, GLXContext ctx) {
+  auto fn = real<decltype(&glXDestroyContext)>(kHook_glXDestroyContext);
+  if (!fn) return;
+  context_destroyed(ctx);
+  fn(dpy, ctx);
+}
+
+EXPORT void glXSwapBuffers(Display* dpy, GLXDrawable drawable) {
+  auto fn = real<decltype(&glXSwapBuffers)>(kHook_glXSwapBuffers);
+  if (!fn) return;
+  swap_begin();
+  fn(dpy, drawable);
+  swap_end();
+}
