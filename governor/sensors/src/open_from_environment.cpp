@@ -1,0 +1,37 @@
+#include <cstdio>
+#include <cstdlib>
+
+#include "glbudget/sensors/registry.hpp"
+#include "glbudget/sensors/sensor.hpp"
+
+namespace glbudget::sensors {
+
+std::unique_ptr<PowerSensor> open_sensor_from_environment() {
+  const SourceEnvironment env = SourceEnvironment::from_process_environment();
+  const char* value = std::getenv("GLBUDGET_SENSOR");
+  const std::string text = value && *value ? value : "auto";
+
+  std::string error;
+  OpenResult opened;
+  if (const auto spec = parse_sensor_spec(text, error)) {
+    opened = open_source(*spec, env);
+    if (!opened.source) error = opened.why_not;
+  }
+  if (!opened.source) {
+    std::fprintf(stderr, "glbudget: GLBUDGET_SENSOR=%s: %s; using auto\n", text.c_str(),
+                 error.c_str());
+    opened = open_source(SensorSpec{"auto", {}, {}}, env);
+  }
+  if (!opened.source) {  // cannot happen while cpu is in the auto list, but never crash the host
+    std::fprintf(stderr, "glbudget: no power sensor: %s\n", opened.why_not.c_str());
+    return nullptr;
+  }
+  if (text == "auto" || !value)
+    std::fprintf(stderr, "glbudget: power sensor %.*s%s: %s\n",
+                 static_cast<int>(opened.source->name().size()), opened.source->name().data(),
+                 opened.source->is_estimate() ? " (estimate)" : "",
+                 opened.source->description().c_str());
+  return std::make_unique<PowerSensor>(std::move(opened.source));
+}
+
+}  // namespace glbudget::sensors
