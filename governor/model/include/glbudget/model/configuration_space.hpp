@@ -1,0 +1,47 @@
+#pragma once
+// The search space of paper §3: a configuration assigns a quality level to each pass
+// (level 0 is the best); the space is the product of the passes' levels.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace glbudget::model {
+
+// Per-invocation cost of one shader variant, measured by the shader instrumentation: average
+// executed instructions per vertex- and fragment-shader invocation, and texel accesses per
+// fragment invocation (paper §5.4; vertex shaders are taken not to sample textures).
+struct VariantCost {
+    double ins_v = 0.0;
+    double ins_f = 0.0;
+    double tex_f = 0.0;
+};
+
+struct PassVariants {
+    std::string pass;
+    std::vector<VariantCost> levels;  // best first; at least one
+};
+
+using Configuration = std::vector<int>;  // level per pass, in ConfigurationSpace order
+
+class ConfigurationSpace {
+public:
+    ConfigurationSpace() = default;
+    // Passes without levels get a single zero-cost level, so the space is never empty.
+    explicit ConfigurationSpace(std::vector<PassVariants> passes);
+
+    const std::vector<PassVariants>& passes() const { return passes_; }
+    std::size_t pass_count() const { return passes_.size(); }
+    std::size_t size() const { return size_; }
+
+    // Row-major: the last pass changes fastest. index_of(decode(i)) == i.
+    std::size_t index_of(const Configuration& configuration) const;
+    Configuration decode(std::size_t index) const;
+    bool contains(const Configuration& configuration) const;
+
+private:
+    std::vector<PassVariants> passes_;
+    std::vector<std::size_t> strides_;
+    std::size_t size_ = 1;
+};
+
+}  // namespace glbudget::model

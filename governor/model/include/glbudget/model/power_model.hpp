@@ -1,0 +1,61 @@
+#pragma once
+// The per-pass power model of paper eq. (3):
+//   P = P_m + (P_M - P_m)(1 - exp(-sum_i alpha_i)),
+//   alpha_i = k_bi b_i/B + k_vi v_i/V + k_fi f_i/F.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "glbudget/model/platform_profile.hpp"
+
+namespace glbudget::model {
+
+// What one pass drew in one frame. NaN means "not measured".
+struct PassCounts {
+    double batches = 0.0;
+    double vertices = 0.0;    // vertex-shader invocations
+    double fragments = 0.0;   // fragment-shader invocations
+};
+
+struct PassCoefficients {
+    double k_b = 0.0;
+    double k_v = 0.0;
+    double k_f = 0.0;
+};
+
+struct PassFrame {
+    std::string pass;  // manifest pass name, or the program's source hash without a manifest
+    PassCounts counts;
+};
+
+// One rendering sample (paper §5.3 footnote): measured power and per-pass counts of a frame.
+struct FrameSample {
+    double power_w = 0.0;
+    std::vector<PassFrame> passes;
+};
+
+// True when the power and every count are finite and the counts are non-negative.
+bool is_usable(const FrameSample& sample);
+
+// Normalised load of one pass.
+double pass_alpha(const PlatformProfile& profile, const PassCoefficients& k, const PassCounts& c);
+
+class PowerModel {
+public:
+    explicit PowerModel(PlatformProfile profile = {}) : profile_(profile) {}
+
+    const PlatformProfile& profile() const { return profile_; }
+    // Passes that were never fitted have no entry and contribute nothing.
+    const std::map<std::string, PassCoefficients>& coefficients() const { return coefficients_; }
+    const PassCoefficients* find(const std::string& pass) const;
+    void set(const std::string& pass, const PassCoefficients& k) { coefficients_[pass] = k; }
+
+    double alpha(const std::vector<PassFrame>& passes) const;
+    double predict_power(const std::vector<PassFrame>& passes) const;
+
+private:
+    PlatformProfile profile_;
+    std::map<std::string, PassCoefficients> coefficients_;
+};
+
+}  // namespace glbudget::model

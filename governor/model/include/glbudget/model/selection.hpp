@@ -1,0 +1,38 @@
+#pragma once
+// Configuration selection of paper §6.1: argmin estimated error subject to predicted power
+// within the budget. The budget is either a share of the scene's range of predicted power
+// (the paper's definition: 40% admits P <= P_min + 0.4 (P_max - P_min), where P_min and P_max
+// are the lowest and highest predicted power over all configurations) or absolute watts.
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string_view>
+
+namespace glbudget::model {
+
+struct Budget {
+    enum class Kind { Off, ShareOfRange, Watts };
+    Kind kind = Kind::Off;
+    double value = 0.0;  // share in [0, 1], or watts
+};
+
+// "40%", "35W" (or "35w", "35 W"), "off" or "". Anything else: one `glbudget:` line on stderr
+// and std::nullopt, so the caller keeps its default.
+std::optional<Budget> parse_budget(std::string_view text);
+
+// Power limit in watts for this set of predictions; +inf when the budget is off.
+double budget_watts(const Budget& budget, std::span<const double> predicted_power_w);
+
+struct Selection {
+    std::size_t index = 0;       // chosen configuration
+    double budget_w = 0.0;
+    bool within_budget = true;   // false: nothing fits, the lowest-power configuration was taken
+};
+
+// Lowest error among configurations with power <= budget (inclusive, so 100% admits the most
+// expensive one and 0% the cheapest); ties go to lower power. NaN errors rank last, NaN powers
+// are never admitted. Requires predicted_power_w.size() == error.size() > 0.
+Selection select_configuration(std::span<const double> predicted_power_w,
+                               std::span<const double> error, const Budget& budget);
+
+}  // namespace glbudget::model

@@ -1,0 +1,48 @@
+#pragma once
+// Which shader variants (by the log's pass hash) are which quality level of which pass, with
+// their per-invocation costs. The shader instrumentation measures the costs; this JSON form
+// lets a replay of a frame log know configurations without the rest of the shim:
+//   {"passes": [{"name": "shading",
+//                "levels": [{"hash": "0123456789abcdef", "ins_v": 24, "ins_f": 180, "tex_f": 6},
+//                           ...]}, ...]}
+#include <cstddef>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "glbudget/model/configuration_space.hpp"
+#include "glbudget/model/frame_log.hpp"
+#include "glbudget/model/power_model.hpp"
+#include "glbudget/model/vatjus_anttila_model.hpp"
+
+namespace glbudget::model {
+
+struct VariantRef {
+    std::size_t pass = 0;  // index in the space
+    int level = 0;
+};
+
+struct VariantTable {
+    ConfigurationSpace space;
+    std::map<std::string, VariantRef> by_hash;
+};
+
+// Malformed entries: one `glbudget:` line each, and the entry is left out.
+std::optional<VariantTable> parse_variant_table(const std::string& json_text, const std::string& source);
+std::optional<VariantTable> load_variant_table(const std::string& path);
+
+// A logged frame as the model sees it. Variants listed in the table become their pass's name
+// and set that pass's level; other hashes are passes of their own outside the search space.
+// Passes of the space that drew nothing keep `default_configuration`'s level.
+struct ResolvedFrame {
+    FrameSample sample;
+    Configuration configuration;
+    // For the baseline; texels are fragments x texel accesses per fragment where the table
+    // knows the variant, else fragments.
+    FrameTotals totals;
+};
+ResolvedFrame resolve_frame(const LoggedFrame& frame, const VariantTable& table,
+                            const Configuration& default_configuration);
+
+}  // namespace glbudget::model
