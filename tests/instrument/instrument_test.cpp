@@ -1,0 +1,190 @@
+// GL-free tests of the instrumenter: static figures of a hand-counted corpus, the counting
+// rule on small cases, the inserted counters, and that glslang accepts what we produce.
+#include "glbudget/instrument/instrument.hpp"
+#include "shader_files.hpp"
+
+#include <glslang/Public/ResourceLimits.h>
+#include <glslang/Public/ShaderLang.h>
+
+#include <catch2/catch.hpp>
+
+#include <regex>
+
+using namespace glbudget::instrument;
+using glbudget::test::shader_file;
+
+namespace {
+
+InstrumentResult instrument(const std::string& source, Stage stage = Stage::fragment, int binding = 7) {
+    return instrument_shader({{source}, stage, binding});
+}
+
+EShLanguage glslang_stage(Stage stage) { return stage == Stage::vertex ? EShLangVertex : EShLangFragment; }
+
+// glslang knows storage-buffer atomics only from GLSL 4.30 (and ES 3.10) on, not through
+// the extensions we enable for older versions; Mesa accepts those (gl_instrument_test).
+// To check our rewrite of an older shader with glslang, raise it to 4.30 compatibility.
+std::string as_glsl430(std::string source) {
+    static const std::regex older_version(R"(^#version (1[0-9]0|3[0-3]0)( core| compatibility)?\n)");
+    static const std::regex our_extensions(R"(#extension GL_(ARB_shader_storage_buffer_object|ARB_uniform_buffer_object|EXT_gpu_shader4) : \w+)");
+    if (!std::regex_search(source, older_version)) return source;
+    source = std::regex_replace(source, older_version, "#version 430 compatibility\n");
+    return std::regex_replace(source, our_extensions, "");
+}
+
+// glslang's verdict on a shader: empty when it compiles, else its log.
+std::string glslang_errors(const std::string& original, Stage stage) {
+    static const bool initialised = glslang::InitializeProcess();
+    (void)initialised;
+    glslang::TShader shader(glslang_stage(stage));
+    const std::string source = as_glsl430(original);
+    const char* text = source.c_str();
+    shader.setStrings(&text, 1);
+    if (shader.parse(GetDefaultResources(), 110, false, EShMsgDefault)) return {};
+    return shader.getInfoLog();
+}
+
+// The operation count inserted at the start of `main` (its entry block).
+std::uint64_t main_entry_count(const InstrumentResult& r) {
+    std::smatch m;
+    static const std::regex entry(R"(void main\(\)\{glbudget_ins \+= (\d+)u;)");
+    if (!std::regex_search(r.instrumented_source, m, entry)) return 0;
+    return std::stoull(m[1]);
+}
+
+std::uint64_t entry_ops(const std::string& body, const std::string& globals = "") {
+    const auto r = instrument("#version 430\nuniform vec4 v; uniform int k; uniform float a[4];\n"
+                              "uniform sampler2D s;\nout vec4 o;\n" + globals + "void main() {" + body + "}\n");
+    INFO(r.error << "\n" << r.instrumented_source);
+    REQUIRE(r.ok);
+    return main_entry_count(r);
+}
+
+}  // namespace
+
+TEST_CASE("static figures of the hand-counted corpus", "[instrument]") {
+    struct Case {
+        const char* file;
+        Stage stage;
+        int blocks;
+        std::uint64_t instructions;
+        int texture_calls;
+        bool binding_in_source;
+    };
+    const Case cases[] = {
+        {"loops.frag", Stage::fragment, 9, 16, 1, false},
+        {"jumps.frag", Stage::fragment, 24, 32, 1, true},
+        {"compat.frag", Stage::fragment, 4, 10, 1, false},
+        {"quad.vert", Stage::vertex, 1, 5, 0, false},
+        {"quad_es.vert", Stage::vertex, 1, 5, 0, true},
+        {"quad_compat.vert", Stage::vertex, 1, 5, 0, false},
+    };
+    for (const Case& c : cases) {
+        SECTION(c.file) {
+            const auto r = instrument(shader_file(c.file), c.stage);
+            INFO(r.error);
+            REQUIRE(r.ok);
+            REQUIRE(r.figures);
+            CHECK(r.figures->blocks == c.blocks);
+            CHECK(r.figures->instructions == c.instructions);
+            CHECK(r.figures->texture_calls == c.texture_calls);
+            CHECK(r.binding_in_source == c.binding_in_source);
+            INFO(r.instrumented_source);
+            CHECK(glslang_errors(r.instrumented_source, c.stage) == "");
+        }
+    }
+}
+
+TEST_CASE("the counting rule on single statements", "[instrument]") {
+    CHECK(entry_ops("o = v;") == 1);                          // assignment
+    CHECK(entry_ops("o = v * 2.0 + v;") == 3);                // two operators and the assignment
+    CHECK(entry_ops("o = vec4(v.x, v.yz, a[2]);") == 2);      // swizzles, constant index free
+    CHECK(entry_ops("o = vec4(a[k]);") == 3);                 // dynamic index, constructor, =
+    CHECK(entry_ops("o = vec4(1.0, 2.0, 3.0, 4.0) * 2.0;") == 1);  // folded by glslang
+    CHECK(entry_ops("o = vec4(float(k));") == 3);             // conversion, constructor, =
+    CHECK(entry_ops("o = normalize(v) + max(v, v);") == 4);   // built-ins count one each
+    CHECK(entry_ops("o = k > 0 ? v : -v;") == 4);             // >, unary -, ?:, =
+    CHECK(entry_ops("o = v; o.x += 1.0; o.y++;") == 3);
+    CHECK(entry_ops("o = vec4(f(v.x));", "float f(float x) { return x; }\n") == 3);  // call, ctor, =
+    CHECK(entry_ops("o = v;", "float g = gl_FragCoord.x * 2.0;\n") == 3);  // global initialiser
+}
+
+TEST_CASE("texel accesses: one per sampling call, none for queries", "[instrument]") {
+    const auto r = instrument("#version 430\nuniform sampler2D s; out vec4 o;\n"
+                              "void main() { o = texture(s, vec2(0.5)) + texelFetch(s, ivec2(0), 0)"
+                              " + textureGather(s, vec2(0.5)) + vec4(textureSize(s, 0), 0, 0); }\n");
+    REQUIRE(r.ok);
+    CHECK(r.figures->texture_calls == 3);
+    CHECK(r.instrumented_source.find("glbudget_tex += 3u;") != std::string::npos);
+}
+
+TEST_CASE("counters sit where the blocks start", "[instrument]") {
+    const auto r = instrument(shader_file("loops.frag"));
+    REQUIRE(r.ok);
+    const std::string& s = r.instrumented_source;
+    // loop condition and step count each evaluation; the unbraced body gets braces
+    CHECK(s.find("(glbudget_ins += 1u, i < trips)") != std::string::npos);
+    CHECK(s.find("(glbudget_ins += 1u, ++ i)") != std::string::npos);
+    CHECK(s.find("{ glbudget_ins += 5u; sum += fetch(") != std::string::npos);
+    // the called function counts its own body, texel access included
+    CHECK(s.find("{glbudget_ins += 2u; glbudget_tex += 1u;  return texture(image, at)") != std::string::npos);
+    // main flushes once at its end
+    CHECK(s.find("glbudget_flush(); }") != std::string::npos);
+}
+
+TEST_CASE("discard and early return flush the invocation first", "[instrument]") {
+    const auto r = instrument(shader_file("jumps.frag"));
+    REQUIRE(r.ok);
+    CHECK(r.instrumented_source.find("{ glbudget_flush(); discard; }") != std::string::npos);
+    CHECK(r.instrumented_source.find("glbudget_flush(); return;") != std::string::npos);
+    // return in another function does not flush
+    CHECK(r.instrumented_source.find("{ return 0.0; }") != std::string::npos);
+}
+
+TEST_CASE("the counter block has the binding and the stage's words", "[instrument]") {
+    const auto r = instrument(shader_file("quad_es.vert"), Stage::vertex, 31);
+    REQUIRE(r.ok);
+    CHECK(r.instrumented_source.find("#version 310 es") == 0);  // 3.00 has no storage buffers
+    CHECK(r.instrumented_source.find("layout(std430, binding = 31) buffer glbudget_Counters") != std::string::npos);
+    CHECK(r.instrumented_source.find("highp uint glbudget_ins") != std::string::npos);
+    CHECK(r.instrumented_source.find("glbudget_add64(0, glbudget_ins)") != std::string::npos);
+    const auto old = instrument(shader_file("quad_compat.vert"), Stage::vertex, 31);
+    REQUIRE(old.ok);
+    CHECK(old.instrumented_source.find("#extension GL_EXT_gpu_shader4 : enable") != std::string::npos);
+    CHECK(old.instrumented_source.find("binding") == std::string::npos);
+}
+
+TEST_CASE("several source strings are one shader", "[instrument]") {
+    const auto r = instrument_shader(
+        {{"#version 330\n", "out vec4 o;\n", "void main() { o = vec4(1.0) * 2.0 + o; }\n"}, Stage::fragment, 3});  // folded product, +, =
+    REQUIRE(r.ok);
+    CHECK(r.figures->instructions == 2);
+}
+
+TEST_CASE("shaders that cannot be instrumented say why", "[instrument]") {
+    SECTION("GLSL ES 1.00 has no storage buffers, but has static figures") {
+        const auto r = instrument("#version 100\nprecision mediump float;\nuniform sampler2D s;\n"
+                                  "void main() { gl_FragColor = texture2D(s, vec2(0.5)); }\n");
+        CHECK_FALSE(r.ok);
+        CHECK(r.error.find("storage buffers") != std::string::npos);
+        REQUIRE(r.figures);
+        CHECK(r.figures->texture_calls == 1);
+        CHECK(r.figures->instructions == 2);
+    }
+    SECTION("syntax error") {
+        const auto r = instrument("#version 330\nvoid main() { o = ; }\n");
+        CHECK_FALSE(r.ok);
+        CHECK(r.error.rfind("glslang cannot parse the shader:", 0) == 0);
+        CHECK(r.error.find('\n') == std::string::npos);
+    }
+    SECTION("preprocessor error") {
+        const auto r = instrument("#version 330\n#error nope\nvoid main() {}\n");
+        CHECK_FALSE(r.ok);
+        CHECK(r.error.rfind("glslang cannot preprocess the shader:", 0) == 0);
+    }
+    SECTION("empty source") {
+        const auto r = instrument("");
+        CHECK_FALSE(r.ok);
+        CHECK_FALSE(r.error.empty());
+    }
+}
