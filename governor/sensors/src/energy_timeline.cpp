@@ -34,17 +34,17 @@ std::optional<EnergyPoint> EnergyTimeline::energy_at(std::int64_t t_ns,
     std::optional<EnergyPoint> result;
     EnergyPoint later = load(n - 1);
     if (t_ns >= later.t_ns) {
-      if (t_ns - later.t_ns <= max_extrapolation_ns) {
+      if (t_ns == later.t_ns) {
         result = later;
-        if (n >= 2) {
-          const EnergyPoint earlier = load(n - 2);
-          if (earlier.segment == later.segment && later.t_ns > earlier.t_ns) {
-            const double slope = (later.energy_j - earlier.energy_j) /
-                                 static_cast<double>(later.t_ns - earlier.t_ns);
-            result->energy_j += slope * static_cast<double>(t_ns - later.t_ns);
-          }
+      } else if (t_ns - later.t_ns <= max_extrapolation_ns && n >= 2) {
+        // Extrapolation needs the segment's current rate, hence two points of it.
+        const EnergyPoint earlier = load(n - 2);
+        if (earlier.segment == later.segment && later.t_ns > earlier.t_ns) {
+          const double slope = (later.energy_j - earlier.energy_j) /
+                               static_cast<double>(later.t_ns - earlier.t_ns);
+          result = EnergyPoint{t_ns, later.energy_j + slope * static_cast<double>(t_ns - later.t_ns),
+                               later.segment};
         }
-        result->t_ns = t_ns;
       }
     } else {
       // t is inside the recent curve (the writer published after the caller read its clock).

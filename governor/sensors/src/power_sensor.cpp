@@ -25,7 +25,6 @@ PowerSensor::PowerSensor(std::unique_ptr<Source> source, SamplerOptions options)
       estimate_(source_->is_estimate()),
       options_(options),
       integrator_(options.limits) {
-  sample_once();  // the curve starts now, so the first frames already have data
   thread_ = std::jthread([this](std::stop_token stop) { sample_loop(stop); });
 }
 
@@ -41,11 +40,11 @@ void PowerSensor::sample_loop(std::stop_token stop) {
   std::unique_lock lock(mutex);
   auto next = std::chrono::steady_clock::now();
   while (!stop.stop_requested()) {
+    sample_once();
     next += options_.period;
     // A starved thread resynchronises instead of firing a burst of catch-up samples.
     if (next < std::chrono::steady_clock::now()) next = std::chrono::steady_clock::now();
-    if (wake.wait_until(lock, stop, next, [] { return false; }) || stop.stop_requested()) break;
-    sample_once();
+    wake.wait_until(lock, stop, next, [] { return false; });
   }
 }
 

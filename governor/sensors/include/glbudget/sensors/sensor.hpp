@@ -45,7 +45,8 @@ class PowerSensor {
   PowerSensor(const PowerSensor&) = delete;
   PowerSensor& operator=(const PowerSensor&) = delete;
 
-  // Render thread only. now_ns: CLOCK_MONOTONIC. Never blocks.
+  // Render thread only. now_ns: CLOCK_MONOTONIC. Never blocks. The first valid frame needs
+  // two samples before the previous swap (two sampling periods after construction).
   FrameEnergy on_swap(std::int64_t now_ns);
 
   std::string_view name() const { return name_; }
