@@ -1,0 +1,18 @@
+// To add a subcommand: write <name>_command.cpp defining its CommandMain, then declare it
+// and add its row below.
+#include "command.hpp"
+
+namespace glbudget::cli {
+
+int sensors_main(std::span<char* const> args);
+
+namespace {
+constexpr Command table[] = {
+    {"sensors", "list the power sensors this machine offers and what they read now",
+     sensors_main},
+};
+}  // namespace
+
+std::span<const Command> commands() { return table; }
+
+}  // namespace glbudget::cli
