@@ -56,6 +56,7 @@ inline ContextState* current_context() { return t_ctx; }
 
 // Context life cycle, called by the GLX and EGL hooks after the real call succeeded.
 void context_created(void* handle, void* display, void* share_with);
+void context_will_change(void* handle);                  // before the real make-current
 void context_made_current(void* handle, void* display);  // handle null: released
 void context_destroyed(void* handle);
 void display_terminated(void* display);

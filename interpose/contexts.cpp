@@ -85,6 +85,12 @@ void context_made_current(void* handle, void* display) {
   t_draw = c.initialized ? c.counter.get() : nullptr;
 }
 
+void context_will_change(void* handle) {
+  // A context that stops being current here cannot be asked later from this thread: harvest
+  // what the GPU has finished while it still is (no waiting).
+  if (t_ctx && t_ctx->handle != handle) flush_pending_frames(*t_ctx, FlushMode::kCollect);
+}
+
 void context_destroyed(void* handle) {
   Registry& r = registry();
   std::lock_guard lock(r.mu);

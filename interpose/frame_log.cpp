@@ -39,6 +39,27 @@ struct FrameLog::Impl {
   std::string file_path;
 };
 
+namespace {
+// Set in every child forked without exec (an exec'd image starts afresh). Registered at load
+// time because a child forked before the parent ever logged must not write the parent's file.
+bool g_forked_child = false;
+__attribute__((constructor)) void watch_forks() {
+  pthread_atfork(nullptr, nullptr, [] { g_forked_child = true; });
+}
+
+// run.csv -> run.<pid>.csv (the child's own log).
+std::string path_for_child(const std::string& path) {
+  if (path.empty()) return path;
+  std::string p = path;
+  size_t slash = p.rfind('/');
+  size_t dot = p.rfind('.');
+  std::string pid = "." + std::to_string(getpid());
+  if (dot != std::string::npos && (slash == std::string::npos || dot > slash)) p.insert(dot, pid);
+  else p += pid;
+  return p;
+}
+}  // namespace
+
 FrameLog::FrameLog() : impl_(new Impl) {
   // Keep the log consistent across fork(): no other thread may hold the locks in the child.
   pthread_atfork([] { auto& l = get(); l.impl_->file_mu.lock(); l.impl_->queue_mu.lock(); },
@@ -54,7 +75,7 @@ FrameLog& FrameLog::get() {
 void FrameLog::set_path(const std::string& path) {
   std::lock_guard lock(impl_->file_mu);
   path_ = path;
-  impl_->file_path = path;
+  impl_->file_path = g_forked_child ? path_for_child(path) : path;
 }
 
 void FrameLog::push(const FrameRow& row) {
@@ -153,15 +174,7 @@ void FrameLog::forked_child() {
     m.file = nullptr;
   }
   m.open_failed = false;
-  if (!path_.empty()) {
-    std::string base = path_;
-    size_t slash = base.rfind('/');
-    size_t dot = base.rfind('.');
-    std::string pid = "." + std::to_string(getpid());
-    if (dot != std::string::npos && (slash == std::string::npos || dot > slash)) base.insert(dot, pid);
-    else base += pid;
-    m.file_path = base;
-  }
+  m.file_path = path_for_child(path_);
   m.queue_mu.unlock();
   m.file_mu.unlock();
 }

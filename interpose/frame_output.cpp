@@ -25,8 +25,19 @@ int64_t monotonic_ns() {
 
 void emit_row(const FrameRow& row) { FrameLog::get().push(row); }
 
+// Set while this thread runs the code that changes a counter's queue of pending frames.
+thread_local bool t_in_frame_code = false;
+struct InFrameCode {
+  InFrameCode() { t_in_frame_code = true; }
+  ~InFrameCode() { t_in_frame_code = false; }
+};
+
 void on_fatal_signal(int sig) {
   int saved = errno;
+  // Frames still awaiting GPU results are logged with CPU figures, if the signal did not
+  // interrupt this thread in the middle of changing them (no GL call is made here).
+  ContextState* c = current_context();
+  if (c && !t_in_frame_code) flush_pending_frames(*c, FlushMode::kCpuOnly);
   FrameLog::get().drain_from_signal();
   signal(sig, SIG_DFL);
   errno = saved;
@@ -63,6 +74,7 @@ void pace(ContextState& c, double fps) {
 
 void flush_pending_frames(ContextState& c, FlushMode mode) {
   if (!c.counter) return;
+  InFrameCode guard;
   switch (mode) {
     case FlushMode::kCollect: c.counter->collect(emit_row, PassCounter::Collect::kAvailable); break;
     case FlushMode::kReadAvailable: c.counter->collect(emit_row, PassCounter::Collect::kAll); break;
@@ -102,6 +114,9 @@ void frame_output_started() {
 void swap_begin() {
   ContextState* c = current_context();
   if (!c) return;
+  // Pacing sleeps before the frame is presented, so frames reach the screen evenly spaced.
+  if (options().fps > 0) pace(*c, options().fps);
+  InFrameCode guard;
   c->counter->end_frame(++c->frame, monotonic_ns(), c->index);
 }
 
@@ -109,7 +124,6 @@ void swap_end() {
   ContextState* c = current_context();
   if (!c) return;
   flush_pending_frames(*c, FlushMode::kCollect);
-  if (options().fps > 0) pace(*c, options().fps);
 }
 
 void final_flush() {

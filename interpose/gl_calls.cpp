@@ -27,6 +27,7 @@ bool load_gl_calls() {
   load_one(g.GetQueryObjectui64v, "glGetQueryObjectui64v");
   load_one(g.BindBuffer, "glBindBuffer");
   load_one(g.GetShaderiv, "glGetShaderiv");
+  load_one(g.Flush, "glFlush");
   return g.GetString && g.GetIntegerv;
 }
 

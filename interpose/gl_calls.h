@@ -19,6 +19,7 @@ struct GlCalls {
   PFNGLGETQUERYOBJECTUI64VPROC GetQueryObjectui64v = nullptr;
   PFNGLBINDBUFFERPROC BindBuffer = nullptr;
   PFNGLGETSHADERIVPROC GetShaderiv = nullptr;
+  void(APIENTRYP Flush)(void) = nullptr;
 
 };
 

@@ -84,14 +84,15 @@ void PassCounter::draw_slow(uint64_t n) {
   ready = true;
 }
 
-GLuint PassCounter::take_query() {
-  if (free_queries_.empty()) {
+GLuint PassCounter::take_query(int pool) {
+  std::vector<GLuint>& free = free_queries_[pool];
+  if (free.empty()) {
     GLuint ids[kQueryChunk];
     gl().GenQueries(kQueryChunk, ids);
-    free_queries_.assign(ids, ids + kQueryChunk);
+    free.assign(ids, ids + kQueryChunk);
   }
-  GLuint q = free_queries_.back();
-  free_queries_.pop_back();
+  GLuint q = free.back();
+  free.pop_back();
   return q;
 }
 
@@ -102,13 +103,13 @@ void PassCounter::open_segment() {
   if (caps_.pipeline_stats) {
     for (int i = 0; i < kStatCount; ++i) {
       if (app_held_ & (1u << i)) continue;
-      seg_.stat_query[i] = take_query();
+      seg_.stat_query[i] = take_query(i);
       g.BeginQuery(kStatTargets[i], seg_.stat_query[i]);
       ours_active_ |= 1u << i;
     }
   }
   if (caps_.timer) {
-    seg_.ts_begin = take_query();
+    seg_.ts_begin = take_query(kPoolTimestamp);
     g.QueryCounter(seg_.ts_begin, GL_TIMESTAMP);
   }
   open_ = true;
@@ -122,7 +123,7 @@ void PassCounter::close_segment() {
   }
   ours_active_ = 0;
   if (caps_.timer) {
-    seg_.ts_end = take_query();
+    seg_.ts_end = take_query(kPoolTimestamp);
     g.QueryCounter(seg_.ts_end, GL_TIMESTAMP);
   }
   seg_.batches = open_batches;
@@ -135,14 +136,9 @@ void PassCounter::close_segment() {
 bool PassCounter::app_query_begin(GLenum target) {
   int i = stat_index(target);
   if (i < 0) return false;
-  if (ours_active_ & (1u << i)) {
-    // Only one query per target may be active: ours yields. Its partial count is useless,
-    // so the segment stays unmeasured for this statistic.
-    gl().EndQuery(target);
-    ours_active_ &= ~(1u << i);
-    free_queries_.push_back(seg_.stat_query[i]);
-    seg_.stat_query[i] = 0;
-  }
+  // Only one query per target may be active: ours yields. The segment so far is complete,
+  // so it is closed with every statistic; the next one is opened without this target.
+  if (open_) close_segment();
   app_held_ |= 1u << i;
   return true;
 }
@@ -173,6 +169,9 @@ void PassCounter::end_frame(uint64_t frame, int64_t time_ns, int context_index) 
   building_.context = context_index;
   pending_.push_back(std::move(building_));
   building_ = Frame{};
+  // Swapping a window flushes anyway; swapping a pbuffer (or nothing) may not, and unflushed
+  // queries never become available. A flush is not a wait.
+  if (gl().Flush && (caps_.pipeline_stats || caps_.timer)) gl().Flush();
 }
 
 bool PassCounter::frame_available(const Frame& f) const {
@@ -236,10 +235,10 @@ void PassCounter::emit_frame(Frame& f, bool read_gpu, const std::function<void(c
 
 void PassCounter::recycle(Frame& f) {
   for (const Segment& s : f.segments) {
-    for (GLuint q : s.stat_query)
-      if (q) free_queries_.push_back(q);
-    if (s.ts_begin) free_queries_.push_back(s.ts_begin);
-    if (s.ts_end) free_queries_.push_back(s.ts_end);
+    for (int i = 0; i < kStatCount; ++i)
+      if (s.stat_query[i]) free_queries_[i].push_back(s.stat_query[i]);
+    if (s.ts_begin) free_queries_[kPoolTimestamp].push_back(s.ts_begin);
+    if (s.ts_end) free_queries_[kPoolTimestamp].push_back(s.ts_end);
   }
 }
 

@@ -76,7 +76,9 @@ class PassCounter : public DrawCounter {
 
   void open_segment();
   void close_segment();
-  GLuint take_query();
+  // A query object keeps the target it was first used with: one pool per target.
+  enum Pool { kPoolTimestamp = kStatCount, kPoolCount };
+  GLuint take_query(int pool);
   bool frame_available(const Frame& f) const;
   void emit_frame(Frame& f, bool read_gpu, const std::function<void(const FrameRow&)>& emit);
   void recycle(Frame& f);
@@ -90,7 +92,7 @@ class PassCounter : public DrawCounter {
   unsigned ours_active_ = 0;
   Frame building_;
   std::deque<Frame> pending_;
-  std::vector<GLuint> free_queries_;
+  std::vector<GLuint> free_queries_[kPoolCount];
   uint64_t frames_lost_ = 0;
 };
 

@@ -34,6 +34,7 @@ EXPORT EGLContext eglCreateContext(EGLDisplay dpy, EGLConfig config, EGLContext 
 EXPORT EGLBoolean eglMakeCurrent(EGLDisplay dpy, EGLSurface draw, EGLSurface read, EGLContext ctx) {
   auto fn = real<decltype(&eglMakeCurrent)>(kHook_eglMakeCurrent);
   if (!fn) return EGL_FALSE;
+  context_will_change(ctx);
   EGLBoolean ok = fn(dpy, draw, read, ctx);
   if (ok) context_made_current(ctx, dpy);
   return ok;
@@ -56,6 +57,7 @@ EXPORT EGLBoolean eglTerminate(EGLDisplay dpy) {
 EXPORT EGLBoolean eglReleaseThread(void) {
   auto fn = real<decltype(&eglReleaseThread)>(kHook_eglReleaseThread);
   if (!fn) return EGL_FALSE;
+  context_will_change(nullptr);
   EGLBoolean ok = fn();
   if (ok) context_made_current(nullptr, nullptr);
   return ok;

@@ -58,6 +58,7 @@ EXPORT GLXContext glXCreateContextAttribsARB(Display* dpy, GLXFBConfig config, G
 EXPORT Bool glXMakeCurrent(Display* dpy, GLXDrawable drawable, GLXContext ctx) {
   auto fn = real<decltype(&glXMakeCurrent)>(kHook_glXMakeCurrent);
   if (!fn) return False;
+  context_will_change(ctx);
   Bool ok = fn(dpy, drawable, ctx);
   if (ok) context_made_current(ctx, dpy);
   return ok;
@@ -66,6 +67,7 @@ EXPORT Bool glXMakeCurrent(Display* dpy, GLXDrawable drawable, GLXContext ctx) {
 EXPORT Bool glXMakeContextCurrent(Display* dpy, GLXDrawable draw, GLXDrawable read, GLXContext ctx) {
   auto fn = real<decltype(&glXMakeContextCurrent)>(kHook_glXMakeContextCurrent);
   if (!fn) return False;
+  context_will_change(ctx);
   Bool ok = fn(dpy, draw, read, ctx);
   if (ok) context_made_current(ctx, dpy);
   return ok;

@@ -1,0 +1,31 @@
+// Links only libEGL and takes every GL function from eglGetProcAddress (glad, epoxy style).
+// --es 2|3 asks for a GLES context instead of GL 4.5 core.
+#include <cstdio>
+#include <cstring>
+
+#include "common/egl_setup.h"
+#include "common/probe_main.h"
+
+int main(int argc, char** argv) {
+  ProbeArgs args = parse_probe_args(argc, argv);
+  int es = 0;
+  for (int i = 1; i + 1 < argc; ++i)
+    if (!strcmp(argv[i], "--es")) es = atoi(argv[i + 1]);
+  EglFns egl;
+  egl.load_linked();
+  ContextKind kind = es == 2 ? ContextKind::kGles2 : es == 3 ? ContextKind::kGles3 : ContextKind::kCore45;
+  EglWindow w;
+  std::string error;
+  if (!egl_create(egl, kind, args.width, args.height, EGL_NO_CONTEXT, &w, &error)) {
+    fprintf(stderr, "probe_getproc: %s\n", error.c_str());
+    return 2;
+  }
+  egl.MakeCurrent(w.display, w.surface, w.surface, w.context);
+  GlFns gl;
+  if (const char* missing = gl.load([&](const char* n) { return (void*)egl.GetProcAddress(n); })) {
+    fprintf(stderr, "probe_getproc: no %s\n", missing);
+    return 2;
+  }
+  ShaderDialect dialect = es == 2 ? ShaderDialect::kEssl100 : es == 3 ? ShaderDialect::kEssl300 : ShaderDialect::kGlsl330Core;
+  return run_known_scene(gl, dialect, args, [&] { egl.SwapBuffers(w.display, w.surface); });
+}

@@ -1,0 +1,18 @@
+// Runs a program with extra environment variables and captures what it printed.
+#pragma once
+#include <map>
+#include <string>
+#include <vector>
+
+struct ProcessResult {
+  int exit_code = -1;  // exit status, or 128 + signal number
+  std::string out, err;
+};
+
+ProcessResult run_process(const std::vector<std::string>& argv, const std::map<std::string, std::string>& env);
+
+std::string read_file(const std::string& path);
+bool file_exists(const std::string& path);
+
+// A CSV file as rows of fields; the header is row 0.
+std::vector<std::vector<std::string>> read_csv(const std::string& path);
