@@ -27,7 +27,7 @@ Scene make_hall(float detail) {
     const float x = i ? 4.0f : -4.0f;
     s.add("pedestal", box({0.8f, 0.5f, 0.8f}, n(1000)), matte(0.3f, 0.3f, 0.32f, 0.4f), at(x, 0.5f, 0.0f));
     const Material m = i ? metal(0.95f, 0.64f, 0.54f, 0.25f) : metal(0.91f, 0.92f, 0.92f, 0.15f);
-    s.add("statue", torus_knot(i ? 3 : 2, i ? 2 : 3, 1.4f, 0.3f, n(55000)), m, at(x, 2.6f, 0.0f, 0.3f));
+    s.add("statue", torus_knot(i ? 3 : 2, i ? 2 : 3, 1.4f, 0.3f, n(55000)), m, at(x, 2.3f, 0.0f, 0.3f));
   }
   s.add("chandelier", torus(1.2f, 0.08f, n(6000)), metal(0.9f, 0.8f, 0.5f, 0.3f), at(0.0f, 7.2f, 0.0f));
 

@@ -6,6 +6,17 @@
 #include "scenes/scene_kit.h"
 
 namespace demo {
+namespace {
+// The soldiers march 20 units along +x and back (0.8 units/s), turning at the ends.
+constexpr double kMarchLength = 20.0, kMarchSpeed = 0.8;
+double march_cycle(double t) { return std::fmod(kMarchSpeed * t, 2.0 * kMarchLength); }
+float march_x(double t) {
+  const double c = march_cycle(t);
+  return static_cast<float>(c < kMarchLength ? c - 10.0 : 10.0 - (c - kMarchLength));
+}
+// Model +z faces the direction of the march.
+float march_heading(double t) { return march_cycle(t) < kMarchLength ? 1.5708f : -1.5708f; }
+}  // namespace
 
 Scene make_subway(float detail) {
   using namespace kit;
@@ -53,13 +64,10 @@ Scene make_subway(float detail) {
     s.skeletons.push_back(soldier_skeleton(i * 1.7));
     Object& soldier = s.add("soldier", soldier_mesh(n(70000)), metal(0.8f, 0.82f, 0.85f, 0.3f));
     soldier.skeleton = i;
-    const float lane = i ? 1.5f : -0.5f, offset = i ? 6.0f : 0.0f;
-    soldier.animation = [lane, offset](double t) {
-      // March 20 units to +x and back, turning round at the ends.
-      const double cycle = std::fmod(0.8 * t + offset, 40.0);
-      const bool back = cycle > 20.0;
-      const auto x = static_cast<float>(back ? 10.0 - (cycle - 20.0) : cycle - 10.0);
-      return at(x, 0.0f, lane, back ? -1.5708f : 1.5708f);
+    const float lane = i ? 1.5f : -0.5f, lead = i ? 2.5f : 0.0f;
+    soldier.animation = [lane, lead](double t) {
+      const float x = march_x(t) + lead;
+      return at(x, 0.0f, lane, march_heading(t));
     };
   }
 
@@ -76,9 +84,10 @@ Scene make_subway(float detail) {
   s.shadow_radius = 30.0f;
   s.far_plane = 80.0f;
   s.reflection_distance = 10.0f;
-  s.camera = [](double t) {
-    const auto x = static_cast<float>(6.0 * std::sin(0.2 * t));
-    return CameraPose{{x - 2.0f, 1.7f, -4.5f}, {x + 3.0f, 1.2f, 1.5f}, 65.0f};
+  s.camera = [](double t) {  // follows the soldiers from the wall side of the platform
+    const float x = march_x(t) + 1.0f;
+    const auto sway = static_cast<float>(1.5 * std::sin(0.3 * t));
+    return CameraPose{{x - 4.0f + sway, 1.7f, -4.8f}, {x + 1.0f, 1.0f, 0.5f}, 65.0f};
   };
   return s;
 }

@@ -1,0 +1,58 @@
+// Same arguments, same frames: in one process (whatever was drawn before) and across runs of
+// the demo program.
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "render_fixture.h"
+#include "scenes/registry.h"
+
+TEST_CASE("a frame renders bit-identically when repeated", "[demo][determinism]") {
+  demo_test::gl_context();
+  const demo::Scene scene = *demo::make_scene("subway", 0.03f);
+  demo::Renderer renderer(scene, demo_test::kWidth, demo_test::kHeight);
+  const demo::Config config = *demo::parse_config("1,0,1,2,0,1");
+  renderer.render(config, 2.5);
+  const auto first = renderer.read_pixels();
+  renderer.render(demo::Config::cheapest(), 7.0);  // disturb: other sizes, programs, time
+  renderer.render(demo::Config::best(), 0.0);
+  renderer.render(config, 2.5);
+  CHECK(renderer.read_pixels() == first);
+  renderer.render(config, 2.6);  // and time does move the scene
+  CHECK(renderer.read_pixels() != first);
+}
+
+namespace {
+std::string slurp(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+}  // namespace
+
+TEST_CASE("two runs of the demo program dump identical images", "[demo][determinism]") {
+  const std::filesystem::path program = GLBUDGET_BINARY_DIR "/testapps/demo/demo";
+  REQUIRE(std::filesystem::exists(program));
+  const std::filesystem::path root = std::filesystem::temp_directory_path() /
+                                     ("demo_determinism_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(root);
+  for (const char* run : {"a", "b"}) {
+    const std::string command = program.string() +
+                                " --scene hall --detail 0.02 --width 96 --height 54 --frames 3 --start-frame 10"
+                                " --config 0,1,0,1,0,0 --dump " + (root / run).string() + " 2>/dev/null";
+    REQUIRE(std::system(command.c_str()) == 0);
+  }
+  int compared = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(root / "a")) {
+    const auto twin = root / "b" / entry.path().filename();
+    INFO(entry.path().filename().string());
+    REQUIRE(std::filesystem::exists(twin));
+    CHECK(slurp(entry.path()) == slurp(twin));
+    ++compared;
+  }
+  CHECK(compared == 3);
+  CHECK(std::filesystem::exists(root / "a" / "hall_c010100_f00010.png"));
+  std::filesystem::remove_all(root);
+}
