@@ -1,0 +1,76 @@
+// Unit: the GLBUDGET_* parser and the frame-log row format (no GL involved).
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <string>
+#include <vector>
+
+#include "frame_log.h"
+#include "options.h"
+
+using namespace glbudget;
+
+namespace {
+Options parse(std::vector<std::string> vars, std::string* warnings) {
+  std::vector<char*> env;
+  for (auto& v : vars) env.push_back(v.data());
+  env.push_back(nullptr);
+  return parse_options(env.data(), warnings);
+}
+}  // namespace
+
+TEST_CASE("GLBUDGET_FPS accepts positive rates and says why it refuses the rest", "[unit]") {
+  std::string w;
+  CHECK(parse({"GLBUDGET_FPS=30"}, &w).fps == 30);
+  CHECK(parse({"GLBUDGET_FPS=59.94"}, &w).fps == Approx(59.94));
+  CHECK(parse({"GLBUDGET_FPS=10000"}, &w).fps == 10000);
+  CHECK(w.empty());
+  for (const char* off : {"GLBUDGET_FPS=", "GLBUDGET_FPS=off", "GLBUDGET_FPS=0"}) {
+    CHECK(parse({off}, &w).fps == 0);
+    CHECK(w.empty());
+  }
+  for (const char* bad : {"GLBUDGET_FPS=fast", "GLBUDGET_FPS=-5", "GLBUDGET_FPS=30fps", "GLBUDGET_FPS=nan",
+                          "GLBUDGET_FPS=inf", "GLBUDGET_FPS=1e9", "GLBUDGET_FPS=1e-400"}) {
+    INFO(bad);
+    w.clear();
+    CHECK(parse({bad}, &w).fps == 0);
+    CHECK(w.rfind("glbudget: GLBUDGET_FPS=", 0) == 0);
+    CHECK(std::count(w.begin(), w.end(), '\n') == 1);
+  }
+}
+
+TEST_CASE("unknown GLBUDGET_ variables are named; others are ignored", "[unit]") {
+  std::string w;
+  Options o = parse({"GLBUDGET_LOG=/tmp/x.csv", "GLBUDGET_LGO=/tmp/y.csv", "HOME=/root", "GLBUDGET", "GLBUDGET_POWER=40%"}, &w);
+  CHECK(o.log_path == "/tmp/x.csv");
+  CHECK(w == "glbudget: unknown variable GLBUDGET_LGO ignored\n");
+}
+
+TEST_CASE("frame-log rows: empty fields for what was not measured", "[unit]") {
+  char line[256];
+  FrameRow r;
+  r.frame = 7;
+  r.time_ns = 123456789;
+  r.context = 1;
+  r.pass = 0x00ab00cd00ef0012ull;
+  r.batches = 20000;
+  r.vertices = 60000;
+  r.fragments = 0;
+  r.primitives = 20000;
+  r.gpu_ns = -1;
+  format_row(r, line, sizeof line);
+  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,");
+  FrameRow ff;
+  ff.pass = kFixedFunctionPass;
+  format_row(ff, line, sizeof line);
+  CHECK(std::string(line) == "0,0,0,fixed-function,0,,,,");
+  // Extremes: the largest counts fit the line.
+  FrameRow big;
+  big.frame = UINT64_MAX;
+  big.time_ns = INT64_MAX;
+  big.batches = UINT64_MAX;
+  big.vertices = big.fragments = big.primitives = big.gpu_ns = INT64_MAX;
+  big.pass = UINT64_MAX;
+  int n = format_row(big, line, sizeof line);
+  CHECK(n < int(sizeof line));
+  CHECK(std::string(line).find("18446744073709551615,9223372036854775807,0,ffffffffffffffff,18446744073709551615") == 0);
+}
