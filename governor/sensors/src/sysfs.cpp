@@ -61,7 +61,11 @@ std::vector<fs::path> entries_with_prefix(const fs::path& dir, const std::string
   std::error_code ec;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
     if (it->path().filename().string().starts_with(prefix)) found.push_back(it->path());
-  std::sort(found.begin(), found.end());
+  // Numeric order (hwmon2 before hwmon10), which is the order index=N counts in.
+  std::sort(found.begin(), found.end(), [](const fs::path& a, const fs::path& b) {
+    const std::string x = a.filename().string(), y = b.filename().string();
+    return x.size() != y.size() ? x.size() < y.size() : x < y;
+  });
   return found;
 }
 

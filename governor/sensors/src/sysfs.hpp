@@ -18,11 +18,13 @@ std::optional<std::string> read_text(const std::filesystem::path& path, std::str
 // Status read_error when the file cannot be read, garbage when it is not a number.
 Reading read_scaled(const std::filesystem::path& path, double scale, ReadingKind kind);
 
-// hwmon directories under <root>/class/hwmon whose "name" attribute equals `name`, sorted.
+// hwmon directories under <root>/class/hwmon whose "name" attribute equals `name`, in
+// numeric order.
 std::vector<std::filesystem::path> hwmon_named(const std::filesystem::path& sysfs_root,
                                                const std::string& name);
 
-// Sorted entries of `dir` whose file name starts with `prefix` (empty if dir is missing).
+// Entries of `dir` whose file name starts with `prefix`, shortest names first, then in
+// alphabetical order (so hwmon2 comes before hwmon10); empty if dir is missing.
 std::vector<std::filesystem::path> entries_with_prefix(const std::filesystem::path& dir,
                                                        const std::string& prefix);
 

@@ -1,0 +1,53 @@
+// GLBUDGET_SENSOR handling: good values are honoured, bad ones fall back to auto.
+#include <catch2/catch.hpp>
+#include <cstdlib>
+
+#include "fake_sysfs.hpp"
+#include "glbudget/sensors/sensor.hpp"
+
+using namespace glbudget::sensors;
+using glbudget::sensors::testing::FakeSysfs;
+
+namespace {
+
+// Runs with an empty fake machine (no GPU, no RAPL), so auto ends at the cpu estimate.
+std::unique_ptr<PowerSensor> open_with(const FakeSysfs& sysfs, const char* value) {
+  setenv("GLBUDGET_SYSFS_ROOT", sysfs.root().c_str(), 1);
+  setenv("GLBUDGET_NVML_LIBRARY", "/nonexistent/libnvidia-ml.so.1", 1);
+  if (value)
+    setenv("GLBUDGET_SENSOR", value, 1);
+  else
+    unsetenv("GLBUDGET_SENSOR");
+  auto sensor = open_sensor_from_environment();
+  unsetenv("GLBUDGET_SYSFS_ROOT");
+  unsetenv("GLBUDGET_NVML_LIBRARY");
+  unsetenv("GLBUDGET_SENSOR");
+  return sensor;
+}
+
+}  // namespace
+
+TEST_CASE("GLBUDGET_SENSOR selects and parameterises the sensor", "[environment]") {
+  FakeSysfs sysfs;
+  sysfs.add_hwmon(0, "i915");
+  sysfs.write("class/hwmon/hwmon0/energy1_input", "5");
+  auto sensor = open_with(sysfs, "cpu:idle=5,max=20");
+  REQUIRE(sensor);
+  CHECK(sensor->name() == "cpu");
+  CHECK(sensor->description().find("5 W + (20 W - 5 W)") != std::string::npos);
+
+  sensor = open_with(sysfs, nullptr);  // unset means auto: the i915 counter wins over cpu
+  REQUIRE(sensor);
+  CHECK(sensor->name() == "i915");
+}
+
+TEST_CASE("bad or unavailable GLBUDGET_SENSOR values fall back to auto", "[environment]") {
+  FakeSysfs sysfs;
+  for (const char* value : {"bogus", "rapl", "cpu:idle=x", "file:/nonexistent/meter", ""}) {
+    INFO(value);
+    auto sensor = open_with(sysfs, value);
+    REQUIRE(sensor);
+    CHECK(sensor->name() == "cpu");
+    CHECK(sensor->is_estimate());
+  }
+}
