@@ -52,7 +52,7 @@ void retire(Registry& r, void* handle, bool is_current_here) {
   auto it = r.live.find(handle);
   if (it == r.live.end()) return;
   ContextState& c = *it->second;
-  if (c.counter) flush_pending_frames(c, is_current_here ? FlushMode::kReadAvailable : FlushMode::kCpuOnly);
+  if (c.counter) flush_pending_frames(c, is_current_here ? FlushMode::kWait : FlushMode::kCpuOnly);
   r.destroyed.push_back(std::move(it->second));
   r.live.erase(it);
 }

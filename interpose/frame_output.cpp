@@ -77,7 +77,7 @@ void flush_pending_frames(ContextState& c, FlushMode mode) {
   InFrameCode guard;
   switch (mode) {
     case FlushMode::kCollect: c.counter->collect(emit_row, PassCounter::Collect::kAvailable); break;
-    case FlushMode::kReadAvailable: c.counter->collect(emit_row, PassCounter::Collect::kAll); break;
+    case FlushMode::kWait: c.counter->collect(emit_row, PassCounter::Collect::kWait); break;
     case FlushMode::kCpuOnly: c.counter->collect(emit_row, PassCounter::Collect::kCpuOnly); break;
   }
 }
@@ -133,9 +133,9 @@ void final_flush() {
   static std::atomic<bool> done{false};
   if (done.exchange(true)) return;
   ContextState* here = current_context();
-  // The context current on the exiting thread can still answer its queries; others cannot be
-  // touched from here (they may be current elsewhere or gone), so they log CPU figures.
-  if (here) flush_pending_frames(*here, FlushMode::kReadAvailable);
+  // The context current on the exiting thread can still answer its queries (waiting is
+  // harmless now); others cannot be asked from here, so they log CPU figures.
+  if (here) flush_pending_frames(*here, FlushMode::kWait);
   for_each_context([](ContextState& c) {
     if (&c != current_context() && !c.bound) flush_pending_frames(c, FlushMode::kCpuOnly);
   });

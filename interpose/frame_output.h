@@ -7,7 +7,7 @@ struct ContextState;
 
 enum class FlushMode {
   kCollect,        // frames whose results are available; the rest wait for a later swap
-  kReadAvailable,  // everything: read what is available, CPU figures for the rest (no waiting)
+  kWait,           // everything, waiting for the GPU: the context is current and going away
   kCpuOnly,        // everything, CPU figures only: the context is not current here (no GL calls)
 };
 

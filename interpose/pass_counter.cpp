@@ -254,7 +254,7 @@ void PassCounter::collect(const std::function<void(const FrameRow&)>& emit, Coll
   }
   while (!pending_.empty()) {
     Frame& f = pending_.front();
-    const bool available = use_gl && frame_available(f);
+    const bool available = use_gl && (mode == Collect::kWait || frame_available(f));
     if (!available && mode == Collect::kAvailable && pending_.size() <= kMaxPendingFrames) break;
     if (!available) ++frames_lost_;
     emit_frame(f, available, emit);

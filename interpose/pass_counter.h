@@ -46,9 +46,10 @@ class PassCounter : public DrawCounter {
   // Turns queued frames into rows, never waiting on the GPU:
   //   kAvailable: frames whose results are all available (oldest first); a frame still
   //               pending after kMaxPendingFrames is given up and logged with CPU figures;
-  //   kAll:       every frame, reading what is available (context current, e.g. at exit);
+  //   kWait:      every frame, waiting for its results: only where nothing is left to stall
+  //               (the context is being destroyed while current, or the process exits);
   //   kCpuOnly:   every frame with CPU figures only, with no GL call (context not current).
-  enum class Collect { kAvailable, kAll, kCpuOnly };
+  enum class Collect { kAvailable, kWait, kCpuOnly };
   void collect(const std::function<void(const FrameRow&)>& emit, Collect mode);
 
   // After fork: frames queued before belong to the parent.

@@ -110,5 +110,7 @@ TEST_CASE("GLBUDGET_FPS paces the swaps", "[integration]") {
   REQUIRE(rows.size() == 13);
   std::vector<long long> swaps;
   for (size_t i = 1; i < rows.size(); i += 2) swaps.push_back(std::stoll(rows[i][1]));
-  for (size_t i = 1; i < swaps.size(); ++i) CHECK(swaps[i] - swaps[i - 1] >= 45'000'000);
+  // The cadence is kept on average: a late frame is not followed by a sleep (catch-up), so
+  // single intervals may be shorter, but five of them span at least five periods.
+  CHECK(swaps.back() - swaps.front() >= 5 * 50'000'000 - 1'000'000);
 }
