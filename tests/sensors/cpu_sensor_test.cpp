@@ -25,9 +25,7 @@ std::unique_ptr<PowerSensor> cpu_sensor() {
   REQUIRE(spec);
   auto opened = open_source(*spec, SourceEnvironment{});
   REQUIRE(opened.source);
-  auto sensor = std::make_unique<PowerSensor>(std::move(opened.source));
-  std::this_thread::sleep_for(20ms);  // a few sampling periods: the sampler knows a rate
-  return sensor;
+  return std::make_unique<PowerSensor>(std::move(opened.source));
 }
 
 double thread_cpu_seconds(std::thread& thread) {
@@ -57,9 +55,17 @@ Measured measure(PowerSensor& sensor, int busy_threads, std::chrono::millisecond
     for (auto& t : burners) sum += thread_cpu_seconds(t);
     return sum;
   };
-  const double cpu_before = burner_cpu();
-  const std::int64_t start = monotonic_now_ns();
-  sensor.on_swap(start);
+  // Anchor the interval at a swap that already has a rate (as the shim's later frames do).
+  double cpu_before = 0.0;
+  std::int64_t start = 0;
+  bool anchored = false;
+  for (int attempt = 0; attempt < 1000 && !anchored; ++attempt) {
+    if (attempt > 0) std::this_thread::sleep_for(2ms);
+    cpu_before = burner_cpu();
+    start = monotonic_now_ns();
+    anchored = sensor.on_swap(start).valid;
+  }
+  REQUIRE(anchored);
   std::this_thread::sleep_for(duration);
   const std::int64_t end = monotonic_now_ns();
   const FrameEnergy frame = sensor.on_swap(end);

@@ -108,8 +108,15 @@ TEST_CASE("a silent source stalls; read errors and garbage reads are counted",
   EnergyIntegrator integrator(IntegratorLimits{5000.0, 100 * ms});
   integrator.accept(0, power(5.0));
   CHECK_FALSE(integrator.accept(50 * ms, status(ReadStatus::no_new_data)).fault);
-  CHECK(integrator.accept(120 * ms, status(ReadStatus::no_new_data)).fault == Fault::stalled);
-  CHECK(integrator.accept(130 * ms, status(ReadStatus::read_error)).fault == Fault::read_error);
+  const auto stall = integrator.accept(120 * ms, status(ReadStatus::no_new_data));
+  CHECK(stall.fault == Fault::stalled);
+  // The stall closes the segment at once: a marker opens the next one.
+  REQUIRE(stall.point);
+  CHECK(stall.point->segment == 1);
+  CHECK(stall.point->t_ns == 120 * ms);
+  const auto error = integrator.accept(130 * ms, status(ReadStatus::read_error));
+  CHECK(error.fault == Fault::read_error);
+  CHECK_FALSE(error.point);  // already broken
   CHECK(integrator.accept(140 * ms, status(ReadStatus::garbage)).fault == Fault::garbage);
   const FaultCounts& f = integrator.faults();
   CHECK(f.stalled == 1);
@@ -150,4 +157,31 @@ TEST_CASE("two readings at the same instant integrate nothing", "[integrator][ex
   const auto same = integrator.accept(5 * ms, power(20.0));
   CHECK_FALSE(same.point);
   CHECK_FALSE(same.fault);
+}
+
+TEST_CASE("a read error closes the segment at once", "[integrator][faults]") {
+  EnergyIntegrator integrator;
+  integrator.accept(0, energy(1.0));
+  integrator.accept(10 * ms, energy(2.0));
+  const auto error = integrator.accept(20 * ms, status(ReadStatus::read_error));
+  REQUIRE(error.point);
+  CHECK(error.point->segment == 1);
+  CHECK(error.point->energy_j == Approx(1.0));
+  const auto back = integrator.accept(30 * ms, energy(3.0));
+  REQUIRE(back.point);
+  CHECK(back.point->segment == 1);  // the marker's segment, now with its first real point
+  CHECK(back.point->energy_j == Approx(1.0));
+  const auto next = integrator.accept(40 * ms, energy(3.5));
+  REQUIRE(next.point);
+  CHECK(next.point->energy_j == Approx(1.5));
+}
+
+TEST_CASE("a source failing from its first read publishes nothing", "[integrator][faults]") {
+  EnergyIntegrator integrator;
+  const auto error = integrator.accept(0, status(ReadStatus::read_error));
+  CHECK_FALSE(error.point);
+  const auto first = integrator.accept(10 * ms, energy(4.0));
+  REQUIRE(first.point);
+  CHECK(first.point->segment == 0);
+  CHECK(first.point->energy_j == 0.0);
 }

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <fstream>
 #include <thread>
@@ -11,10 +12,12 @@
 #include "fake_sysfs.hpp"
 #include "glbudget/sensors/registry.hpp"
 #include "glbudget/sensors/sensor.hpp"
+#include "swap_until_valid.hpp"
 
 using namespace glbudget::sensors;
 using glbudget::sensors::testing::FakeSysfs;
 using namespace std::chrono_literals;
+using glbudget::sensors::testing::swap_until_valid;
 
 namespace {
 
@@ -99,18 +102,20 @@ TEST_CASE("a meter's FIFO drives per-frame power through the sampling thread", "
   options.period = 1ms;
   PowerSensor sensor(std::move(opened.source), options);
   CHECK_FALSE(sensor.is_estimate());
+  std::atomic<bool> stop{false};
   std::thread meter([&] {
-    for (int i = 0; i < 60; ++i) {
+    for (int i = 0; !stop; ++i) {
       write_all(writer, std::to_string(i * 0.002) + ",25\n");
       std::this_thread::sleep_for(2ms);
     }
   });
-  std::this_thread::sleep_for(20ms);
-  sensor.on_swap(monotonic_now_ns());
+  const bool started = swap_until_valid(sensor);
   std::this_thread::sleep_for(40ms);
   const FrameEnergy frame = sensor.on_swap(monotonic_now_ns());
+  stop = true;
   meter.join();
   ::close(writer);
+  REQUIRE(started);
   CHECK(frame.sensor == "file");
   REQUIRE(frame.valid);
   CHECK(frame.mean_power_w == Approx(25.0).epsilon(0.01));

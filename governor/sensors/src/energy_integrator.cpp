@@ -24,10 +24,29 @@ EnergyIntegrator::Outcome EnergyIntegrator::drop(Fault fault, std::string detail
   return Outcome{std::nullopt, fault, std::move(detail)};
 }
 
+// Closes the current segment at once, so that frames stop being charged from a curve that can
+// no longer be trusted. The returned marker opens the next segment, which stays without a
+// rate (and frames invalid) until good samples resume.
+std::optional<EnergyPoint> EnergyIntegrator::break_continuity(std::int64_t t_ns) {
+  const bool first_break = have_previous_ && !continuity_lost_;
+  continuity_lost_ = true;
+  if (!first_break) return std::nullopt;
+  ++segment_;
+  return EnergyPoint{t_ns, energy_j_, segment_};
+}
+
+EnergyIntegrator::Outcome EnergyIntegrator::drop_stalled(std::int64_t t_ns, const char* what) {
+  auto outcome = drop(Fault::stalled, std::string(what) + " for over " +
+                                          std::to_string(limits_.stall_timeout_ns / 1'000'000) +
+                                          " ms");
+  outcome.point = break_continuity(t_ns);
+  return outcome;
+}
+
 // The reading becomes the new reference; the energy curve carries on at the same level in a
 // new segment, so no frame is ever charged with energy of unknown origin.
 EnergyIntegrator::Outcome EnergyIntegrator::start_segment(std::int64_t t_ns, double value) {
-  if (have_previous_) ++segment_;
+  if (have_previous_ && !continuity_lost_) ++segment_;  // else break_continuity already did
   have_previous_ = true;
   continuity_lost_ = false;
   previous_t_ns_ = t_ns;
@@ -51,16 +70,16 @@ EnergyIntegrator::Outcome EnergyIntegrator::accept(std::int64_t t_ns, const Read
 EnergyIntegrator::Outcome EnergyIntegrator::accept_reading(std::int64_t t_ns,
                                                            const Reading& reading, bool stalled) {
   switch (reading.status) {
-    case ReadStatus::read_error:
-      continuity_lost_ = true;
-      return drop(Fault::read_error, reading.detail);
+    case ReadStatus::read_error: {
+      auto outcome = drop(Fault::read_error, reading.detail);
+      outcome.point = break_continuity(t_ns);
+      return outcome;
+    }
     case ReadStatus::garbage:
       return drop(Fault::garbage, reading.detail);
     case ReadStatus::no_new_data:
       if (!stalled) return {};
-      continuity_lost_ = true;
-      return drop(Fault::stalled, "no new data for over " +
-                                      std::to_string(limits_.stall_timeout_ns / 1'000'000) + " ms");
+      return drop_stalled(t_ns, "no new data");
     case ReadStatus::ok:
       break;
   }
@@ -77,9 +96,7 @@ EnergyIntegrator::Outcome EnergyIntegrator::accept_reading(std::int64_t t_ns,
   // unless it has been unchanged for longer than the stall timeout.
   if (reading.kind == ReadingKind::energy_j && value == previous_value_) {
     if (!stalled) return {};
-    continuity_lost_ = true;
-    return drop(Fault::stalled, "energy counter unchanged for over " +
-                                    std::to_string(limits_.stall_timeout_ns / 1'000'000) + " ms");
+    return drop_stalled(t_ns, "energy counter unchanged");
   }
   // A long gap between good samples (the sampler was starved): do not integrate across it.
   if (stalled) return start_segment(t_ns, value);

@@ -9,8 +9,8 @@ namespace {
 
 class HwmonAttributeSource final : public Source {
  public:
-  HwmonAttributeSource(std::string name, std::filesystem::path attribute, ReadingKind kind)
-      : name_(std::move(name)), attribute_(std::move(attribute)), kind_(kind) {}
+  HwmonAttributeSource(std::string_view name, std::filesystem::path attribute, ReadingKind kind)
+      : name_(name), attribute_(std::move(attribute)), kind_(kind) {}
 
   std::string_view name() const override { return name_; }
   std::string description() const override {
@@ -21,33 +21,32 @@ class HwmonAttributeSource final : public Source {
   }
 
  private:
-  std::string name_;
+  std::string_view name_;  // a literal: see Source::name()
   std::filesystem::path attribute_;
   ReadingKind kind_;
 };
 
 }  // namespace
 
-// Opens the `index`-th hwmon called `hwmon_name` and reads the first attribute that works.
 OpenResult open_hwmon(const SensorSpec& spec, const SourceEnvironment& env,
-                      const std::string& hwmon_name, std::initializer_list<HwmonAttribute> preference) {
+                      std::string_view hwmon_name, std::initializer_list<HwmonAttribute> preference) {
   std::string error;
   unsigned index = 0;
   if (!only_params(spec, {"index"}, error) || !param_index(spec, "index", index, error))
     return unavailable(error);
-  const auto dirs = sysfs::hwmon_named(env.sysfs_root, hwmon_name);
+  const auto dirs = sysfs::hwmon_named(env.sysfs_root, std::string(hwmon_name));
   if (dirs.empty())
-    return unavailable("no hwmon named " + hwmon_name + " under " +
+    return unavailable("no hwmon named " + std::string(hwmon_name) + " under " +
                        (env.sysfs_root / "class" / "hwmon").string());
   if (index >= dirs.size())
     return unavailable("index=" + std::to_string(index) + " but only " +
-                       std::to_string(dirs.size()) + " " + hwmon_name + " hwmon found");
+                       std::to_string(dirs.size()) + " " + std::string(hwmon_name) + " hwmon found");
   std::string tried;
   for (const HwmonAttribute& attribute : preference) {
     const auto path = dirs[index] / attribute.file;
     const Reading probe = sysfs::read_scaled(path, 1e-6, attribute.kind);
     if (probe.status == ReadStatus::ok)
-      return OpenResult{std::make_unique<HwmonAttributeSource>(spec.kind, path, attribute.kind), {}};
+      return OpenResult{std::make_unique<HwmonAttributeSource>(hwmon_name, path, attribute.kind), {}};
     tried += (tried.empty() ? "" : "; ") + probe.detail;
   }
   return unavailable(tried);

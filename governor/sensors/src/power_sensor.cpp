@@ -68,8 +68,8 @@ void PowerSensor::report_fault(Fault fault, const std::string& detail) {
   if (reported) return;
   reported = true;
   std::fprintf(stderr,
-               "glbudget: sensor %s: sample dropped (%s: %s); further drops are only counted\n",
-               name_.c_str(), to_string(fault), detail.c_str());
+               "glbudget: sensor %.*s: sample dropped (%s: %s); further drops are only counted\n",
+               static_cast<int>(name_.size()), name_.data(), to_string(fault), detail.c_str());
 }
 
 FaultCounts PowerSensor::faults() const {
@@ -85,10 +85,10 @@ FrameEnergy PowerSensor::on_swap(std::int64_t now_ns) {
   frame.dropped_samples = dropped - previous_dropped_;
   previous_dropped_ = dropped;
 
-  // Extrapolating over a few missed samples is fine; beyond that the sensor is stale.
-  const std::int64_t max_extrapolation =
-      std::max<std::int64_t>(4 * options_.period.count(), 50'000'000);
-  const auto now = timeline_.energy_at(now_ns, max_extrapolation);
+  // Sources with slow updates (a meter writing at 10 Hz, a counter refreshed every 100 ms)
+  // publish points rarely; extrapolation covers them up to the stall timeout, past which the
+  // integrator has declared the source stalled anyway.
+  const auto now = timeline_.energy_at(now_ns, options_.limits.stall_timeout_ns);
   if (!now) {
     have_previous_swap_ = false;
     return frame;

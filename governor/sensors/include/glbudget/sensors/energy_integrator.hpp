@@ -38,7 +38,7 @@ class EnergyIntegrator {
   explicit EnergyIntegrator(IntegratorLimits limits = {}) : limits_(limits) {}
 
   struct Outcome {
-    std::optional<EnergyPoint> point;  // to publish, if any
+    std::optional<EnergyPoint> point;  // to publish, if any (also marks where a segment breaks)
     std::optional<Fault> fault;        // set when the sample was dropped
     std::string detail;                // why, for the first message of each kind
   };
@@ -50,6 +50,8 @@ class EnergyIntegrator {
  private:
   Outcome accept_reading(std::int64_t t_ns, const Reading& reading, bool stalled);
   Outcome drop(Fault fault, std::string detail);
+  Outcome drop_stalled(std::int64_t t_ns, const char* what);
+  std::optional<EnergyPoint> break_continuity(std::int64_t t_ns);
   Outcome start_segment(std::int64_t t_ns, double value);
 
   IntegratorLimits limits_;

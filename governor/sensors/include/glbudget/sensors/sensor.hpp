@@ -22,13 +22,14 @@
 namespace glbudget::sensors {
 
 struct FrameEnergy {
-  // False when no measurement covers the interval: the first swap, a stale or vanished
-  // sensor, or a counter that lost continuity (see dropped_samples). Then energy_j and
-  // mean_power_w are NaN and the log should leave the fields empty.
+  // False when no measurement covers the interval: the first swaps (the sampler needs two
+  // samples), a sensor that failed, stalled or vanished since the previous swap, or a counter
+  // that lost continuity (see dropped_samples). Then energy_j and mean_power_w are NaN and the
+  // log leaves the fields empty.
   bool valid = false;
   double energy_j;      // energy of the interval since the previous swap
   double mean_power_w;  // energy_j / interval
-  std::string_view sensor;      // the source's name ("rapl", "cpu", ...)
+  std::string_view sensor;      // the source's name ("rapl", "cpu", ...); static storage
   bool estimate = false;        // modelled, not measured: label it so in logs and reports
   std::uint64_t dropped_samples = 0;  // samples dropped since the previous swap
 };
@@ -60,7 +61,7 @@ class PowerSensor {
   void report_fault(Fault fault, const std::string& detail);
 
   std::unique_ptr<Source> source_;
-  const std::string name_;
+  const std::string_view name_;  // static storage, see Source::name()
   const std::string description_;
   const bool estimate_;
   const SamplerOptions options_;

@@ -33,7 +33,8 @@ struct Reading {
 class Source {
  public:
   virtual ~Source() = default;
-  // Short stable name, as in GLBUDGET_SENSOR ("rapl", "cpu", ...).
+  // Short stable name, as in GLBUDGET_SENSOR ("rapl", "cpu", ...). Must have static storage
+  // (a string literal): frames carry it to the log thread, which may outlive the sensor.
   virtual std::string_view name() const = 0;
   // What is read, for humans: "package-0 energy_uj (/sys/class/powercap/intel-rapl:0)".
   virtual std::string description() const = 0;
