@@ -69,7 +69,7 @@ void print_row(const Row& row, const FrameEnergy& frame) {
     std::snprintf(reading, sizeof reading, "%8.2f W%s", frame.mean_power_w,
                   frame.estimate ? " (estimate)" : "");
   else
-    std::snprintf(reading, sizeof reading, "no reading");
+    std::snprintf(reading, sizeof reading, "no reading");  // nothing moved, or every read failed
   std::printf("  %-8s %-22s %s", row.label.c_str(), reading, row.sensor->description().c_str());
   if (const FaultCounts f = row.sensor->faults(); f.total() > 0)
     std::printf("  [dropped: %llu read errors, %llu garbage, %llu backwards, %llu stalled]",
