@@ -8,7 +8,7 @@
 
 #include <catch2/catch.hpp>
 
-#include <regex>
+#include <cstdlib>
 
 using namespace glbudget::instrument;
 using glbudget::test::shader_file;
@@ -25,11 +25,16 @@ EShLanguage glslang_stage(Stage stage) { return stage == Stage::vertex ? EShLang
 // the extensions we enable for older versions; Mesa accepts those (gl_instrument_test).
 // To check our rewrite of an older shader with glslang, raise it to 4.30 compatibility.
 std::string as_glsl430(std::string source) {
-    static const std::regex older_version(R"(^#version (1[0-9]0|3[0-3]0)( core| compatibility)?\n)");
-    static const std::regex our_extensions(R"(#extension GL_(ARB_shader_storage_buffer_object|ARB_uniform_buffer_object|EXT_gpu_shader4) : \w+)");
-    if (!std::regex_search(source, older_version)) return source;
-    source = std::regex_replace(source, older_version, "#version 430 compatibility\n");
-    return std::regex_replace(source, our_extensions, "");
+    const std::size_t version_end = source.find('\n');
+    const int version = std::atoi(source.c_str() + std::string("#version ").size());
+    if (source.rfind("#version ", 0) != 0 || version >= 430 || source.find(" es", 0) < version_end) return source;
+    source.replace(0, version_end, "#version 430 compatibility");
+    for (const char* ours : {"#extension GL_ARB_shader_storage_buffer_object : require",
+                             "#extension GL_ARB_uniform_buffer_object : enable", "#extension GL_EXT_gpu_shader4 : enable"}) {
+        const std::size_t at = source.find(ours);
+        if (at != std::string::npos) source.erase(at, std::string(ours).size());
+    }
+    return source;
 }
 
 // glslang's verdict on a shader: empty when it compiles, else its log.
@@ -46,10 +51,10 @@ std::string glslang_errors(const std::string& original, Stage stage) {
 
 // The operation count inserted at the start of `main` (its entry block).
 std::uint64_t main_entry_count(const InstrumentResult& r) {
-    std::smatch m;
-    static const std::regex entry(R"(void main\(\)\{glbudget_ins \+= (\d+)u;)");
-    if (!std::regex_search(r.instrumented_source, m, entry)) return 0;
-    return std::stoull(m[1]);
+    const std::string entry = "void main(){glbudget_ins += ";
+    const std::size_t at = r.instrumented_source.find(entry);
+    if (at == std::string::npos) return 0;
+    return std::stoull(r.instrumented_source.substr(at + entry.size()));
 }
 
 std::uint64_t entry_ops(const std::string& body, const std::string& globals = "") {
