@@ -19,7 +19,13 @@ InstrumentResult instrument(const std::string& source, Stage stage = Stage::frag
     return instrument_shader({{source}, stage, binding});
 }
 
-EShLanguage glslang_stage(Stage stage) { return stage == Stage::vertex ? EShLangVertex : EShLangFragment; }
+EShLanguage glslang_stage(Stage stage) {
+    switch (stage) {
+    case Stage::vertex: return EShLangVertex;
+    case Stage::compute: return EShLangCompute;
+    default: return EShLangFragment;
+    }
+}
 
 // glslang knows storage-buffer atomics only from GLSL 4.30 (and ES 3.10) on, not through
 // the extensions we enable for older versions; Mesa accepts those (gl_instrument_test).
@@ -191,5 +197,50 @@ TEST_CASE("shaders that cannot be instrumented say why", "[instrument]") {
         const auto r = instrument("");
         CHECK_FALSE(r.ok);
         CHECK_FALSE(r.error.empty());
+    }
+}
+
+TEST_CASE("awkward but valid structure instruments and stays valid GLSL", "[instrument]") {
+    struct Case {
+        const char* name;
+        Stage stage;
+        const char* source;
+        std::uint64_t instructions;  // static, by the counting rule
+    };
+    const Case cases[] = {
+        {"else-if chain, unbraced", Stage::fragment,
+         "#version 430\nuniform int k; out vec4 o;\nvoid main() {\n"
+         "  if (k == 0) o = vec4(0.0); else if (k == 1) o = vec4(1.0); else o = vec4(2.0);\n}\n",
+         5},  // ==, =, ==, =, =
+        {"nested unbraced loops with break and continue", Stage::fragment,
+         "#version 430\nuniform int k; out vec4 o;\nvoid main() {\n  o = vec4(0.0);\n"
+         "  for (int i = 0; i < k; ++i) for (int j = 0; j < i; j++) if (j == 2) break; else if (j == 1) continue; else o.x += 1.0;\n"
+         "  for (;;) { if (o.x > 3.0) break; o.x += 1.0; }\n}\n",
+         12},  // o=; i=0, <, ++; j=0, <, ++; ==; ==; +=; >; +=
+        {"switch with fallthrough and a do-while without braces", Stage::fragment,
+         "#version 430\nuniform int k; out vec4 o;\nvoid main() {\n  int n = k;\n"
+         "  switch (k) { case 0: case 1: n += 1; case 2: { n *= 2; break; } default: n = 0; }\n"
+         "  do n--; while (n > 0);\n  o = vec4(n);\n}\n",
+         9},  // n=k; +=; *=; =0; --; >; vec4(n): int→float conversion, constructor; =
+        {"prototypes, structs, arrays, dead code after return", Stage::vertex,
+         "#version 430\nstruct S { float a[2]; };\nfloat f(S s);\nin vec2 p;\n"
+         "void main() {\n  S s = S(float[2](p.x, p.y));\n  gl_Position = vec4(f(s));\n  return;\n  gl_Position = vec4(1.0);\n}\n"
+         "float f(S s) { return s.a[0] + s.a[1]; }\n",
+         8},  // S(), float[2](), =; f(), vec4(), =; =; +
+        {"#line with a source string number", Stage::fragment,
+         "#version 430\n#line 7 3\nout vec4 o;\nvoid main() { o = vec4(1.0); }\n", 1},
+        {"compute shader", Stage::compute,
+         "#version 430\nlayout(local_size_x = 8) in;\nlayout(std430, binding = 0) buffer Data { float d[]; };\n"
+         "void main() { d[gl_GlobalInvocationID.x] *= 2.0; }\n",
+         2},  // dynamic index, *=
+    };
+    for (const Case& c : cases) {
+        SECTION(c.name) {
+            const auto r = instrument(c.source, c.stage);
+            INFO(r.error << "\n" << r.instrumented_source);
+            REQUIRE(r.ok);
+            CHECK(r.figures->instructions == c.instructions);
+            CHECK(glslang_errors(r.instrumented_source, c.stage) == "");
+        }
     }
 }
