@@ -47,7 +47,9 @@ FrameDraws Renderer::render(const Config& config, double time, PassObserver* obs
   const float scale = render_scale(config);
   const int scene_width = std::max(1, static_cast<int>(std::lround(width_ * scale)));
   const int scene_height = std::max(1, static_cast<int>(std::lround(height_ * scale)));
-  scene_target_.ensure(scene_width, scene_height, GL_RGBA16F, GL_RGBA16F, true);
+  const auto level = static_cast<size_t>(config[Knob::Resolution]);
+  Framebuffer& scene_target = scene_targets_[level];
+  scene_target.ensure(scene_width, scene_height, GL_RGBA16F, GL_RGBA16F, true);
 
   FrameDraws result;
   const auto run = [&](Pass pass, auto&& draw) {
@@ -56,13 +58,14 @@ FrameDraws Renderer::render(const Config& config, double time, PassObserver* obs
     if (observer) observer->pass_end(pass);
   };
   run(Pass::Shadows, [&] { return shadows_.run(frame); });
-  run(Pass::Base, [&] { return base_.run(frame, scene_target_, shadows_.shadow_map()); });
-  if (scene_.has_metals()) run(Pass::Metals, [&] { return metals_.run(frame, scene_target_, shadows_.shadow_map()); });
-  GLuint hdr = scene_target_.color(0);
+  run(Pass::Base, [&] { return base_.run(frame, scene_target, shadows_.shadow_map()); });
+  if (scene_.has_metals()) run(Pass::Metals, [&] { return metals_.run(frame, scene_target, shadows_.shadow_map()); });
+  GLuint hdr = scene_target.color(0);
   if (reflection_samples(config) > 0 && scene_.has_reflective_surfaces()) {
-    reflected_.ensure(scene_width, scene_height, GL_RGBA16F, 0, false);
-    run(Pass::Reflections, [&] { return reflections_.run(frame, scene_target_, reflected_); });
-    hdr = reflected_.color(0);
+    Framebuffer& reflected = reflected_targets_[level];
+    reflected.ensure(scene_width, scene_height, GL_RGBA16F, 0, false);
+    run(Pass::Reflections, [&] { return reflections_.run(frame, scene_target, reflected); });
+    hdr = reflected.color(0);
   }
   const bool antialiasing = fxaa_steps(config) > 0;
   if (antialiasing) post_.ensure(width_, height_, GL_RGBA8, 0, false);

@@ -47,7 +47,9 @@ class Renderer {
   ReflectionsPass reflections_;
   UpscalePass upscale_;
   FxaaPass fxaa_;
-  Framebuffer scene_target_, reflected_, post_;
+  // Scene-sized targets per resolution level, so switching levels costs no reallocation.
+  std::array<Framebuffer, kLevelCount> scene_targets_, reflected_targets_;
+  Framebuffer post_;
 };
 
 }  // namespace demo

@@ -13,16 +13,18 @@
 
 namespace demo {
 
-// Depth from light 0 into a shadow map of shadow_map_size(config) texels square.
+// Depth from light 0 into a shadow map of shadow_map_size(config) texels square. One map per
+// level is kept, so switching levels costs no reallocation.
 class ShadowPass {
  public:
   ShadowPass();
   int run(const FrameContext& frame);
-  GLuint shadow_map() const { return target_.depth(); }
+  GLuint shadow_map() const { return current_->depth(); }
 
  private:
   Program rigid_, skinned_;
-  Framebuffer target_;
+  std::array<Framebuffer, kLevelCount> targets_;
+  const Framebuffer* current_ = &targets_[0];
 };
 
 // Every non-metallic object, shaded with SHADING_MODEL = shading_model(config).

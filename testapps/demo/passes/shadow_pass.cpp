@@ -9,8 +9,10 @@ ShadowPass::ShadowPass()
 
 int ShadowPass::run(const FrameContext& frame) {
   const int size = shadow_map_size(frame.config);  // the quality knob: a texture size
-  target_.ensure(size, size, 0, 0, true, true);
-  target_.bind();
+  Framebuffer& target = targets_[static_cast<size_t>(frame.config[Knob::Shadows])];
+  target.ensure(size, size, 0, 0, true, true);
+  target.bind();
+  current_ = &target;
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glClear(GL_DEPTH_BUFFER_BIT);

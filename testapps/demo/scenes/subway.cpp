@@ -87,7 +87,7 @@ Scene make_subway(float detail) {
   s.camera = [](double t) {  // follows the soldiers from the wall side of the platform
     const float x = march_x(t) + 1.0f;
     const auto sway = static_cast<float>(1.5 * std::sin(0.3 * t));
-    return CameraPose{{x - 4.0f + sway, 1.7f, -4.8f}, {x + 1.0f, 1.0f, 0.5f}, 65.0f};
+    return CameraPose{{x - 3.0f + sway, 1.6f, -3.2f}, {x + 1.0f, 1.0f, 0.5f}, 60.0f};
   };
   return s;
 }

@@ -44,8 +44,9 @@ Scene make_valley(float detail) {
   s.shadow_centre = {0.0f, 3.0f, 0.0f};
   s.shadow_radius = 55.0f;
   s.far_plane = 200.0f;
-  s.camera = [](double t) {
-    const auto z = static_cast<float>(35.0 - 2.0 * t);
+  s.camera = [](double t) {  // flies down the valley and back, 2 units/s
+    const double along = std::fmod(2.0 * t, 140.0);
+    const auto z = static_cast<float>(35.0 - (along < 70.0 ? along : 140.0 - along));
     return CameraPose{{3.0f * std::sin(0.3f * z), 6.0f, z}, {0.0f, 2.0f, z - 20.0f}, 60.0f};
   };
   return s;
