@@ -139,17 +139,19 @@ double process_cpu_seconds() {
 }
 
 // The sampling thread's whole cost (wake-ups included) while this thread sleeps.
-void report_sampler_share(const std::string& spec) {
+void report_sampler_share(const std::string& spec, int period_ms) {
   constexpr double seconds = 2.0;
+  SamplerOptions options;
+  options.period = std::chrono::milliseconds(period_ms);
   const double before = process_cpu_seconds();
   {
-    PowerSensor sensor(open(spec));
+    PowerSensor sensor(open(spec), options);
     std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
   }
   const double used = process_cpu_seconds() - before;
-  const double samples = seconds / 0.005;
-  std::printf("  %-8s %6.2f%% of one core (%.1f us per sample incl. wake-up, %d Hz)\n",
-              spec.c_str(), 100.0 * used / seconds, 1e6 * used / samples, 200);
+  const double samples = seconds * 1000.0 / period_ms;
+  std::printf("  %-8s %4d ms  %6.2f%% of one core  (%.1f us per sample incl. wake-up)\n",
+              spec.c_str(), period_ms, 100.0 * used / seconds, 1e6 * used / samples);
 }
 
 }  // namespace
@@ -158,10 +160,10 @@ int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   RatioReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
-  std::printf("\nSampling thread at the default 5 ms period, measured over 2 s:\n");
-  report_sampler_share("cpu");
-  report_sampler_share("amdgpu");
-  report_sampler_share("rapl");
+  std::printf("\nSampling thread's share of a core by period (default 5 ms), over 2 s each:\n");
+  for (int period_ms : {1, 5, 20}) report_sampler_share("cpu", period_ms);
+  report_sampler_share("amdgpu", 5);
+  report_sampler_share("rapl", 5);
   benchmark::Shutdown();
   return 0;
 }

@@ -1,10 +1,32 @@
+#include <charconv>
 #include <cstdio>
 #include <cstdlib>
+#include <string_view>
 
 #include "glbudget/sensors/registry.hpp"
 #include "glbudget/sensors/sensor.hpp"
 
 namespace glbudget::sensors {
+
+namespace {
+
+// GLBUDGET_SENSOR_PERIOD_MS: 1..1000, default 5 (see the README for what it costs).
+SamplerOptions sampler_options_from_environment() {
+  SamplerOptions options;
+  const char* value = std::getenv("GLBUDGET_SENSOR_PERIOD_MS");
+  if (!value || !*value) return options;
+  const std::string_view text = value;
+  int ms = 0;
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), ms);
+  if (ec == std::errc() && ptr == text.data() + text.size() && ms >= 1 && ms <= 1000)
+    options.period = std::chrono::milliseconds(ms);
+  else
+    std::fprintf(stderr, "glbudget: GLBUDGET_SENSOR_PERIOD_MS=%s is not 1..1000; using %lld\n",
+                 value, static_cast<long long>(options.period.count() / 1'000'000));
+  return options;
+}
+
+}  // namespace
 
 std::unique_ptr<PowerSensor> open_sensor_from_environment() {
   const SourceEnvironment env = SourceEnvironment::from_process_environment();
@@ -31,7 +53,7 @@ std::unique_ptr<PowerSensor> open_sensor_from_environment() {
                  static_cast<int>(opened.source->name().size()), opened.source->name().data(),
                  opened.source->is_estimate() ? " (estimate)" : "",
                  opened.source->description().c_str());
-  return std::make_unique<PowerSensor>(std::move(opened.source));
+  return std::make_unique<PowerSensor>(std::move(opened.source), sampler_options_from_environment());
 }
 
 }  // namespace glbudget::sensors

@@ -53,6 +53,7 @@ class PowerSensor {
   std::string_view name() const { return name_; }
   bool is_estimate() const { return estimate_; }
   std::string description() const { return description_; }
+  std::chrono::nanoseconds period() const { return options_.period; }
   FaultCounts faults() const;  // any thread
 
  private:
@@ -80,7 +81,8 @@ class PowerSensor {
 
 std::int64_t monotonic_now_ns();
 
-// Opens the sensor named by GLBUDGET_SENSOR (default "auto"; syntax in registry.hpp).
+// Opens the sensor named by GLBUDGET_SENSOR (default "auto"; syntax in registry.hpp), sampled
+// every GLBUDGET_SENSOR_PERIOD_MS milliseconds (1..1000, default 5).
 // Bad values and unavailable sensors give one "glbudget:" line on stderr and fall back to
 // "auto", which always ends at the cpu estimate. Returns null only if even that fails.
 // With "auto" it says on stderr which sensor it picked.
