@@ -53,6 +53,7 @@ std::string declarations(const LanguageVersion& language, Stage stage, int bindi
            p + "uint " + std::string(kInstructionVariable) + " = 0u;\n" +
            p + "uint " + std::string(kTexelVariable) + " = 0u;\n" +
            "void glbudget_add64(int low, " + p + "uint amount) {\n"
+           "    if (amount == 0u) return;  // atomics are the cost of instrumentation\n"
            "    " + p + "uint before = atomicAdd(glbudget_counter[low], amount);\n"
            "    if (before > 0xFFFFFFFFu - amount) atomicAdd(glbudget_counter[low + 1], 1u);  // carry\n"
            "}\n"

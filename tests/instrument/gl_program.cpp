@@ -87,10 +87,10 @@ std::vector<int> logged_lines(const std::string& log) {
     return lines;
 }
 
-QuadTarget::QuadTarget() {
+QuadTarget::QuadTarget(int size) : size_(size) {
     glGenTextures(1, &colour_);
     glBindTexture(GL_TEXTURE_2D, colour_);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, kSize, kSize, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, size_, size_, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
     glGenFramebuffers(1, &framebuffer_);
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colour_, 0);
@@ -117,7 +117,7 @@ QuadTarget::QuadTarget() {
     glGenBuffers(1, &vertices_);
     glBindBuffer(GL_ARRAY_BUFFER, vertices_);
     glBufferData(GL_ARRAY_BUFFER, sizeof quad, quad, GL_STATIC_DRAW);
-    glViewport(0, 0, kSize, kSize);
+    glViewport(0, 0, size_, size_);
 }
 
 QuadTarget::~QuadTarget() {
@@ -128,7 +128,7 @@ QuadTarget::~QuadTarget() {
     glDeleteTextures(1, &colour_);
 }
 
-std::vector<std::uint8_t> QuadTarget::draw(GLuint program) {
+void QuadTarget::draw_without_readback(GLuint program) {
     glUseProgram(program);
     const GLint position = glGetAttribLocation(program, "position");
     glBindVertexArray(vertex_array_);
@@ -139,8 +139,12 @@ std::vector<std::uint8_t> QuadTarget::draw(GLuint program) {
     glClearColor(0.25f, 0.5f, 0.75f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
     glDrawArrays(GL_TRIANGLES, 0, 6);
-    std::vector<std::uint8_t> pixels(kSize * kSize * 4);
-    glReadPixels(0, 0, kSize, kSize, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+}
+
+std::vector<std::uint8_t> QuadTarget::draw(GLuint program) {
+    draw_without_readback(program);
+    std::vector<std::uint8_t> pixels(static_cast<std::size_t>(size_) * size_ * 4);
+    glReadPixels(0, 0, size_, size_, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
     return pixels;
 }
 

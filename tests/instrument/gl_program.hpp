@@ -33,17 +33,19 @@ std::string interface_table(GLuint program, const std::string& skip_prefix);
 // Line numbers named by a Mesa info log ("0:12(5): warning: ..."), in order.
 std::vector<int> logged_lines(const std::string& log);
 
-// A 64×64 RGBA8 target with a quad (attribute "position") and a gradient texture on unit 0.
+// A square RGBA8 target with a quad (attribute "position") and a gradient texture on unit 0.
 class QuadTarget {
 public:
-    static constexpr int kSize = 64;
-    QuadTarget();
+    static constexpr int kSize = 64;  // the tests' hand counts assume 64×64 fragments
+    explicit QuadTarget(int size = kSize);
     ~QuadTarget();
     QuadTarget(const QuadTarget&) = delete;
     QuadTarget& operator=(const QuadTarget&) = delete;
     std::vector<std::uint8_t> draw(GLuint program);
+    void draw_without_readback(GLuint program);
 
 private:
+    int size_;
     GLuint framebuffer_ = 0, colour_ = 0, texture_ = 0, vertex_array_ = 0, vertices_ = 0;
 };
 
