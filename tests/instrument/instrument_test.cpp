@@ -8,7 +8,10 @@
 
 #include <catch2/catch.hpp>
 
+#include <atomic>
 #include <cstdlib>
+#include <thread>
+#include <vector>
 
 using namespace glbudget::instrument;
 using glbudget::test::shader_file;
@@ -243,4 +246,22 @@ TEST_CASE("awkward but valid structure instruments and stays valid GLSL", "[inst
             CHECK(glslang_errors(r.instrumented_source, c.stage) == "");
         }
     }
+}
+
+TEST_CASE("instrumenting from several threads at once gives the same result", "[instrument]") {
+    // The shim instruments on whichever thread the app compiles shaders on.
+    const std::string loops = shader_file("loops.frag"), jumps = shader_file("jumps.frag");
+    const auto expected_loops = instrument(loops), expected_jumps = instrument(jumps);
+    std::vector<std::thread> threads;
+    std::atomic<int> mismatches{0};
+    for (int t = 0; t < 4; ++t)
+        threads.emplace_back([&, t] {
+            for (int i = 0; i < 5; ++i) {
+                const auto r = instrument(t % 2 ? loops : jumps);
+                const auto& expected = t % 2 ? expected_loops : expected_jumps;
+                if (!r.ok || r.instrumented_source != expected.instrumented_source) ++mismatches;
+            }
+        });
+    for (auto& thread : threads) thread.join();
+    CHECK(mismatches == 0);
 }
