@@ -9,7 +9,10 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -104,13 +107,32 @@ void BM_sample_cpu_integrate_publish(benchmark::State& state) {
 }
 BENCHMARK(BM_sample_cpu_integrate_publish);
 
-// The render thread's per-swap call, with the sampling thread running.
-void BM_on_swap(benchmark::State& state) {
-  PowerSensor sensor(open("cpu"));
+// Hides a source's energy_now_j, forcing the sampling-thread path (as for hardware counters).
+class SampledOnly final : public Source {
+ public:
+  explicit SampledOnly(std::unique_ptr<Source> inner) : inner_(std::move(inner)) {}
+  std::string_view name() const override { return inner_->name(); }
+  std::string description() const override { return inner_->description(); }
+  Reading read(std::int64_t now_ns) override { return inner_->read(now_ns); }
+
+ private:
+  std::unique_ptr<Source> inner_;
+};
+
+// The render thread's per-swap call: reading the timeline the sampling thread publishes...
+void BM_on_swap_sampled(benchmark::State& state) {
+  PowerSensor sensor(std::make_unique<SampledOnly>(open("cpu")));
   std::this_thread::sleep_for(std::chrono::milliseconds(20));
   for (auto _ : state) benchmark::DoNotOptimize(sensor.on_swap(monotonic_now_ns()));
 }
-BENCHMARK(BM_on_swap);
+BENCHMARK(BM_on_swap_sampled);
+
+// ...or, for the cpu estimate, computing the energy at the swap itself.
+void BM_on_swap_cpu_read_at_swap(benchmark::State& state) {
+  PowerSensor sensor(open("cpu"));
+  for (auto _ : state) benchmark::DoNotOptimize(sensor.on_swap(monotonic_now_ns()));
+}
+BENCHMARK(BM_on_swap_cpu_read_at_swap);
 
 // Prints each benchmark's CPU time as a multiple of the baseline's.
 class RatioReporter : public benchmark::ConsoleReporter {
@@ -145,13 +167,74 @@ void report_sampler_share(const std::string& spec, int period_ms) {
   options.period = std::chrono::milliseconds(period_ms);
   const double before = process_cpu_seconds();
   {
-    PowerSensor sensor(open(spec), options);
+    PowerSensor sensor(std::make_unique<SampledOnly>(open(spec)), options);
     std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
   }
   const double used = process_cpu_seconds() - before;
   const double samples = seconds * 1000.0 / period_ms;
   std::printf("  %-8s %4d ms  %6.2f%% of one core  (%.1f us per sample incl. wake-up)\n",
               spec.c_str(), period_ms, 100.0 * used / seconds, 1e6 * used / samples);
+}
+
+// Per-frame accuracy of the cpu estimate against the exact model value: the same formula
+// applied to CLOCK_PROCESS_CPUTIME_ID read at each swap. Sampled on the thread (period_ms > 0),
+// the difference is what sampling between swaps and extrapolating to the swap costs, as it
+// would for a hardware counter; read at the swap (period_ms == 0), it should vanish.
+void report_frame_accuracy(int period_ms) {
+  constexpr double idle_w = 10.0, max_w = 45.0;
+  constexpr int frames = 90;
+  constexpr auto frame_time = std::chrono::microseconds(16'667);
+  const double cores = 2.0;
+  std::string error;
+  const auto spec = parse_sensor_spec("cpu:idle=10,max=45,cores=2", error);
+  SamplerOptions options;
+  options.period = std::chrono::milliseconds(std::max(period_ms, 1));
+  auto source = open_source(*spec, SourceEnvironment{}).source;
+  PowerSensor sensor(period_ms > 0 ? std::make_unique<SampledOnly>(std::move(source))
+                                   : std::move(source),
+                     options);
+
+  // A render-like load: one thread busy for the first half of each frame.
+  std::atomic<bool> stop{false};
+  std::thread load([&] {
+    while (!stop) {
+      const auto until = std::chrono::steady_clock::now() + frame_time / 2;
+      while (std::chrono::steady_clock::now() < until) {
+      }
+      std::this_thread::sleep_for(frame_time / 2);
+    }
+  });
+  double sum_sq = 0.0, sum_abs = 0.0, sum_exact = 0.0;
+  int valid = 0;
+  double previous_cpu = process_cpu_seconds();
+  std::int64_t previous_t = monotonic_now_ns();
+  sensor.on_swap(previous_t);
+  auto next = std::chrono::steady_clock::now();
+  for (int i = 0; i < frames + 10; ++i) {
+    next += frame_time;
+    std::this_thread::sleep_until(next);
+    const std::int64_t t = monotonic_now_ns();
+    const double cpu = process_cpu_seconds();
+    const FrameEnergy frame = sensor.on_swap(t);
+    const double dt = static_cast<double>(t - previous_t) * 1e-9;
+    const double exact_w = idle_w + (max_w - idle_w) * (cpu - previous_cpu) / (dt * cores);
+    previous_t = t;
+    previous_cpu = cpu;
+    if (i < 10 || !frame.valid) continue;  // warm-up
+    const double e = frame.mean_power_w - exact_w;
+    sum_sq += e * e;
+    sum_abs += std::abs(e);
+    sum_exact += exact_w;
+    ++valid;
+  }
+  stop = true;
+  load.join();
+  if (period_ms == 0)
+    std::printf("  at swap");
+  else
+    std::printf("  %4d ms", period_ms);
+  std::printf("  mean exact %.2f W  per-frame error: mean |e| %.3f W, rms %.3f W (%d/%d frames valid)\n",
+              sum_exact / valid, sum_abs / valid, std::sqrt(sum_sq / valid), valid, frames);
 }
 
 }  // namespace
@@ -164,6 +247,10 @@ int main(int argc, char** argv) {
   for (int period_ms : {1, 5, 20}) report_sampler_share("cpu", period_ms);
   report_sampler_share("amdgpu", 5);
   report_sampler_share("rapl", 5);
+  std::printf("\ncpu estimate per 16.7 ms frame vs the exact model value at the swap, read at the\n"
+              "swap (its default) or forced through the sampling thread at each period\n"
+              "(one thread busy half of each frame; idle 10 W, max 45 W, 2 cores):\n");
+  for (int period_ms : {0, 1, 5, 20}) report_frame_accuracy(period_ms);
   benchmark::Shutdown();
   return 0;
 }

@@ -96,3 +96,40 @@ TEST_CASE("the cpu sensor reads more power when the process burns two cores than
   CHECK(busy.sensor_w > idle.sensor_w + 4.0);  // at least 0.2 of a core for the burners
   CHECK(busy.sensor_w <= max_w + 0.5);
 }
+
+TEST_CASE("the cpu estimate is exact at each swap, with no sampling in between", "[cpu]") {
+  auto sensor = cpu_sensor();
+  std::atomic<bool> stop{false};
+  std::thread burner([&] {
+    volatile std::uint64_t x = 0;
+    while (!stop.load(std::memory_order_relaxed)) x = x + 1;
+  });
+  auto process_cpu = [] {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec) * 1e-9;
+  };
+  // The sensor reads the process's CPU time inside on_swap(); reading it just before and just
+  // after brackets the sensor's value exactly, however the threads are scheduled.
+  constexpr double k = (max_w - idle_w) / cores;
+  std::int64_t previous_t = monotonic_now_ns();
+  double previous_before = process_cpu();
+  sensor->on_swap(previous_t);
+  double previous_after = process_cpu();
+  for (int frame = 0; frame < 20; ++frame) {
+    std::this_thread::sleep_for(7ms);
+    const std::int64_t t = monotonic_now_ns();
+    const double before = process_cpu();
+    const FrameEnergy e = sensor->on_swap(t);
+    const double after = process_cpu();
+    REQUIRE(e.valid);
+    const double idle_j = idle_w * static_cast<double>(t - previous_t) * 1e-9;
+    CHECK(e.energy_j >= idle_j + k * (before - previous_after) - 1e-9);
+    CHECK(e.energy_j <= idle_j + k * (after - previous_before) + 1e-9);
+    previous_t = t;
+    previous_before = before;
+    previous_after = after;
+  }
+  stop = true;
+  burner.join();
+}

@@ -32,8 +32,9 @@ unsigned usable_cores() {
 
 class CpuEstimateSource final : public Source {
  public:
-  CpuEstimateSource(double idle_w, double max_w, unsigned cores)
-      : idle_w_(idle_w), max_w_(max_w), cores_(cores) {}
+  CpuEstimateSource(double idle_w, double max_w, unsigned cores, std::int64_t start_ns)
+      : idle_w_(idle_w), max_w_(max_w), cores_(cores), start_ns_(start_ns),
+        start_cpu_s_(process_cpu_seconds()) {}
 
   std::string_view name() const override { return "cpu"; }
   bool is_estimate() const override { return true; }
@@ -46,24 +47,27 @@ class CpuEstimateSource final : public Source {
   }
 
   Reading read(std::int64_t now_ns) override {
-    const double cpu_s = process_cpu_seconds();
-    if (!started_) {
-      started_ = true;
-      start_ns_ = now_ns;
-      start_cpu_s_ = cpu_s;
-    }
+    return Reading{ReadStatus::ok, ReadingKind::energy_j, *energy_now_j(now_ns), {}};
+  }
+
+  std::optional<double> energy_now_j(std::int64_t now_ns) const override {
     const double wall_s = static_cast<double>(now_ns - start_ns_) * 1e-9;
-    const double energy_j = idle_w_ * wall_s + (max_w_ - idle_w_) * (cpu_s - start_cpu_s_) / cores_;
-    return Reading{ReadStatus::ok, ReadingKind::energy_j, energy_j, {}};
+    const double cpu_s = process_cpu_seconds() - start_cpu_s_;
+    return idle_w_ * wall_s + (max_w_ - idle_w_) * cpu_s / cores_;
   }
 
  private:
   double idle_w_, max_w_;
   unsigned cores_;
-  bool started_ = false;
-  std::int64_t start_ns_ = 0;
-  double start_cpu_s_ = 0.0;
+  std::int64_t start_ns_;
+  double start_cpu_s_;
 };
+
+std::int64_t monotonic_ns() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
 
 }  // namespace
 
@@ -79,7 +83,7 @@ OpenResult open_cpu(const SensorSpec& spec, const SourceEnvironment&) {
     return unavailable("cpu sensor needs 0 <= idle <= max (got idle=" + std::to_string(idle) +
                        ", max=" + std::to_string(max) + ")");
   if (cores == 0) return unavailable("cpu sensor needs cores >= 1");
-  return OpenResult{std::make_unique<CpuEstimateSource>(idle, max, cores), {}};
+  return OpenResult{std::make_unique<CpuEstimateSource>(idle, max, cores, monotonic_ns()), {}};
 }
 
 }  // namespace glbudget::sensors

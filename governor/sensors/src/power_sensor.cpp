@@ -23,9 +23,10 @@ PowerSensor::PowerSensor(std::unique_ptr<Source> source, SamplerOptions options)
       name_(source_->name()),
       description_(source_->description()),
       estimate_(source_->is_estimate()),
+      read_at_swap_(source_->energy_now_j(monotonic_now_ns()).has_value()),
       options_(options),
       integrator_(options.limits) {
-  thread_ = std::jthread([this](std::stop_token stop) { sample_loop(stop); });
+  if (!read_at_swap_) thread_ = std::jthread([this](std::stop_token stop) { sample_loop(stop); });
 }
 
 PowerSensor::~PowerSensor() {
@@ -85,10 +86,15 @@ FrameEnergy PowerSensor::on_swap(std::int64_t now_ns) {
   frame.dropped_samples = dropped - previous_dropped_;
   previous_dropped_ = dropped;
 
-  // Sources with slow updates (a meter writing at 10 Hz, a counter refreshed every 100 ms)
-  // publish points rarely; extrapolation covers them up to the stall timeout, past which the
-  // integrator has declared the source stalled anyway.
-  const auto now = timeline_.energy_at(now_ns, options_.limits.stall_timeout_ns);
+  std::optional<EnergyPoint> now;
+  if (read_at_swap_) {
+    if (const auto energy = source_->energy_now_j(now_ns)) now = EnergyPoint{now_ns, *energy, 0};
+  } else {
+    // Sources with slow updates (a meter writing at 10 Hz, a counter refreshed every 100 ms)
+    // publish points rarely; extrapolation covers them up to the stall timeout, past which
+    // the integrator has declared the source stalled anyway.
+    now = timeline_.energy_at(now_ns, options_.limits.stall_timeout_ns);
+  }
   if (!now) {
     have_previous_swap_ = false;
     return frame;

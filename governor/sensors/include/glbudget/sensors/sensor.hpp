@@ -7,7 +7,9 @@
 //   if (e.valid) log(e.energy_j, e.mean_power_w, e.sensor, e.estimate, e.dropped_samples);
 //
 // A sampling thread reads the source every `period`; on_swap() only reads memory the thread
-// published (lock-free, no I/O, no allocation), so it never stalls the frame.
+// published (lock-free, no I/O, no allocation), so it never stalls the frame. Sources that can
+// be read exactly at any instant (the cpu estimate, see Source::energy_now_j) are read in
+// on_swap() itself instead, with no thread.
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -65,6 +67,7 @@ class PowerSensor {
   const std::string_view name_;  // static storage, see Source::name()
   const std::string description_;
   const bool estimate_;
+  const bool read_at_swap_;  // Source::energy_now_j available: no sampling thread
   const SamplerOptions options_;
   EnergyIntegrator integrator_;  // sampling thread only
   EnergyTimeline timeline_;

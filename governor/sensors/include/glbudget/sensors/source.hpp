@@ -2,6 +2,7 @@
 // A power source: one per kind of hardware counter. Sources only read; the Sampler
 // (sampler.hpp) turns their readings into a cumulative energy timeline and judges faults.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -42,6 +43,10 @@ class Source {
   virtual bool is_estimate() const { return false; }
   // Called on the sampling thread only, with the CLOCK_MONOTONIC time of the read.
   virtual Reading read(std::int64_t now_ns) = 0;
+  // Sources whose cumulative energy can be computed at any instant, cheaply, without I/O and
+  // without failing (the cpu estimate: one clock read) return it here. The PowerSensor then
+  // computes each frame's energy exactly at the swap and needs no sampling thread.
+  virtual std::optional<double> energy_now_j(std::int64_t /*now_ns*/) const { return std::nullopt; }
 };
 
 }  // namespace glbudget::sensors
