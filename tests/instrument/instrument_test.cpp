@@ -26,8 +26,12 @@ EShLanguage glslang_stage(Stage stage) {
     switch (stage) {
     case Stage::vertex: return EShLangVertex;
     case Stage::compute: return EShLangCompute;
-    default: return EShLangFragment;
+    case Stage::geometry: return EShLangGeometry;
+    case Stage::tess_control: return EShLangTessControl;
+    case Stage::tess_evaluation: return EShLangTessEvaluation;
+    case Stage::fragment: return EShLangFragment;
     }
+    return EShLangFragment;
 }
 
 // glslang knows storage-buffer atomics only from GLSL 4.30 (and ES 3.10) on, not through
@@ -236,6 +240,15 @@ TEST_CASE("awkward but valid structure instruments and stays valid GLSL", "[inst
          "#version 430\nlayout(local_size_x = 8) in;\nlayout(std430, binding = 0) buffer Data { float d[]; };\n"
          "void main() { d[gl_GlobalInvocationID.x] *= 2.0; }\n",
          2},  // dynamic index, *=
+        {"geometry shader emitting in a loop", Stage::geometry,
+         "#version 430\nlayout(triangles) in;\nlayout(triangle_strip, max_vertices = 3) out;\n"
+         "void main() { for (int i = 0; i < 3; ++i) { gl_Position = gl_in[i].gl_Position; EmitVertex(); } EndPrimitive(); }\n",
+         7},  // i=0, <, ++; gl_in[i] dynamic index, =; EmitVertex; EndPrimitive
+        {"tessellation control shader", Stage::tess_control,
+         "#version 430\nlayout(vertices = 3) out;\n"
+         "void main() { gl_out[gl_InvocationID].gl_Position = gl_in[gl_InvocationID].gl_Position;\n"
+         "  if (gl_InvocationID == 0) { gl_TessLevelInner[0] = 1.0; gl_TessLevelOuter[0] = 1.0; } barrier(); }\n",
+         7},  // gl_out[id], gl_in[id] dynamic indices, =; ==; =; =; barrier
     };
     for (const Case& c : cases) {
         SECTION(c.name) {
