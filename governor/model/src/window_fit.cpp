@@ -1,8 +1,11 @@
 #include "glbudget/model/window_fit.hpp"
 
 #include <Eigen/Cholesky>
+#include <Eigen/SVD>
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -26,6 +29,67 @@ struct Column {
     std::string pass;
     int term;
 };
+
+struct RidgeSolution {
+    Eigen::VectorXd coefficients;
+    // Share of each estimate owed to the prior: lambda (G^-1)_jj on the scaled problem; 1 for a
+    // column the data says nothing about, ~0 for a well-identified one.
+    Eigen::VectorXd prior_share;
+};
+
+// Generalised cross-validation (Golub, Heath & Wahba 1979) picks how far a window's
+// estimate may move from the prior: noiseless data get the smallest ridge and an exact fit,
+// noisy or barely varying counts a stronger pull instead of noise amplified into the
+// coefficients. `a` has unit-norm columns; `residual` is y - a * prior.
+double choose_lambda(const Eigen::MatrixXd& a, const Eigen::VectorXd& residual, double floor) {
+    const Eigen::BDCSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeThinU);
+    const Eigen::VectorXd s2 = svd.singularValues().array().square();
+    const Eigen::VectorXd projected = svd.matrixU().transpose() * residual;
+    const double outside = std::max(0.0, residual.squaredNorm() - projected.squaredNorm());
+    const double rows = static_cast<double>(a.rows());
+    const double ceiling = std::max(floor, static_cast<double>(a.cols()));
+    double best_lambda = floor, best_score = std::numeric_limits<double>::infinity();
+    for (double lambda = floor; lambda <= ceiling * 1.0001; lambda *= std::sqrt(10.0)) {
+        double rss = outside, dof = 0.0;
+        for (Eigen::Index i = 0; i < s2.size(); ++i) {
+            const double shrink = lambda / (s2(i) + lambda);
+            rss += shrink * shrink * projected(i) * projected(i);
+            dof += s2(i) / (s2(i) + lambda);
+        }
+        const double denominator = rows - dof;
+        if (denominator < 0.5) continue;  // as many effective parameters as samples
+        const double score = rows * rss / (denominator * denominator);
+        if (score < best_score * (1.0 - 1e-9)) best_score = score, best_lambda = lambda;
+    }
+    return best_lambda;
+}
+
+// min |A k - y|^2 + lambda |D (k - prior)|^2 subject to k >= 0, where D scales A's columns to
+// unit norm (so the ridge means the same for counts of any magnitude). lambda is chosen by
+// GCV, never below ridge^2 * columns: directions of A with singular values well below
+// sqrt(lambda) stay at the prior.
+RidgeSolution solve_ridge_nonnegative(Eigen::MatrixXd a, const Eigen::VectorXd& y,
+                                      const Eigen::VectorXd& prior, double ridge) {
+    const Eigen::Index cols = a.cols();
+    const Eigen::VectorXd scale = a.colwise().norm().transpose();
+    for (Eigen::Index c = 0; c < cols; ++c) {
+        if (scale(c) > 0.0) a.col(c) /= scale(c);
+    }
+    const Eigen::VectorXd scaled_prior = prior.cwiseProduct(scale);
+    const double lambda = choose_lambda(a, y - a * scaled_prior, ridge * ridge * static_cast<double>(cols));
+    Eigen::MatrixXd gram = a.transpose() * a;
+    gram.diagonal().array() += lambda;
+    const Eigen::VectorXd z = solve_nonnegative(gram, a.transpose() * y + lambda * scaled_prior);
+
+    RidgeSolution solution;
+    solution.prior_share =
+        lambda * gram.ldlt().solve(Eigen::MatrixXd::Identity(cols, cols)).diagonal();
+    solution.coefficients = prior;  // an all-zero column keeps its prior
+    for (Eigen::Index c = 0; c < cols; ++c) {
+        if (scale(c) > 0.0) solution.coefficients(c) = z(c) / scale(c);
+    }
+    return solution;
+}
 
 }  // namespace
 
@@ -82,35 +146,33 @@ WindowFitResult fit_window(std::span<const FrameSample> window, const PowerModel
         }
     }
 
-    // Unit-norm columns; z = scale .* k are the unknowns actually solved for. A column can be
-    // all zero after weighting (only saturated samples saw it): it is then held entirely.
-    Eigen::VectorXd scale = a.colwise().norm().transpose();
+    // Prior for each column: the previous coefficient where the pass has one; for a pass seen
+    // for the first time, the pooled fit below (one k_b, k_v, k_f shared by all passes, which
+    // a window identifies far better than per-pass values).
+    Eigen::VectorXd prior(cols);
+    std::vector<bool> has_previous(static_cast<std::size_t>(cols));
     for (Eigen::Index c = 0; c < cols; ++c) {
-        if (scale(c) > 0.0) a.col(c) /= scale(c);
+        const PassCoefficients* found = previous.find(columns[c].pass);
+        has_previous[c] = found != nullptr;
+        PassCoefficients k = found ? *found : PassCoefficients{};
+        prior(c) = term(k, columns[c].term);
     }
-    Eigen::VectorXd z_previous(cols);
-    for (Eigen::Index c = 0; c < cols; ++c) {
-        PassCoefficients k;
-        if (const PassCoefficients* found = previous.find(columns[c].pass)) k = *found;
-        z_previous(c) = term(k, columns[c].term) * scale(c);
+    if (std::find(has_previous.begin(), has_previous.end(), false) != has_previous.end()) {
+        Eigen::MatrixXd pooled = Eigen::MatrixXd::Zero(rows, kTerms);
+        for (Eigen::Index c = 0; c < cols; ++c) pooled.col(columns[c].term) += a.col(c);
+        const RidgeSolution shared = solve_ridge_nonnegative(pooled, y, Eigen::VectorXd::Zero(kTerms), settings.ridge);
+        for (Eigen::Index c = 0; c < cols; ++c) {
+            if (!has_previous[c]) prior(c) = shared.coefficients(columns[c].term);
+        }
     }
-
-    const double lambda = settings.ridge * settings.ridge * static_cast<double>(cols);
-    Eigen::MatrixXd gram = a.transpose() * a;
-    gram.diagonal().array() += lambda;
-    const Eigen::VectorXd rhs = a.transpose() * y + lambda * z_previous;
-    const Eigen::VectorXd z = solve_nonnegative(gram, rhs);
-
-    // Share of each estimate owed to the prior: lambda * (G^-1)_jj, 1 for a column the window
-    // says nothing about, ~0 for a well-identified one.
-    const Eigen::VectorXd prior_share =
-        lambda * gram.ldlt().solve(Eigen::MatrixXd::Identity(cols, cols)).diagonal();
+    const RidgeSolution solution = solve_ridge_nonnegative(a, y, prior, settings.ridge);
+    const Eigen::VectorXd& prior_share = solution.prior_share;
 
     for (Eigen::Index c = 0; c < cols; ++c) {
         if (prior_share(c) > settings.held_share) ++result.held_terms;
         PassCoefficients k;
         if (const PassCoefficients* found = result.model.find(columns[c].pass)) k = *found;
-        if (scale(c) > 0.0) term(k, columns[c].term) = z(c) / scale(c);
+        term(k, columns[c].term) = solution.coefficients(c);
         result.model.set(columns[c].pass, k);
     }
     return result;

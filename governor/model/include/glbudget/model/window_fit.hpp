@@ -8,9 +8,12 @@
 //  - only (pass, term) pairs with a non-zero count in the window get a column: a pass that
 //    drew nothing keeps its previous coefficients and does not disturb the others;
 //  - columns are scaled to unit norm, so counts from 0 to 2^40 and beyond condition alike;
-//  - a small ridge pulls the solution towards the previous coefficients: directions the window
-//    cannot identify (constant or collinear counts, fewer samples than unknowns) keep their
-//    last good value exactly, identifiable ones are fitted to the data;
+//  - a ridge pulls the solution towards a prior: the previous coefficients, or for a pass seen
+//    for the first time a pooled fit shared by all passes. Directions the window cannot
+//    identify (constant or collinear counts, fewer samples than unknowns) keep their last good
+//    value, identifiable ones are fitted to the data. The ridge strength is chosen per window
+//    by generalised cross-validation, so noisy windows do not amplify noise into coefficients
+//    while noiseless ones are fitted exactly;
 //  - all coefficients are costs and are constrained to be non-negative.
 #include <cstddef>
 #include <span>
@@ -22,7 +25,7 @@ namespace glbudget::model {
 struct WindowFitSettings {
     // Ridge strength relative to the scaled columns: directions whose singular value is below
     // about ridge * sqrt(columns) are held at the previous coefficients.
-    double ridge = 1e-3;
+    double ridge = 1e-5;
     // A term counts as "held" when more than this share of its estimate comes from the
     // previous value rather than from the window (reporting only).
     double held_share = 0.1;
