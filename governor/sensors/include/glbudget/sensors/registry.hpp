@@ -9,7 +9,9 @@
 //                             (integrated GPU), core, dram or psys
 //   i915[:index=N], xe[:index=N]  Intel GPU hwmon energy1_input
 //   cpu[:idle=W,max=W,cores=N]    estimate from this process's CPU time (software rendering):
-//                             P = idle + (max - idle) * u, u = CPU time / (wall time * cores)
+//                             P = idle + (max - idle) * u, u = CPU time / (wall time * cores);
+//                             defaults idle=10, max=45, cores = CPUs this process may run on;
+//                             computed exactly at each swap (no sampling thread)
 //   file:PATH                 an external meter appending "timestamp,watts" lines (file or FIFO)
 #include <filesystem>
 #include <map>
