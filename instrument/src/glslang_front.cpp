@@ -45,11 +45,12 @@ std::string first_error(const char* log) {
 
 }  // namespace
 
-Preprocessed preprocess(const std::string& source, Stage stage) {
+Preprocessed preprocess(const std::string& source, Stage stage, const std::string& preamble) {
     initialise_glslang_once();
     glslang::TShader shader(to_glslang(stage));
     const char* text = source.c_str();
     shader.setStrings(&text, 1);
+    shader.setPreamble(preamble.c_str());
     glslang::TShader::ForbidIncluder no_includes;
     Preprocessed result;
     result.ok = shader.preprocess(GetDefaultResources(), kDefaultVersion, ENoProfile, false, false,

@@ -22,8 +22,8 @@ struct Preprocessed {
     std::string error;  // glslang's first error line
 };
 
-// Preprocesses the concatenated sources as the driver would.
-Preprocessed preprocess(const std::string& source, Stage stage);
+// Preprocesses the concatenated sources as the driver would; `preamble` is seen first.
+Preprocessed preprocess(const std::string& source, Stage stage, const std::string& preamble = {});
 
 struct Parsed {
     bool ok = false;

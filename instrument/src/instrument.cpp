@@ -1,6 +1,7 @@
 // instrument_shader(): preprocess → census of the AST → statement structure → insertions.
 #include "glbudget/instrument/instrument.hpp"
 
+#include "driver_macros.hpp"
 #include "glslang_front.hpp"
 #include "header.hpp"
 #include "rewrite.hpp"
@@ -39,7 +40,13 @@ InstrumentResult instrument_shader(const InstrumentRequest& request) {
     std::string source;  // GL concatenates the strings of glShaderSource; so do we
     for (const std::string& s : request.sources) source += s;
 
-    Preprocessed pre = preprocess(source, request.stage);
+    std::string preamble;
+    if (request.driver_extensions) {
+        DriverMacroSource driver = with_driver_extension_macros(source, *request.driver_extensions);
+        source = std::move(driver.source);
+        preamble = std::move(driver.preamble);
+    }
+    Preprocessed pre = preprocess(source, request.stage, preamble);
     if (!pre.ok) {
         result.error = "glslang cannot preprocess the shader: " + pre.error;
         return result;

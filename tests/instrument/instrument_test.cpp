@@ -8,6 +8,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdlib>
 #include <thread>
@@ -277,4 +278,33 @@ TEST_CASE("instrumenting from several threads at once gives the same result", "[
         });
     for (auto& thread : threads) thread.join();
     CHECK(mismatches == 0);
+}
+
+TEST_CASE("extension conditionals follow the driver's extensions when they are given", "[instrument]") {
+    const std::string source =
+        "#version 430\nout vec4 o;\n"
+        "#if defined(GL_ARB_gpu_shader_fp64) && defined GL_NV_glbudget_imaginary\n#define PATH 2.0\n"
+        "#elif defined(GL_NV_glbudget_imaginary) || GL_ES\n#define PATH 3.0\n"
+        "#else\n#define PATH 4.0\n#endif\n"
+        "void main() { o = vec4(PATH); }\n";
+    auto with = [&](std::optional<std::vector<std::string>> extensions) {
+        InstrumentRequest request{{source}, Stage::fragment, 1};
+        request.driver_extensions = std::move(extensions);
+        const auto r = instrument_shader(request);
+        INFO(r.error);
+        REQUIRE(r.ok);
+        return r.instrumented_source;
+    };
+    // glslang's own view: it knows fp64, not the imaginary extension
+    CHECK(with(std::nullopt).find("vec4(4.0)") != std::string::npos);
+    CHECK(with(std::vector<std::string>{"GL_NV_glbudget_imaginary", "GL_ARB_gpu_shader_fp64"}).find("vec4(2.0)") !=
+          std::string::npos);
+    CHECK(with(std::vector<std::string>{"GL_NV_glbudget_imaginary"}).find("vec4(3.0)") != std::string::npos);
+    CHECK(with(std::vector<std::string>{}).find("vec4(4.0)") != std::string::npos);
+    // the rewrite keeps the lines: main stays on line 10
+    const std::string out = with(std::vector<std::string>{});
+    CHECK(out.find("#line 2\n") != std::string::npos);
+    const std::size_t after_line = out.find("#line 2\n") + 8;
+    CHECK(std::count(out.begin() + static_cast<std::ptrdiff_t>(after_line),
+                     out.begin() + static_cast<std::ptrdiff_t>(out.find("void main")), '\n') == 8);
 }

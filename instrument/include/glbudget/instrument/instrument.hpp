@@ -42,6 +42,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace glbudget::instrument {
@@ -69,9 +70,19 @@ struct StaticFigures {
 };
 
 struct InstrumentRequest {
+    InstrumentRequest() = default;
+    InstrumentRequest(std::vector<std::string> sources_, Stage stage_, int ssbo_binding_,
+                      std::optional<std::vector<std::string>> driver_extensions_ = std::nullopt)
+        : sources(std::move(sources_)), stage(stage_), ssbo_binding(ssbo_binding_),
+          driver_extensions(std::move(driver_extensions_)) {}
+
     std::vector<std::string> sources;  // the strings the app passed to glShaderSource
     Stage stage = Stage::fragment;
     int ssbo_binding = 0;  // binding point of the counter block
+    // The driver's extensions (glGetStringi(GL_EXTENSIONS, i)). When given, `#if`/`#ifdef`
+    // on extension macros follow the driver, as in the app's own shader; when absent they
+    // follow glslang's list of extensions, which may differ.
+    std::optional<std::vector<std::string>> driver_extensions;
 };
 
 struct InstrumentResult {
