@@ -36,6 +36,20 @@
 // and a high word (word_index()), accumulated with 32-bit atomics and an explicit carry, so
 // it works on every GLSL that has SSBOs and does not overflow on long runs. All stages of a
 // program declare the same block and write disjoint words. Zero the buffer before use.
+//
+// Use from the shim (GL side, not in this library):
+//   glCompileShader: r = instrument_shader({app strings, stage, binding, driver extensions});
+//     if r.ok, compile r.instrumented_source in a shadow shader beside the app's; otherwise
+//     (or if the shadow fails to compile or link) print one `glbudget:` line with r.error
+//     and keep the app's shader.
+//   glLinkProgram: link the shadow shaders; if !r.binding_in_source, call
+//     glShaderStorageBlockBinding(shadow, index of kCounterBlockName, binding).
+//   draws: bind a zeroed kCounterBytes buffer at `binding` (restore the app's binding after).
+//   readback (a few frames late, through a copy and a fence, never stalling):
+//     read_stage_counts(words, stage) per stage, add up rounds, averages() → Ins, Tex.
+//   GLBUDGET_DUMP: dump.hpp.
+// Limits: GLSL ES 1.00 has no storage buffers (static figures only). Preprocessing is
+// glslang's: pass driver_extensions so extension conditionals match the driver.
 #pragma once
 
 #include <array>
