@@ -57,3 +57,23 @@ TEST_CASE("two runs of the demo program dump identical images", "[demo][determin
   CHECK(std::filesystem::exists(root / "a" / "hall_c010100_f00010.png"));
   std::filesystem::remove_all(root);
 }
+
+TEST_CASE("a GLX window under Xvfb renders the same frames as EGL surfaceless", "[demo][determinism]") {
+  REQUIRE(std::system("command -v xvfb-run >/dev/null") == 0);  // xvfb is in scripts/packages.txt
+  const std::filesystem::path program = GLBUDGET_BINARY_DIR "/testapps/demo/demo";
+  const std::filesystem::path root = std::filesystem::temp_directory_path() /
+                                     ("demo_glx_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(root);
+  const std::string args = " --scene valley --detail 0.02 --width 96 --height 54 --frames 2 --start-frame 5 --dump ";
+  const std::string egl = program.string() + args + (root / "egl").string() + " 2>/dev/null";
+  const std::string glx = "xvfb-run -a -s '-screen 0 320x240x24' " + program.string() + " --glx" + args +
+                          (root / "glx").string() + " 2>/dev/null";
+  REQUIRE(std::system(egl.c_str()) == 0);
+  REQUIRE(std::system(glx.c_str()) == 0);
+  for (const char* name : {"valley_c000000_f00005.png", "valley_c000000_f00006.png"}) {
+    INFO(name);
+    REQUIRE(std::filesystem::exists(root / "glx" / name));
+    CHECK(slurp(root / "egl" / name) == slurp(root / "glx" / name));
+  }
+  std::filesystem::remove_all(root);
+}
