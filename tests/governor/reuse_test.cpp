@@ -105,3 +105,27 @@ TEST_CASE("passes that never drew predict P_m, configuration indices round-trip"
     CHECK(hidden.space.decode(728) == Configuration{2, 2, 2, 2, 2, 2});
     CHECK(!hidden.space.contains({0, 0, 0, 0, 0, 3}));
 }
+
+TEST_CASE("predicting all configurations keeps precision for tiny and huge loads", "[model][reuse][extremes]") {
+    PlatformProfile zero_floor = synthetic_profile();
+    zero_floor.p_min_w = 0.0;  // nothing absorbs a tiny load
+    const HiddenModel hidden = six_pass_hidden_model();
+    for (double k_scale : {1e-18, 1.0, 1e6}) {
+        PowerModel model(zero_floor);
+        for (std::size_t i = 0; i < hidden.space.pass_count(); ++i) {
+            const PassCoefficients k = hidden.coefficients(i, 0);
+            model.set(hidden.space.passes()[i].pass, {k.k_b * k_scale, k.k_v * k_scale, k.k_f * k_scale});
+        }
+        ConfigurationPredictor predictor(hidden.space, model, {0, 0, 0, 0, 0, 0}, {hidden.chi * k_scale, hidden.psi * k_scale});
+        SceneGenerator scene(hidden, 0.0);
+        predictor.set_frame(scene.counts(2));
+        std::vector<double> all;
+        predictor.predict_all(all);
+        for (std::size_t i = 0; i < all.size(); i += 13) {
+            CAPTURE(k_scale, i);
+            CHECK(all[i] == Approx(predictor.predict(hidden.space.decode(i))).epsilon(1e-12));
+            CHECK(all[i] > 0.0);
+            CHECK(all[i] <= zero_floor.p_max_w);
+        }
+    }
+}

@@ -3,6 +3,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "glbudget/model/nonnegative_least_squares.hpp"
 #include "glbudget/model/power_curve.hpp"
@@ -73,9 +74,13 @@ ConfigurationPredictor::ConfigurationPredictor(const ConfigurationSpace& space,
     const bool have_fitted_levels = space.contains(fitted_configuration);
     coefficients_.resize(space.pass_count());
     alpha_.resize(space.pass_count());
+    decay_.resize(space.pass_count());
+    decay_minus_one_.resize(space.pass_count());
     for (std::size_t i = 0; i < space.pass_count(); ++i) {
         const PassVariants& pass = space.passes()[i];
         alpha_[i].assign(pass.levels.size(), 0.0);
+        decay_[i].assign(pass.levels.size(), 1.0);
+        decay_minus_one_[i].assign(pass.levels.size(), 0.0);
         const PassCoefficients* k = fitted.find(pass.pass);
         if (k == nullptr) {
             coefficients_[i].assign(pass.levels.size(), PassCoefficients{});  // never drew
@@ -117,6 +122,12 @@ void ConfigurationPredictor::set_frame(const std::vector<PassFrame>& frame) {
             }
         }
     }
+    for (std::size_t i = 0; i < alpha_.size(); ++i) {
+        for (std::size_t l = 0; l < alpha_[i].size(); ++l) {
+            decay_[i][l] = std::exp(-alpha_[i][l]);
+            decay_minus_one_[i][l] = std::expm1(-alpha_[i][l]);
+        }
+    }
 }
 
 double ConfigurationPredictor::predict(const Configuration& configuration) const {
@@ -127,18 +138,30 @@ double ConfigurationPredictor::predict(const Configuration& configuration) const
     return power_from_alpha(fitted_.profile(), alpha);
 }
 
-void ConfigurationPredictor::fill(std::size_t pass, double partial_alpha, double*& out) const {
-    if (pass == alpha_.size()) {
-        *out++ = power_from_alpha(fitted_.profile(), partial_alpha);
+// Enumerates configurations without a transcendental per configuration: with m_i = expm1(-alpha_i)
+// and q = prod(1 + m_i) - 1 = -(1 - exp(-sum alpha)), each pass updates q <- q (1 + m_i) + m_i.
+// Both terms are <= 0, so nothing cancels and tiny loads keep their relative precision, as
+// with expm1 of the sum.
+void ConfigurationPredictor::fill(std::size_t pass, double q, double*& out) const {
+    const std::vector<double>& m = decay_minus_one_[pass];
+    const std::vector<double>& e = decay_[pass];
+    if (pass + 1 == decay_.size()) {
+        const double p_min = fitted_.profile().p_min_w, range = fitted_.profile().range_w();
+        for (std::size_t l = 0; l < m.size(); ++l) *out++ = p_min - range * (q * e[l] + m[l]);
         return;
     }
-    for (double alpha : alpha_[pass]) fill(pass + 1, partial_alpha + alpha, out);
+    for (std::size_t l = 0; l < m.size(); ++l) fill(pass + 1, q * e[l] + m[l], out);
 }
 
 void ConfigurationPredictor::predict_all(std::vector<double>& out) const {
     out.resize(space_.size());
     double* cursor = out.data();
-    fill(0, alpha_outside_space_, cursor);
+    const double q = std::expm1(-alpha_outside_space_);
+    if (decay_.empty()) {
+        *cursor = fitted_.profile().p_min_w - fitted_.profile().range_w() * q;
+        return;
+    }
+    fill(0, q, cursor);
 }
 
 }  // namespace glbudget::model

@@ -1,7 +1,7 @@
 #include "glbudget/model/window_fit.hpp"
 
 #include <Eigen/Cholesky>
-#include <Eigen/SVD>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -40,20 +40,24 @@ struct RidgeSolution {
 // Generalised cross-validation (Golub, Heath & Wahba 1979) picks how far a window's
 // estimate may move from the prior: noiseless data get the smallest ridge and an exact fit,
 // noisy or barely varying counts a stronger pull instead of noise amplified into the
-// coefficients. `a` has unit-norm columns; `residual` is y - a * prior.
-double choose_lambda(const Eigen::MatrixXd& a, const Eigen::VectorXd& residual, double floor) {
-    const Eigen::BDCSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeThinU);
-    const Eigen::VectorXd s2 = svd.singularValues().array().square();
-    const Eigen::VectorXd projected = svd.matrixU().transpose() * residual;
-    const double outside = std::max(0.0, residual.squaredNorm() - projected.squaredNorm());
-    const double rows = static_cast<double>(a.rows());
-    const double ceiling = std::max(floor, static_cast<double>(a.cols()));
+// coefficients. Works on the eigen-decomposition of A'A: `s2` are the squared singular values
+// of A, `v_atr` = V' A' r for the residual r = y - A prior.
+double choose_lambda(const Eigen::VectorXd& s2, const Eigen::VectorXd& v_atr, double residual_norm2,
+                     double rows, double floor) {
+    // Squared components of r along A's left singular vectors: (v_i' A' r)^2 / s_i^2.
+    const double negligible = 1e-14 * std::max(s2.maxCoeff(), 1e-300);
+    Eigen::VectorXd projected2(s2.size());
+    for (Eigen::Index i = 0; i < s2.size(); ++i) {
+        projected2(i) = s2(i) > negligible ? v_atr(i) * v_atr(i) / s2(i) : 0.0;
+    }
+    const double outside = std::max(0.0, residual_norm2 - projected2.sum());
+    const double ceiling = std::max(floor, static_cast<double>(s2.size()));
     double best_lambda = floor, best_score = std::numeric_limits<double>::infinity();
     for (double lambda = floor; lambda <= ceiling * 1.0001; lambda *= std::sqrt(10.0)) {
         double rss = outside, dof = 0.0;
         for (Eigen::Index i = 0; i < s2.size(); ++i) {
             const double shrink = lambda / (s2(i) + lambda);
-            rss += shrink * shrink * projected(i) * projected(i);
+            rss += shrink * shrink * projected2(i);
             dof += s2(i) / (s2(i) + lambda);
         }
         const double denominator = rows - dof;
@@ -67,7 +71,9 @@ double choose_lambda(const Eigen::MatrixXd& a, const Eigen::VectorXd& residual, 
 // min |A k - y|^2 + lambda |D (k - prior)|^2 subject to k >= 0, where D scales A's columns to
 // unit norm (so the ridge means the same for counts of any magnitude). lambda is chosen by
 // GCV, never below ridge^2 * columns: directions of A with singular values well below
-// sqrt(lambda) stay at the prior.
+// sqrt(lambda) stay at the prior. One symmetric eigen-decomposition of A'A serves the choice
+// of lambda, the ridge solution and the prior shares; the active-set solver only runs when
+// that solution has a negative coefficient.
 RidgeSolution solve_ridge_nonnegative(Eigen::MatrixXd a, const Eigen::VectorXd& y,
                                       const Eigen::VectorXd& prior, double ridge) {
     const Eigen::Index cols = a.cols();
@@ -76,14 +82,25 @@ RidgeSolution solve_ridge_nonnegative(Eigen::MatrixXd a, const Eigen::VectorXd& 
         if (scale(c) > 0.0) a.col(c) /= scale(c);
     }
     const Eigen::VectorXd scaled_prior = prior.cwiseProduct(scale);
-    const double lambda = choose_lambda(a, y - a * scaled_prior, ridge * ridge * static_cast<double>(cols));
+    const Eigen::VectorXd residual = y - a * scaled_prior;
     Eigen::MatrixXd gram = a.transpose() * a;
-    gram.diagonal().array() += lambda;
-    const Eigen::VectorXd z = solve_nonnegative(gram, a.transpose() * y + lambda * scaled_prior);
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(gram);
+    const Eigen::VectorXd s2 = eigen.eigenvalues().cwiseMax(0.0);
+    const Eigen::MatrixXd& v = eigen.eigenvectors();
+    const Eigen::VectorXd v_atr = v.transpose() * (a.transpose() * residual);
+    const double lambda = choose_lambda(s2, v_atr, residual.squaredNorm(), static_cast<double>(a.rows()),
+                                        ridge * ridge * static_cast<double>(cols));
+    const Eigen::VectorXd inverse_eigen = (s2.array() + lambda).inverse().matrix();
+
+    Eigen::VectorXd z = scaled_prior + v * inverse_eigen.cwiseProduct(v_atr);
+    if (z.minCoeff() < 0.0) {
+        gram.diagonal().array() += lambda;
+        z = solve_nonnegative(gram, a.transpose() * y + lambda * scaled_prior);
+    }
 
     RidgeSolution solution;
-    solution.prior_share =
-        lambda * gram.ldlt().solve(Eigen::MatrixXd::Identity(cols, cols)).diagonal();
+    // Share of each estimate owed to the prior: lambda (G^-1)_jj, G = A'A + lambda I.
+    solution.prior_share = lambda * (v.array().square().matrix() * inverse_eigen);
     solution.coefficients = prior;  // an all-zero column keeps its prior
     for (Eigen::Index c = 0; c < cols; ++c) {
         if (scale(c) > 0.0) solution.coefficients(c) = z(c) / scale(c);

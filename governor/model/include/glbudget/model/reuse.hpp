@@ -45,12 +45,14 @@ public:
     void predict_all(std::vector<double>& out) const;
 
 private:
-    void fill(std::size_t pass, double partial_alpha, double*& out) const;
+    void fill(std::size_t pass, double q, double*& out) const;
 
     ConfigurationSpace space_;
     PowerModel fitted_;
     std::vector<std::vector<PassCoefficients>> coefficients_;  // [pass][level]
     std::vector<std::vector<double>> alpha_;                   // [pass][level] for the frame
+    std::vector<std::vector<double>> decay_;                   // exp(-alpha)
+    std::vector<std::vector<double>> decay_minus_one_;         // expm1(-alpha)
     double alpha_outside_space_ = 0.0;
 };
 

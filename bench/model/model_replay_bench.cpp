@@ -1,0 +1,70 @@
+// Replays a frame log (GLBUDGET_LOG with power columns) through the run-time power model and
+// the Vatjus-Anttila 2013 baseline, and prints both models' prediction errors on the same
+// frames: MAPE and mean/max error relative to P_M - P_m, for frames in the fitted
+// configuration and for frames predicted by reusing the coefficients.
+//
+//   model_replay_bench LOG.csv --profile PROFILE.json [--variants VARIANTS.json]
+//                      [--fit-window N] [--check-window N] [--threshold SHARE]
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <string>
+
+#include "glbudget/model/replay.hpp"
+
+using namespace glbudget::model;
+
+namespace {
+
+void print_row(const char* model, const char* frames, const PredictionError& e) {
+    std::printf("%-16s %-8s %7zu %9.2f %14.2f %13.2f\n", model, frames, e.count(), e.mape_percent(),
+                100.0 * e.mean_share_of_range(), 100.0 * e.max_share_of_range());
+}
+
+int usage() {
+    std::cerr << "usage: model_replay_bench LOG.csv --profile PROFILE.json [--variants VARIANTS.json]"
+                 " [--fit-window N] [--check-window N] [--threshold SHARE]\n";
+    return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string log_path, profile_path, variants_path;
+    FitSettings settings;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        const bool has_value = i + 1 < argc;
+        if (arg == "--profile" && has_value) profile_path = argv[++i];
+        else if (arg == "--variants" && has_value) variants_path = argv[++i];
+        else if (arg == "--fit-window" && has_value) settings.fitting_window = std::strtoul(argv[++i], nullptr, 10);
+        else if (arg == "--check-window" && has_value) settings.check_window = std::strtoul(argv[++i], nullptr, 10);
+        else if (arg == "--threshold" && has_value) settings.refit_threshold = std::strtod(argv[++i], nullptr);
+        else if (log_path.empty() && arg.rfind("--", 0) != 0) log_path = arg;
+        else return usage();
+    }
+    if (log_path.empty() || profile_path.empty()) return usage();
+
+    const auto profile = load_platform_profile(profile_path);
+    const auto log = read_frame_log_file(log_path);
+    if (!profile || !log) return 1;
+    VariantTable variants;
+    if (!variants_path.empty()) {
+        auto loaded = load_variant_table(variants_path);
+        if (!loaded) return 1;
+        variants = std::move(*loaded);
+    }
+
+    const auto frames = frames_of_busiest_context(*log);
+    const ReplayReport report = replay_frames(frames, *profile, variants, settings);
+    std::printf("%s: %zu frames (%zu unusable), %zu configurations, %zu fits (%zu failed checks), "
+                "chi %.4g psi %.4g\n",
+                log_path.c_str(), report.frames, report.frames_unusable, variants.space.size(), report.fits,
+                report.checks_failed, report.reuse.chi, report.reuse.psi);
+    std::printf("%-16s %-8s %7s %9s %14s %13s\n", "model", "frames", "count", "MAPE %", "mean %range", "max %range");
+    print_row("ours", "fitted", report.ours_fitted);
+    print_row("ours", "reused", report.ours_reused);
+    print_row("vatjus-anttila", "fitted", report.baseline_fitted);
+    print_row("vatjus-anttila", "reused", report.baseline_reused);
+    return 0;
+}
