@@ -100,7 +100,7 @@ std::vector<const Statement*> pointers(const syntax::StatementList& statements) 
 
 class Planner {
 public:
-    Planner(std::string_view text, const std::vector<CountedNode>& nodes) : text_(text), index_(text, nodes) {}
+    Planner(std::string_view text, const std::vector<CountedNode>& nodes) : index_(text, nodes) {}
 
     BodyPlan run(const syntax::Unit& unit) {
         const syntax::Function* main = nullptr;
@@ -258,7 +258,6 @@ private:
         plan_.insertions.push_back(std::move(moved));
     }
 
-    std::string_view text_;
     NodeIndex index_;
     BodyPlan plan_;
     Tally entry_extra_;
