@@ -9,6 +9,8 @@
 #include <mutex>
 #include <vector>
 
+#include "glbudget/sensors/power_log.hpp"
+
 namespace glbudget {
 
 int format_row(const FrameRow& r, char* out, int size) {
@@ -21,8 +23,10 @@ int format_row(const FrameRow& r, char* out, int size) {
     if (v[i] < 0) stat[i][0] = '\0';
     else snprintf(stat[i], sizeof stat[i], "%" PRId64, v[i]);
   }
-  return snprintf(out, size, "%" PRIu64 ",%" PRId64 ",%d,%s,%" PRIu64 ",%s,%s,%s,%s", r.frame, r.time_ns,
-                  r.context, pass, r.batches, stat[0], stat[1], stat[2], stat[3]);
+  char power[128];
+  sensors::format_power_fields(r.energy, power, sizeof power);
+  return snprintf(out, size, "%" PRIu64 ",%" PRId64 ",%d,%s,%" PRIu64 ",%s,%s,%s,%s,%s,%" PRIu64, r.frame, r.time_ns,
+                  r.context, pass, r.batches, stat[0], stat[1], stat[2], stat[3], power, r.energy.dropped_samples);
 }
 
 struct FrameLog::Impl {

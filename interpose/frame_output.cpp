@@ -13,6 +13,7 @@
 #include "context_state.h"
 #include "frame_log.h"
 #include "options.h"
+#include "glbudget/sensors/sensor.hpp"
 
 namespace glbudget {
 
@@ -83,6 +84,17 @@ void flush_pending_frames(ContextState& c, FlushMode mode) {
 }
 
 namespace {
+// The power sensor (GLBUDGET_SENSOR), opened when frames are logged. Never destroyed: its
+// sampling thread may outlive every static destructor, and the OS reclaims it at exit.
+sensors::PowerSensor* g_sensor = nullptr;
+std::mutex g_sensor_mu;  // on_swap() is single-threaded; contexts may swap on several threads
+
+sensors::FrameEnergy frame_energy(int64_t now_ns) {
+  if (!g_sensor) return {};
+  std::lock_guard lock(g_sensor_mu);
+  return g_sensor->on_swap(now_ns);
+}
+
 std::atomic<bool> g_started{false};
 std::atomic<pid_t> g_pid{0};  // the process that logs; vfork/posix_spawn children differ
 
@@ -107,6 +119,7 @@ void frame_output_started() {
     if (FrameLog::get().enabled()) {
       install_signal_flush(SIGTERM);
       install_signal_flush(SIGINT);
+      g_sensor = sensors::open_sensor_from_environment().release();
     }
   });
 }
@@ -117,7 +130,8 @@ void swap_begin() {
   // Pacing sleeps before the frame is presented, so frames reach the screen evenly spaced.
   if (options().fps > 0) pace(*c, options().fps);
   InFrameCode guard;
-  c->counter->end_frame(++c->frame, monotonic_ns(), c->index);
+  const int64_t now = monotonic_ns();
+  c->counter->end_frame(++c->frame, now, c->index, frame_energy(now));
 }
 
 void swap_end() {

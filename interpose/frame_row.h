@@ -2,6 +2,8 @@
 #pragma once
 #include <cstdint>
 
+#include "glbudget/sensors/sensor.hpp"
+
 namespace glbudget {
 
 using PassId = uint64_t;
@@ -19,6 +21,9 @@ struct FrameRow {
   int64_t fragments = -1;
   int64_t primitives = -1;
   int64_t gpu_ns = -1;
+  // The process's energy over the interval since the previous swap (of any context): power
+  // is a whole-process (whole-GPU) quantity. Invalid (empty fields) without a sensor.
+  sensors::FrameEnergy energy;
 };
 
 }  // namespace glbudget

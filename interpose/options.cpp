@@ -17,7 +17,8 @@ namespace {
 // anything else that starts with GLBUDGET_ is most likely a typo, worth a warning.
 constexpr const char* kKnownVariables[] = {
     "GLBUDGET_POWER", "GLBUDGET_ERROR", "GLBUDGET_CONFIG", "GLBUDGET_SENSOR", "GLBUDGET_FPS",
-    "GLBUDGET_LOG", "GLBUDGET_DUMP", "GLBUDGET_PROFILE", "GLBUDGET_CPU_IDLE_W", "GLBUDGET_CPU_MAX_W",
+    "GLBUDGET_LOG", "GLBUDGET_DUMP", "GLBUDGET_PROFILE", "GLBUDGET_SENSOR_PERIOD_MS", "GLBUDGET_SYSFS_ROOT",
+    "GLBUDGET_NVML_LIBRARY",
 };
 
 void warn(std::string* out, const std::string& text) { *out += "glbudget: " + text + "\n"; }

@@ -162,11 +162,13 @@ bool PassCounter::our_query_active(GLenum target) const {
   return i >= 0 && (ours_active_ & (1u << i));
 }
 
-void PassCounter::end_frame(uint64_t frame, int64_t time_ns, int context_index) {
+void PassCounter::end_frame(uint64_t frame, int64_t time_ns, int context_index,
+                            const sensors::FrameEnergy& energy) {
   if (open_) close_segment();
   building_.number = frame;
   building_.time_ns = time_ns;
   building_.context = context_index;
+  building_.energy = energy;
   pending_.push_back(std::move(building_));
   building_ = Frame{};
   // Swapping a window flushes anyway; swapping a pbuffer (or nothing) may not, and unflushed
@@ -214,6 +216,7 @@ void PassCounter::emit_frame(Frame& f, bool read_gpu, const std::function<void(c
       acc->row.time_ns = f.time_ns;
       acc->row.context = f.context;
       acc->row.pass = s.pass;
+      acc->row.energy = f.energy;
       acc->row.vertices = acc->row.fragments = acc->row.primitives = acc->row.gpu_ns = 0;
     }
     acc->row.batches += s.batches;

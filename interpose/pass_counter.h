@@ -42,7 +42,7 @@ class PassCounter : public DrawCounter {
   bool our_query_active(GLenum target) const;
 
   // Frame boundary (before the real swap): closes the open segment and queues the frame.
-  void end_frame(uint64_t frame, int64_t time_ns, int context_index);
+  void end_frame(uint64_t frame, int64_t time_ns, int context_index, const sensors::FrameEnergy& energy);
   // Turns queued frames into rows, never waiting on the GPU:
   //   kAvailable: frames whose results are all available (oldest first); a frame still
   //               pending after kMaxPendingFrames is given up and logged with CPU figures;
@@ -72,6 +72,7 @@ class PassCounter : public DrawCounter {
     uint64_t number = 0;
     int64_t time_ns = 0;
     int context = 0;
+    sensors::FrameEnergy energy;
     std::vector<Segment> segments;
   };
 

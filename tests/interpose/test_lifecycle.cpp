@@ -44,7 +44,7 @@ TEST_CASE("bad variables: one glbudget: line each, defaults, the app runs on", "
   std::string img = temp_path("badenv.ppm");
   auto r = run_process({probe_path("probe_direct"), "--frames", "4", "--out", img},
                        {{"LD_PRELOAD", shim_path()}, {"GLBUDGET_LOG", log}, {"GLBUDGET_FPS", "fast"},
-                        {"GLBUDGET_FRAMERATE", "30"}});
+                        {"GLBUDGET_FRAMERATE", "30"}, {"GLBUDGET_SENSOR", "cpu"}});
   CHECK(r.exit_code == 0);
   CHECK(count_lines_with(r.err, "glbudget:") == 2);
   CHECK(count_lines_with(r.err, "glbudget: GLBUDGET_FPS='fast'") == 1);

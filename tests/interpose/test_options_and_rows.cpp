@@ -58,11 +58,22 @@ TEST_CASE("frame-log rows: empty fields for what was not measured", "[unit]") {
   r.primitives = 20000;
   r.gpu_ns = -1;
   format_row(r, line, sizeof line);
-  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,");
+  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0");
   FrameRow ff;
   ff.pass = kFixedFunctionPass;
   format_row(ff, line, sizeof line);
-  CHECK(std::string(line) == "0,0,0,fixed-function,0,,,,");
+  CHECK(std::string(line) == "0,0,0,fixed-function,0,,,,,,,,0");
+  // With a sensor: power, energy, the sensor's name (estimates labelled), dropped samples.
+  FrameRow powered;
+  powered.energy.valid = true;
+  powered.energy.energy_j = 0.25;
+  powered.energy.mean_power_w = 15.0;
+  powered.energy.sensor = "cpu";
+  powered.energy.estimate = true;
+  powered.energy.dropped_samples = 2;
+  format_row(powered, line, sizeof line);
+  CHECK(std::string(line).find("0,0,0,fixed-function,0,,,,,15") == 0);
+  CHECK(std::string(line).find(",cpu~estimate,2") != std::string::npos);
   // Extremes: the largest counts fit the line.
   FrameRow big;
   big.frame = UINT64_MAX;
