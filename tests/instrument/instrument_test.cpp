@@ -308,3 +308,23 @@ TEST_CASE("extension conditionals follow the driver's extensions when they are g
     CHECK(std::count(out.begin() + static_cast<std::ptrdiff_t>(after_line),
                      out.begin() + static_cast<std::ptrdiff_t>(out.find("void main")), '\n') == 8);
 }
+
+TEST_CASE("truncated and mangled shaders fail cleanly, never crash", "[instrument]") {
+    // The shim runs inside the app: whatever the app passes must give a result, not a crash.
+    int ok = 0, failed = 0;
+    for (const char* file : {"loops.frag", "jumps.frag", "compat.frag"}) {
+        const std::string source = shader_file(file);
+        for (std::size_t length = 0; length < source.size(); length += 11) {
+            for (const std::string& variant :
+                 {source.substr(0, length), source.substr(0, length) + "}}})){{;", source.substr(length)}) {
+                InstrumentResult r;
+                REQUIRE_NOTHROW(r = instrument(variant));
+                (r.ok ? ok : failed)++;
+                if (!r.ok) CHECK_FALSE(r.error.empty());
+            }
+        }
+    }
+    INFO(ok << " variants instrumented, " << failed << " refused");
+    CHECK(failed > 0);
+    CHECK(ok > 0);
+}
