@@ -21,6 +21,19 @@ void print_row(const char* model, const char* frames, const PredictionError& e) 
                 100.0 * e.mean_share_of_range(), 100.0 * e.max_share_of_range());
 }
 
+// A positive number, or the default with one `glbudget:` line.
+template <typename T>
+T parse_or_keep(const char* flag, const char* text, T fallback) {
+    char* end = nullptr;
+    const double value = std::strtod(text, &end);
+    if (end == text || *end != '\0' || !(value > 0.0)) {
+        std::cerr << "glbudget: " << flag << " needs a positive number, not \"" << text << "\"; using "
+                  << fallback << "\n";
+        return fallback;
+    }
+    return static_cast<T>(value);
+}
+
 int usage() {
     std::cerr << "usage: model_replay_bench LOG.csv --profile PROFILE.json [--variants VARIANTS.json]"
                  " [--fit-window N] [--check-window N] [--threshold SHARE]\n";
@@ -37,9 +50,9 @@ int main(int argc, char** argv) {
         const bool has_value = i + 1 < argc;
         if (arg == "--profile" && has_value) profile_path = argv[++i];
         else if (arg == "--variants" && has_value) variants_path = argv[++i];
-        else if (arg == "--fit-window" && has_value) settings.fitting_window = std::strtoul(argv[++i], nullptr, 10);
-        else if (arg == "--check-window" && has_value) settings.check_window = std::strtoul(argv[++i], nullptr, 10);
-        else if (arg == "--threshold" && has_value) settings.refit_threshold = std::strtod(argv[++i], nullptr);
+        else if (arg == "--fit-window" && has_value) settings.fitting_window = parse_or_keep("--fit-window", argv[++i], settings.fitting_window);
+        else if (arg == "--check-window" && has_value) settings.check_window = parse_or_keep("--check-window", argv[++i], settings.check_window);
+        else if (arg == "--threshold" && has_value) settings.refit_threshold = parse_or_keep("--threshold", argv[++i], settings.refit_threshold);
         else if (log_path.empty() && arg.rfind("--", 0) != 0) log_path = arg;
         else return usage();
     }
