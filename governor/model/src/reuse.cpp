@@ -138,30 +138,51 @@ double ConfigurationPredictor::predict(const Configuration& configuration) const
     return power_from_alpha(fitted_.profile(), alpha);
 }
 
-// Enumerates configurations without a transcendental per configuration: with m_i = expm1(-alpha_i)
-// and q = prod(1 + m_i) - 1 = -(1 - exp(-sum alpha)), each pass updates q <- q (1 + m_i) + m_i.
-// Both terms are <= 0, so nothing cancels and tiny loads keep their relative precision, as
-// with expm1 of the sum.
-void ConfigurationPredictor::fill(std::size_t pass, double q, double*& out) const {
-    const std::vector<double>& m = decay_minus_one_[pass];
-    const std::vector<double>& e = decay_[pass];
-    if (pass + 1 == decay_.size()) {
-        const double p_min = fitted_.profile().p_min_w, range = fitted_.profile().range_w();
-        for (std::size_t l = 0; l < m.size(); ++l) *out++ = p_min - range * (q * e[l] + m[l]);
-        return;
+// Predicting all configurations needs no transcendental per configuration: with
+// m_i = expm1(-alpha_i), e_i = exp(-alpha_i) and q = prod(1 + m_i) - 1 = -(1 - exp(-sum alpha)),
+// appending a pass updates q <- q e_i + m_i. Both terms are <= 0, so nothing cancels and tiny
+// loads keep their relative precision, as with expm1 of the sum.
+//
+// The passes are split in two halves; each half's combinations are enumerated once, and every
+// configuration is then one multiply-add of a front entry with a back entry (27 x 27 for the
+// paper's 729), a loop the compiler vectorises.
+void ConfigurationPredictor::enumerate(std::size_t first, std::size_t last, double q0,
+                                       std::vector<double>& q, std::vector<double>* e) const {
+    q.assign(1, q0);
+    if (e) e->assign(1, 1.0);
+    std::vector<double> next_q, next_e;
+    for (std::size_t pass = first; pass < last; ++pass) {
+        const std::vector<double>& m_pass = decay_minus_one_[pass];
+        const std::vector<double>& e_pass = decay_[pass];
+        const std::size_t levels = m_pass.size();
+        next_q.resize(q.size() * levels);
+        for (std::size_t i = 0; i < q.size(); ++i) {
+            for (std::size_t l = 0; l < levels; ++l) next_q[i * levels + l] = q[i] * e_pass[l] + m_pass[l];
+        }
+        q.swap(next_q);
+        if (e) {
+            next_e.resize(e->size() * levels);
+            for (std::size_t i = 0; i < e->size(); ++i) {
+                for (std::size_t l = 0; l < levels; ++l) next_e[i * levels + l] = (*e)[i] * e_pass[l];
+            }
+            e->swap(next_e);
+        }
     }
-    for (std::size_t l = 0; l < m.size(); ++l) fill(pass + 1, q * e[l] + m[l], out);
 }
 
 void ConfigurationPredictor::predict_all(std::vector<double>& out) const {
-    out.resize(space_.size());
-    double* cursor = out.data();
-    const double q = std::expm1(-alpha_outside_space_);
-    if (decay_.empty()) {
-        *cursor = fitted_.profile().p_min_w - fitted_.profile().range_w() * q;
-        return;
+    const std::size_t split = decay_.size() / 2;
+    std::vector<double> front_q, back_q, back_e;
+    enumerate(0, split, std::expm1(-alpha_outside_space_), front_q, nullptr);
+    enumerate(split, decay_.size(), 0.0, back_q, &back_e);
+    const double p_min = fitted_.profile().p_min_w, range = fitted_.profile().range_w();
+    const std::size_t back = back_q.size();
+    out.resize(front_q.size() * back);
+    for (std::size_t i = 0; i < front_q.size(); ++i) {
+        double* row = out.data() + i * back;
+        const double q = front_q[i];
+        for (std::size_t j = 0; j < back; ++j) row[j] = p_min - range * (q * back_e[j] + back_q[j]);
     }
-    fill(0, q, cursor);
 }
 
 }  // namespace glbudget::model

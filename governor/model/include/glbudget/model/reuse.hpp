@@ -45,7 +45,10 @@ public:
     void predict_all(std::vector<double>& out) const;
 
 private:
-    void fill(std::size_t pass, double q, double*& out) const;
+    // q = prod(1 + expm1(-alpha)) - 1 (starting from q0) and, if wanted, e = prod exp(-alpha)
+    // for every combination of levels of passes [first, last), in row-major order.
+    void enumerate(std::size_t first, std::size_t last, double q0, std::vector<double>& q,
+                   std::vector<double>* e) const;
 
     ConfigurationSpace space_;
     PowerModel fitted_;
