@@ -25,8 +25,14 @@ int MetalsPass::run(const FrameContext& frame, const Framebuffer& scene_target, 
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   const int level = frame.config[Knob::Metals];  // the quality knob: a #define
-  set_lighting_uniforms(*rigid_[level], frame, shadow_map);
-  set_lighting_uniforms(*skinned_[level], frame, shadow_map);
+  const GLuint environment = environment_.texture(frame.scene.sky, frame.scene.ground);
+  for (const Program* program : {rigid_[level].get(), skinned_[level].get()}) {
+    set_lighting_uniforms(*program, frame, shadow_map);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, environment);
+    glUniform1i(program->uniform("u_environment"), 1);
+  }
+  glActiveTexture(GL_TEXTURE0);
   return frame.gpu.draw(frame.pose, [](const Object& o) { return o.material.metal; }, *rigid_[level],
                         *skinned_[level], set_material_uniforms);
 }

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "gl_program.h"
+#include "passes/environment_map.h"
 #include "passes/frame_context.h"
 #include "passes/fullscreen.h"
 #include "render_targets.h"
@@ -46,6 +47,7 @@ class MetalsPass {
 
  private:
   std::array<std::unique_ptr<Program>, 3> rigid_, skinned_;  // by quality level
+  EnvironmentMap environment_;
 };
 
 // Screen-space reflections (u_samples, u_kernel_taps) from the scene target into `output`.

@@ -4,13 +4,10 @@
 #define METAL_SAMPLES 60
 #endif
 
-// A studio-like environment with bright panels, so that few samples visibly alias.
-vec3 environment(vec3 d) {
-  vec3 base = mix(u_ground, u_sky, smoothstep(-0.3, 0.3, d.y));
-  float azimuth = atan(d.z, d.x) * (4.0 / PI);
-  float panels = step(0.75, fract(azimuth)) * smoothstep(0.05, 0.35, d.y);
-  return base + panels * 4.0 * (u_sky + vec3(0.2));
-}
+// The environment: a cube map baked from the scene's sky (see passes/environment_map.cpp),
+// one texture fetch per sample as in an engine's importance-sampled image-based lighting.
+uniform samplerCube u_environment;
+vec3 environment(vec3 d) { return texture(u_environment, d).rgb; }
 
 vec2 hammersley(uint i, uint count) {
   uint bits = i;
