@@ -4,25 +4,37 @@
 #include <array>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
 #include "frame_row.h"
+#include "glbudget/instrument/instrument.hpp"
 #include "pass_counter.h"
 #include "stable_hash.h"
 
 namespace glbudget {
 
+class Instrumentation;
+
 struct ShaderInfo {
   GLenum stage = 0;
   std::string source;  // the strings the app passed, concatenated
+  // Instrumentation (shader_instrumentation.h): the driver holds the instrumented source in
+  // place of the app's until the app sets a new one; the compiled code is instrumented until
+  // the next compile.
+  bool driver_source_instrumented = false;
+  bool compiled_instrumented = false;
+  bool binding_in_source = true;  // else the link sets the counter block's binding
+  std::optional<instrument::StaticFigures> figures;  // when glslang parsed it
 };
 
 struct ProgramInfo {
   std::vector<GLuint> shaders;  // attached now
   PassId pass = 0;              // from the sources at the last link
   bool linked = false;
+  bool instrumented = false;  // linked from instrumented shaders: its draws need the counters
 };
 
 struct ShareGroup {
@@ -40,6 +52,8 @@ struct ContextState {
   bool initialized = false;  // caps detected and counter built (first make-current)
   GlCaps caps;
   std::unique_ptr<PassCounter> counter;
+  std::unique_ptr<Instrumentation> instrumentation;  // GLBUDGET_INSTRUMENT, made on first use
+  bool instrumentation_probed = false;
 
   GLuint program = 0;
   GLuint pipeline = 0;

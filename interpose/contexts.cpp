@@ -6,6 +6,7 @@
 #include "frame_output.h"
 #include "gl_calls.h"
 #include "options.h"
+#include "shader_instrumentation.h"
 
 namespace glbudget {
 
@@ -88,13 +89,18 @@ void context_made_current(void* handle, void* display) {
 void context_will_change(void* handle) {
   // A context that stops being current here cannot be asked later from this thread: harvest
   // what the GPU has finished while it still is (no waiting).
-  if (t_ctx && t_ctx->handle != handle) flush_pending_frames(*t_ctx, FlushMode::kCollect);
+  if (t_ctx && t_ctx->handle != handle) {
+    flush_pending_frames(*t_ctx, FlushMode::kCollect);
+    // Instrumentation counters cannot be read from another thread or context: read them now.
+    instrumentation_release(*t_ctx);
+  }
 }
 
 void context_destroyed(void* handle) {
   Registry& r = registry();
   std::lock_guard lock(r.mu);
   bool current_here = t_ctx && t_ctx->handle == handle;
+  if (current_here) instrumentation_release(*t_ctx);  // called before the real destroy
   retire(r, handle, current_here);
   // A destroyed context that is still current stays usable (GLX) until released; we stop
   // counting on it, since its queries are about to vanish.

@@ -13,6 +13,7 @@
 #include "context_state.h"
 #include "frame_log.h"
 #include "options.h"
+#include "shader_instrumentation.h"
 #include "glbudget/sensors/sensor.hpp"
 
 namespace glbudget {
@@ -138,6 +139,7 @@ void swap_end() {
   ContextState* c = current_context();
   if (!c) return;
   flush_pending_frames(*c, FlushMode::kCollect);
+  instrumentation_swap(*c);
 }
 
 void final_flush() {
@@ -150,6 +152,7 @@ void final_flush() {
   // The context current on the exiting thread can still answer its queries (waiting is
   // harmless now); others cannot be asked from here, so they log CPU figures.
   if (here) flush_pending_frames(*here, FlushMode::kWait);
+  if (here) instrumentation_release(*here);
   for_each_context([](ContextState& c) {
     if (&c != current_context() && !c.bound) flush_pending_frames(c, FlushMode::kCpuOnly);
   });

@@ -28,6 +28,19 @@ bool load_gl_calls() {
   load_one(g.BindBuffer, "glBindBuffer");
   load_one(g.GetShaderiv, "glGetShaderiv");
   load_one(g.Flush, "glFlush");
+  load_one(g.GetProgramiv, "glGetProgramiv");
+  load_one(g.GetProgramResourceIndex, "glGetProgramResourceIndex");
+  load_one(g.ShaderStorageBlockBinding, "glShaderStorageBlockBinding");
+  load_one(g.GenBuffers, "glGenBuffers");
+  load_one(g.DeleteBuffers, "glDeleteBuffers");
+  load_one(g.BufferData, "glBufferData");
+  load_one(g.BindBufferBase, "glBindBufferBase");
+  load_one(g.CopyBufferSubData, "glCopyBufferSubData");
+  load_one(g.MapBufferRange, "glMapBufferRange");
+  load_one(g.UnmapBuffer, "glUnmapBuffer");
+  load_one(g.FenceSync, "glFenceSync");
+  load_one(g.ClientWaitSync, "glClientWaitSync");
+  load_one(g.DeleteSync, "glDeleteSync");
   return g.GetString && g.GetIntegerv;
 }
 

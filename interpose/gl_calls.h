@@ -20,6 +20,20 @@ struct GlCalls {
   PFNGLBINDBUFFERPROC BindBuffer = nullptr;
   PFNGLGETSHADERIVPROC GetShaderiv = nullptr;
   void(APIENTRYP Flush)(void) = nullptr;
+  // Shader instrumentation (GLBUDGET_INSTRUMENT / GLBUDGET_DUMP).
+  PFNGLGETPROGRAMIVPROC GetProgramiv = nullptr;
+  PFNGLGETPROGRAMRESOURCEINDEXPROC GetProgramResourceIndex = nullptr;
+  PFNGLSHADERSTORAGEBLOCKBINDINGPROC ShaderStorageBlockBinding = nullptr;
+  PFNGLGENBUFFERSPROC GenBuffers = nullptr;
+  PFNGLDELETEBUFFERSPROC DeleteBuffers = nullptr;
+  PFNGLBUFFERDATAPROC BufferData = nullptr;
+  PFNGLBINDBUFFERBASEPROC BindBufferBase = nullptr;
+  PFNGLCOPYBUFFERSUBDATAPROC CopyBufferSubData = nullptr;
+  PFNGLMAPBUFFERRANGEPROC MapBufferRange = nullptr;
+  PFNGLUNMAPBUFFERPROC UnmapBuffer = nullptr;
+  PFNGLFENCESYNCPROC FenceSync = nullptr;
+  PFNGLCLIENTWAITSYNCPROC ClientWaitSync = nullptr;
+  PFNGLDELETESYNCPROC DeleteSync = nullptr;
 
 };
 

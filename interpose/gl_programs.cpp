@@ -3,23 +3,12 @@
 
 #include "context_state.h"
 #include "hooks_generated.h"
-#include "stable_hash.h"
+#include "pass_names.h"
+#include "shader_instrumentation.h"
 
 namespace glbudget {
 
 namespace {
-// A pass is named by its shaders: the hashes of (stage, source) of each, order-independent.
-PassId program_hash(std::vector<uint64_t> shader_hashes) {
-  std::sort(shader_hashes.begin(), shader_hashes.end());
-  uint64_t h = fnv1a("program");
-  for (uint64_t s : shader_hashes) h = fnv1a_u64(s, h);
-  return h == kFixedFunctionPass ? 1 : h;
-}
-
-uint64_t shader_hash(GLenum stage, const std::string& source) {
-  return fnv1a(source, fnv1a_u64(stage, kFnvOffset));
-}
-
 std::string join_sources(GLsizei count, const GLchar* const* strings, const GLint* lengths) {
   std::string all;
   for (GLsizei i = 0; strings && i < count; ++i) {
@@ -31,7 +20,9 @@ std::string join_sources(GLsizei count, const GLchar* const* strings, const GLin
 }
 
 void refresh_if_bound(ContextState* c) {
-  if (c) update_pass(*c);
+  if (!c) return;
+  update_pass(*c);
+  bind_counters(*c);
 }
 }  // namespace
 
@@ -40,7 +31,9 @@ GLuint handle_glCreateShader(pfn_glCreateShader real, GLenum type) {
   ContextState* c = current_context();
   if (c && shader) {
     std::lock_guard lock(c->group->mu);
-    c->group->shaders[shader] = ShaderInfo{type, {}};
+    ShaderInfo info;
+    info.stage = type;
+    c->group->shaders[shader] = std::move(info);
   }
   return shader;
 }
@@ -52,7 +45,9 @@ void handle_glShaderSource(pfn_glShaderSource real, GLuint shader, GLsizei count
   if (!c || count < 0) return;
   std::lock_guard lock(c->group->mu);
   auto it = c->group->shaders.find(shader);
-  if (it != c->group->shaders.end()) it->second.source = join_sources(count, string, length);
+  if (it == c->group->shaders.end()) return;
+  it->second.source = join_sources(count, string, length);
+  it->second.driver_source_instrumented = false;  // the driver holds the app's source again
 }
 
 void handle_glDeleteShader(pfn_glDeleteShader real, GLuint shader) {
@@ -101,6 +96,7 @@ void handle_glLinkProgram(pfn_glLinkProgram real, GLuint program) {
     }
     p.pass = program_hash(std::move(hashes));
     p.linked = true;
+    after_link(*c, *c->group, program, p, real);
   }
   refresh_if_bound(c);
 }
@@ -134,6 +130,7 @@ void handle_glUseProgram(pfn_glUseProgram real, GLuint program) {
   if (!c) return;
   c->program = program;
   update_pass(*c);
+  bind_counters(*c);
 }
 
 void handle_glBindProgramPipeline(pfn_glBindProgramPipeline real, GLuint pipeline) {
@@ -142,6 +139,7 @@ void handle_glBindProgramPipeline(pfn_glBindProgramPipeline real, GLuint pipelin
   if (!c) return;
   c->pipeline = pipeline;
   update_pass(*c);
+  bind_counters(*c);
 }
 
 void handle_glUseProgramStages(pfn_glUseProgramStages real, GLuint pipeline, GLbitfield stages, GLuint program) {
@@ -155,7 +153,7 @@ void handle_glUseProgramStages(pfn_glUseProgramStages real, GLuint pipeline, GLb
   auto& slots = c->pipeline_stages[pipeline];
   for (int i = 0; i < 6; ++i)
     if (stages & kBits[i]) slots[i] = program;
-  if (c->pipeline == pipeline) update_pass(*c);
+  if (c->pipeline == pipeline) refresh_if_bound(c);
 }
 
 }  // namespace glbudget

@@ -18,7 +18,7 @@ namespace {
 constexpr const char* kKnownVariables[] = {
     "GLBUDGET_POWER", "GLBUDGET_ERROR", "GLBUDGET_CONFIG", "GLBUDGET_SENSOR", "GLBUDGET_FPS",
     "GLBUDGET_LOG", "GLBUDGET_DUMP", "GLBUDGET_PROFILE", "GLBUDGET_SENSOR_PERIOD_MS", "GLBUDGET_SYSFS_ROOT",
-    "GLBUDGET_NVML_LIBRARY",
+    "GLBUDGET_NVML_LIBRARY", "GLBUDGET_INSTRUMENT",
 };
 
 void warn(std::string* out, const std::string& text) { *out += "glbudget: " + text + "\n"; }
@@ -26,6 +26,7 @@ void warn(std::string* out, const std::string& text) { *out += "glbudget: " + te
 
 Options parse_options(char** env, std::string* warnings) {
   Options o;
+  int instrument_switch = -1;  // -1: not given
   for (char** e = env; e && *e; ++e) {
     std::string_view entry(*e);
     if (entry.rfind("GLBUDGET_", 0) != 0) continue;
@@ -40,6 +41,12 @@ Options parse_options(char** env, std::string* warnings) {
     }
     if (name == "GLBUDGET_LOG") {
       o.log_path = value;
+    } else if (name == "GLBUDGET_DUMP") {
+      o.dump_dir = value;
+    } else if (name == "GLBUDGET_INSTRUMENT") {
+      if (value == "1" || value == "on") instrument_switch = 1;
+      else if (value == "0" || value == "off" || value.empty()) instrument_switch = 0;
+      else warn(warnings, "GLBUDGET_INSTRUMENT='" + value + "' is not 0/1/on/off; ignored");
     } else if (name == "GLBUDGET_FPS") {
       if (value.empty() || value == "off" || value == "0") continue;
       errno = 0;
@@ -52,6 +59,8 @@ Options parse_options(char** env, std::string* warnings) {
       }
     }
   }
+  // An explicit GLBUDGET_INSTRUMENT wins; a dump without it is measured (its point).
+  o.instrument = instrument_switch >= 0 ? instrument_switch == 1 : !o.dump_dir.empty();
   return o;
 }
 

@@ -9,6 +9,10 @@ namespace glbudget {
 struct Options {
   std::string log_path;  // GLBUDGET_LOG: per-frame CSV; empty: no log
   double fps = 0;        // GLBUDGET_FPS: pace swaps to this rate; 0: no pacing
+  std::string dump_dir;  // GLBUDGET_DUMP: shader/program dumps (turns instrumentation on)
+  // GLBUDGET_INSTRUMENT=1: count executed instructions and texel accesses per program. A
+  // measurement mode (it perturbs timing): off unless asked for, or implied by GLBUDGET_DUMP.
+  bool instrument = false;
 };
 
 const Options& options();

@@ -26,6 +26,7 @@ CUSTOM = [
     'glCreateShaderProgramv', 'glDeleteProgram', 'glDeleteShader', 'glCreateShader',
     'glBeginQuery', 'glEndQuery', 'glBeginQueryIndexed', 'glEndQueryIndexed',
     'glGetQueryiv', 'glGetQueryIndexediv',
+    'glCompileShader', 'glGetShaderSource', 'glGetShaderiv',
     'glBegin', 'glEnd', 'glNewList', 'glEndList', 'glCallList', 'glCallLists',
 ]
 ALIASES_OF_CUSTOM = {
@@ -38,6 +39,7 @@ ALIASES_OF_CUSTOM = {
     'glCreateShaderObjectARB': 'glCreateShader',
     'glBindProgramPipelineEXT': 'glBindProgramPipeline',
     'glUseProgramStagesEXT': 'glUseProgramStages',
+    'glCompileShaderARB': 'glCompileShader', 'glGetShaderSourceARB': 'glGetShaderSource',
 }
 
 # Window-system entry points: implemented by hand (they carry frame and context logic), but

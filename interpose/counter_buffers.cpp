@@ -1,0 +1,136 @@
+#include "counter_buffers.h"
+
+#include <atomic>
+#include <cstring>
+
+#include "dump_registry.h"
+#include "gl_calls.h"
+
+namespace glbudget {
+
+namespace {
+constexpr uint64_t kCopyPeriodFrames = 4;  // a readback every few frames is plenty for averages
+
+std::atomic<uint64_t> g_next_source{1};
+
+// Saves a buffer binding and restores it when leaving the scope.
+class SavedBinding {
+ public:
+  SavedBinding(GLenum target, GLenum binding_query) : target_(target) {
+    GLint name = 0;
+    gl().GetIntegerv(binding_query, &name);
+    name_ = static_cast<GLuint>(name);
+  }
+  ~SavedBinding() { gl().BindBuffer(target_, name_); }
+  SavedBinding(const SavedBinding&) = delete;
+  SavedBinding& operator=(const SavedBinding&) = delete;
+
+ private:
+  GLenum target_;
+  GLuint name_ = 0;
+};
+}  // namespace
+
+bool CounterBuffers::create(Entry& e) {
+  const GlCalls& g = gl();
+  GLuint names[2] = {0, 0};
+  g.GenBuffers(2, names);
+  e.counters = names[0];
+  e.staging = names[1];
+  if (!e.counters || !e.staging) return false;
+  const instrument::CounterWords zeros{};
+  SavedBinding saved(GL_COPY_WRITE_BUFFER, GL_COPY_WRITE_BUFFER_BINDING);
+  g.BindBuffer(GL_COPY_WRITE_BUFFER, e.counters);
+  g.BufferData(GL_COPY_WRITE_BUFFER, instrument::kCounterBytes, zeros.data(), GL_DYNAMIC_COPY);
+  g.BindBuffer(GL_COPY_WRITE_BUFFER, e.staging);
+  g.BufferData(GL_COPY_WRITE_BUFFER, instrument::kCounterBytes, nullptr, GL_STREAM_READ);
+  return true;
+}
+
+void CounterBuffers::bind(uint64_t key, const std::string& program_hash) {
+  Entry& e = entries_[key];
+  if (!e.counters) {
+    e.program_hash = program_hash;
+    e.source = g_next_source++;
+    if (!create(e)) return;
+  }
+  e.drawn_since_copy = true;
+  // glBindBufferBase also sets the generic binding, which the app may rely on.
+  SavedBinding saved(GL_SHADER_STORAGE_BUFFER, GL_SHADER_STORAGE_BUFFER_BINDING);
+  gl().BindBufferBase(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(binding_), e.counters);
+}
+
+void CounterBuffers::forget(uint64_t key) {
+  auto it = entries_.find(key);
+  if (it == entries_.end()) return;
+  release(it->second);
+  entries_.erase(it);
+}
+
+void CounterBuffers::release(Entry& e) {
+  const GlCalls& g = gl();
+  if (e.fence) g.DeleteSync(e.fence);
+  e.fence = nullptr;
+  GLuint names[2] = {e.counters, e.staging};
+  g.DeleteBuffers(2, names);
+  e.counters = e.staging = 0;
+}
+
+void CounterBuffers::start_copy(Entry& e) {
+  const GlCalls& g = gl();
+  {
+    SavedBinding read(GL_COPY_READ_BUFFER, GL_COPY_READ_BUFFER_BINDING);
+    SavedBinding write(GL_COPY_WRITE_BUFFER, GL_COPY_WRITE_BUFFER_BINDING);
+    g.BindBuffer(GL_COPY_READ_BUFFER, e.counters);
+    g.BindBuffer(GL_COPY_WRITE_BUFFER, e.staging);
+    g.CopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, instrument::kCounterBytes);
+  }
+  e.fence = g.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+  e.drawn_since_copy = false;
+}
+
+void CounterBuffers::harvest(Entry& e, GLuint buffer) {
+  const GlCalls& g = gl();
+  instrument::CounterWords words{};
+  {
+    SavedBinding read(GL_COPY_READ_BUFFER, GL_COPY_READ_BUFFER_BINDING);
+    g.BindBuffer(GL_COPY_READ_BUFFER, buffer);
+    const void* mapped = g.MapBufferRange(GL_COPY_READ_BUFFER, 0, instrument::kCounterBytes, GL_MAP_READ_BIT);
+    if (!mapped) return;
+    std::memcpy(words.data(), mapped, instrument::kCounterBytes);
+    g.UnmapBuffer(GL_COPY_READ_BUFFER);
+  }
+  dump_registry::set_counters(e.program_hash, e.source, words);
+}
+
+void CounterBuffers::poll(uint64_t frame) {
+  const GlCalls& g = gl();
+  bool harvested = false;
+  for (auto& [key, e] : entries_) {
+    if (e.fence) {
+      GLenum state = g.ClientWaitSync(e.fence, 0, 0);  // timeout 0: a poll, never a wait
+      if (state != GL_ALREADY_SIGNALED && state != GL_CONDITION_SATISFIED) continue;
+      g.DeleteSync(e.fence);
+      e.fence = nullptr;
+      harvest(e, e.staging);
+      harvested = true;
+    }
+    if (e.counters && e.drawn_since_copy && frame % kCopyPeriodFrames == 0) start_copy(e);
+  }
+  if (harvested) dump_registry::write_changed();
+}
+
+void CounterBuffers::read_all_now() {
+  const GlCalls& g = gl();
+  for (auto& [key, e] : entries_) {
+    if (!e.counters) continue;
+    if (e.fence) {
+      g.DeleteSync(e.fence);
+      e.fence = nullptr;
+    }
+    harvest(e, e.counters);  // mapping waits for the draws that write it
+  }
+  dump_registry::write_changed();
+}
+
+}  // namespace glbudget

@@ -1,0 +1,250 @@
+#include "shader_instrumentation.h"
+
+#include <unistd.h>
+
+#include <mutex>
+#include <optional>
+#include <set>
+
+#include "dump_registry.h"
+#include "gl_calls.h"
+#include "hook_table.h"
+#include "options.h"
+#include "pass_names.h"
+
+namespace glbudget {
+
+namespace {
+using instrument::Stage;
+
+void say(const std::string& text) {
+  std::string line = "glbudget: " + text + "\n";
+  (void)!write(STDERR_FILENO, line.data(), line.size());
+}
+
+// One line per shader or program (by hash), however often the app rebuilds it.
+void say_once(const std::string& key, const std::string& text) {
+  static std::mutex mu;
+  static std::set<std::string> said;
+  std::lock_guard lock(mu);
+  if (said.insert(key).second) say(text);
+}
+
+std::optional<Stage> stage_of(GLenum type) {
+  switch (type) {
+    case GL_VERTEX_SHADER: return Stage::vertex;
+    case GL_TESS_CONTROL_SHADER: return Stage::tess_control;
+    case GL_TESS_EVALUATION_SHADER: return Stage::tess_evaluation;
+    case GL_GEOMETRY_SHADER: return Stage::geometry;
+    case GL_FRAGMENT_SHADER: return Stage::fragment;
+    default: return std::nullopt;  // compute: dispatches are not bound to counters
+  }
+}
+
+bool has_calls(const GlCalls& g) {
+  return g.GetStringi && g.GetShaderiv && g.GetProgramiv && g.GetProgramResourceIndex &&
+         g.ShaderStorageBlockBinding && g.GenBuffers && g.DeleteBuffers && g.BufferData && g.BindBuffer &&
+         g.BindBufferBase && g.CopyBufferSubData && g.MapBufferRange && g.UnmapBuffer && g.FenceSync &&
+         g.ClientWaitSync && g.DeleteSync;
+}
+
+std::unique_ptr<Instrumentation> make_instrumentation(const GlCaps& caps) {
+  auto at_least = [&](int M, int m) { return caps.major > M || (caps.major == M && caps.minor >= m); };
+  const GlCalls& g = gl();
+  // Shader storage buffers: GL 4.3, GLES 3.1. Nothing is queried before this is known, so no
+  // query can raise GL_INVALID_ENUM.
+  if (!(caps.gles ? at_least(3, 1) : at_least(4, 3)) || !has_calls(g)) return nullptr;
+  GLint bindings = 0, count = 0;
+  g.GetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &bindings);
+  if (bindings < 1) return nullptr;
+  g.GetIntegerv(GL_NUM_EXTENSIONS, &count);
+  std::vector<std::string> extensions;
+  for (GLint i = 0; i < count; ++i)
+    if (auto e = reinterpret_cast<const char*>(g.GetStringi(GL_EXTENSIONS, static_cast<GLuint>(i))))
+      extensions.emplace_back(e);
+  // The highest binding: apps fill bindings from 0, so this one is the least likely in use.
+  return std::make_unique<Instrumentation>(bindings - 1, std::move(extensions));
+}
+
+void set_driver_source(GLuint shader, const std::string& source) {
+  auto shader_source = reinterpret_cast<pfn_glShaderSource>(real_entry(kHook_glShaderSource));
+  const GLchar* text = source.c_str();
+  const GLint length = static_cast<GLint>(source.size());
+  shader_source(shader, 1, &text, &length);
+}
+
+bool compile_status(GLuint shader) {
+  GLint ok = 0;
+  gl().GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  return ok == GL_TRUE;
+}
+
+bool link_status(GLuint program) {
+  GLint ok = 0;
+  gl().GetProgramiv(program, GL_LINK_STATUS, &ok);
+  return ok == GL_TRUE;
+}
+
+// The app's shader compiled from the instrumented source if the driver accepts it, else
+// from the app's own. Returns what the dump records.
+instrument::InstrumentResult compile(Instrumentation& inst, GLuint shader, ShaderInfo& s, Stage stage,
+                                     pfn_glCompileShader real) {
+  instrument::InstrumentResult r =
+      instrument::instrument_shader({{s.source}, stage, inst.binding(), inst.extensions()});
+  bool instrumented = false;
+  bool driver_has_ours = s.driver_source_instrumented;  // left by an earlier compile
+  if (r.ok) {
+    set_driver_source(shader, r.instrumented_source);
+    driver_has_ours = true;
+    real(shader);
+    instrumented = compile_status(shader);
+    if (!instrumented) {
+      r.ok = false;
+      r.error = "the driver does not compile the instrumented source";
+    }
+  }
+  if (!instrumented) {
+    if (driver_has_ours) set_driver_source(shader, s.source);
+    real(shader);
+  }
+  s.driver_source_instrumented = instrumented;
+  s.compiled_instrumented = instrumented;
+  s.binding_in_source = r.binding_in_source;
+  s.figures = r.figures;
+  return r;
+}
+}  // namespace
+
+Instrumentation* instrumentation_of(ContextState& c) {
+  if (!options().instrument) return nullptr;
+  if (!c.instrumentation_probed) {
+    c.instrumentation_probed = true;
+    c.instrumentation = make_instrumentation(c.caps);
+    if (!c.instrumentation)
+      say_once("no-ssbo", "instrumentation needs shader storage buffers (GL 4.3, GLES 3.1); off in this context");
+  }
+  return c.instrumentation.get();
+}
+
+void handle_glCompileShader(pfn_glCompileShader real, GLuint shader) {
+  ContextState* c = current_context();
+  Instrumentation* inst = c ? instrumentation_of(*c) : nullptr;
+  if (!inst) return real(shader);
+  std::lock_guard lock(c->group->mu);
+  auto it = c->group->shaders.find(shader);
+  std::optional<Stage> stage = it == c->group->shaders.end() ? std::nullopt : stage_of(it->second.stage);
+  if (!stage) return real(shader);
+  ShaderInfo& s = it->second;
+  const std::string hash = hash_text(shader_hash(s.stage, s.source));
+  instrument::InstrumentResult r = compile(*inst, shader, s, *stage, real);
+  // A shader the app got wrong is the app's to report; ours are the ones that only we broke.
+  if (!r.ok && compile_status(shader))
+    say_once(hash, "shader " + hash + " (" + instrument::stage_name(*stage) + ") not instrumented: " + r.error +
+                       "; it runs unchanged");
+  dump_registry::add_shader({hash, *stage, s.source, std::move(r)});
+}
+
+void handle_glGetShaderSource(pfn_glGetShaderSource real, GLuint shader, GLsizei bufSize, GLsizei* length,
+                              GLchar* source) {
+  ContextState* c = current_context();
+  if (c && c->instrumentation && bufSize > 0 && source) {
+    std::lock_guard lock(c->group->mu);
+    auto it = c->group->shaders.find(shader);
+    if (it != c->group->shaders.end() && it->second.driver_source_instrumented) {
+      // The app's source, not the instrumented one the driver holds.
+      const std::string& text = it->second.source;
+      const size_t n = std::min(text.size(), static_cast<size_t>(bufSize) - 1);
+      text.copy(source, n);
+      source[n] = '\0';
+      if (length) *length = static_cast<GLsizei>(n);
+      return;
+    }
+  }
+  real(shader, bufSize, length, source);
+}
+
+void handle_glGetShaderiv(pfn_glGetShaderiv real, GLuint shader, GLenum pname, GLint* params) {
+  real(shader, pname, params);
+  ContextState* c = current_context();
+  if (!c || !c->instrumentation || pname != GL_SHADER_SOURCE_LENGTH || !params) return;
+  std::lock_guard lock(c->group->mu);
+  auto it = c->group->shaders.find(shader);
+  if (it != c->group->shaders.end() && it->second.driver_source_instrumented)
+    *params = static_cast<GLint>(it->second.source.size() + 1);  // with its terminating null
+}
+
+void after_link(ContextState& c, ShareGroup& g, GLuint program, ProgramInfo& info, pfn_glLinkProgram real) {
+  info.instrumented = false;
+  Instrumentation* inst = instrumentation_of(c);
+  if (!inst) return;
+  inst->buffers().forget(program);  // a new link counts afresh
+  std::vector<ShaderInfo*> shaders;
+  bool any_instrumented = false, needs_binding = false;
+  for (GLuint id : info.shaders) {
+    auto it = g.shaders.find(id);
+    if (it == g.shaders.end()) continue;
+    shaders.push_back(&it->second);
+    any_instrumented |= it->second.compiled_instrumented;
+    needs_binding |= it->second.compiled_instrumented && !it->second.binding_in_source;
+  }
+  const std::string hash = hash_text(info.pass);
+  if (any_instrumented && link_status(program)) {
+    if (needs_binding) {
+      GLuint block = gl().GetProgramResourceIndex(program, GL_SHADER_STORAGE_BLOCK, instrument::kCounterBlockName);
+      if (block != GL_INVALID_INDEX) gl().ShaderStorageBlockBinding(program, block, static_cast<GLuint>(inst->binding()));
+    }
+    info.instrumented = true;
+  } else if (any_instrumented) {
+    // Relink from the app's sources: the app must get the program it asked for. A shader whose
+    // source the app has replaced since compiling is left alone (recompiling it would compile
+    // what the app has not asked to compile).
+    auto compile_shader = reinterpret_cast<pfn_glCompileShader>(real_entry(kHook_glCompileShader));
+    for (GLuint id : info.shaders) {
+      auto it = g.shaders.find(id);
+      if (it == g.shaders.end() || !it->second.driver_source_instrumented) continue;
+      set_driver_source(id, it->second.source);
+      compile_shader(id);
+      it->second.driver_source_instrumented = it->second.compiled_instrumented = false;
+    }
+    real(program);
+    if (link_status(program))
+      say_once(hash, "program " + hash + " not instrumented: the instrumented shaders do not link; it runs unchanged");
+  }
+  instrument::ProgramDump dump{hash, {}};
+  for (const ShaderInfo* s : shaders)
+    if (auto stage = stage_of(s->stage))
+      dump.stages.push_back({*stage, hash_text(shader_hash(s->stage, s->source)), s->figures, std::nullopt});
+  dump_registry::add_program(dump);
+}
+
+void bind_counters(ContextState& c) {
+  if (!c.instrumentation) return;
+  std::lock_guard lock(c.group->mu);
+  auto instrumented = [&](GLuint program) -> const ProgramInfo* {
+    auto it = c.group->programs.find(program);
+    return it != c.group->programs.end() && it->second.instrumented ? &it->second : nullptr;
+  };
+  if (c.program) {
+    if (const ProgramInfo* p = instrumented(c.program)) c.instrumentation->buffers().bind(c.program, hash_text(p->pass));
+    return;
+  }
+  // A pipeline has one counter buffer, credited to its first instrumented program (stages
+  // write disjoint words, so no count is mixed with another stage's).
+  auto it = c.pipeline_stages.find(c.pipeline);
+  if (!c.pipeline || it == c.pipeline_stages.end()) return;
+  for (GLuint program : it->second)
+    if (const ProgramInfo* p = instrumented(program)) {
+      c.instrumentation->buffers().bind((uint64_t{1} << 32) | c.pipeline, hash_text(p->pass));
+      return;
+    }
+}
+
+void instrumentation_swap(ContextState& c) {
+  if (c.instrumentation) c.instrumentation->buffers().poll(c.frame);
+}
+
+void instrumentation_release(ContextState& c) {
+  if (c.instrumentation) c.instrumentation->buffers().read_all_now();
+}
+
+}  // namespace glbudget

@@ -1,0 +1,52 @@
+// Shader instrumentation in the shim (GLBUDGET_INSTRUMENT, GLBUDGET_DUMP): the GL side of
+// instrument/. On glCompileShader the app's source is rewritten to count what each invocation
+// executes; the driver compiles the instrumented source in the app's own shader object (the
+// rewrite keeps every name and location, so the app sees the same program), and falls back
+// to the app's source, with one `glbudget:` line, if anything fails. glGetShaderSource keeps
+// answering with the app's source. Draws of instrumented programs write counters into a
+// buffer at the highest shader-storage binding, read back a few frames late.
+// Limits: compute shaders and glCreateShaderProgramv programs are not instrumented (their
+// dispatches/pipelines are not bound to counters); GLSL ES 1.00 has no storage buffers.
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "context_state.h"
+#include "counter_buffers.h"
+#include "hooks_generated.h"
+
+namespace glbudget {
+
+// Per context: what the driver offers, and the counter buffers.
+class Instrumentation {
+ public:
+  Instrumentation(int binding, std::vector<std::string> extensions)
+      : binding_(binding), extensions_(std::move(extensions)), buffers_(binding) {}
+  int binding() const { return binding_; }
+  const std::vector<std::string>& extensions() const { return extensions_; }
+  CounterBuffers& buffers() { return buffers_; }
+
+ private:
+  int binding_;
+  std::vector<std::string> extensions_;
+  CounterBuffers buffers_;
+};
+
+// The context's instrumentation, made on first use; null when it is off or the context has
+// no shader storage buffers.
+Instrumentation* instrumentation_of(ContextState& c);
+
+// Called by handle_glLinkProgram under the share group's lock, after the real link: sets the
+// counter binding, or relinks from the app's sources if the instrumented link failed.
+void after_link(ContextState& c, ShareGroup& g, GLuint program, ProgramInfo& info, pfn_glLinkProgram real);
+
+// After the bound program or pipeline changed: binds its counters if it is instrumented.
+void bind_counters(ContextState& c);
+
+// At each swap (never waits), and when the context stops being current on this thread or the
+// process exits (waits: the context is going away).
+void instrumentation_swap(ContextState& c);
+void instrumentation_release(ContextState& c);
+
+}  // namespace glbudget
