@@ -174,6 +174,19 @@ TEST_CASE("shaders that cannot be instrumented run unchanged with one glbudget l
   fs::remove_all(r.dir);
 }
 
+TEST_CASE("a program whose instrumented version cannot link is relinked from the app's shaders",
+          "[integration][instrumentation]") {
+  // It uses every fragment storage block: the counter block is one too many for the driver.
+  DumpRun r = run_probe_both("probe_ssbo_full", {}, 4);
+  INFO(r.shim.err);
+  CHECK(count_lines_with(r.shim.err, "glbudget:") == 1);
+  CHECK(count_lines_with(r.shim.err, "do not link; it runs unchanged") == 1);
+  const Dump dump = read_dump(r.dir);
+  REQUIRE(dump.size() == 1);
+  for (const auto& [stage, figures] : dump.begin()->second) CHECK_FALSE(figures.instructions);  // nothing counted
+  fs::remove_all(r.dir);
+}
+
 namespace {
 struct DemoRun {
   Dump dump;
