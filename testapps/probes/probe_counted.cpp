@@ -1,7 +1,8 @@
 // A shader with hand-countable work for instrumentation tests: a full-window quad whose
 // fragment shader loops over a uniform number of texture taps and takes a branch in the
 // left 8 columns only. It also checks what an app can see of its shader: glGetShaderSource
-// and GL_SHADER_SOURCE_LENGTH must return its own source (exit code 4 if not).
+// and GL_SHADER_SOURCE_LENGTH must return its own source (exit code 4 if not), and prints
+// its program's interface (uniforms, attributes, uniform blocks) for tests to compare.
 //
 // Hand counts (instrument/instrument.hpp's rule), with taps = 3 on a W x H window:
 //   vertex:   gl_Position = vec4(pos, 0.0, 1.0)            2 instructions, 0 texel accesses
@@ -54,6 +55,19 @@ bool source_round_trips(GLuint shader, const char* source) {
          std::strcmp(back.data(), source) == 0;
 }
 
+// Every active resource of `interface` with its name and location (or binding), one a line.
+void print_interface(GLuint program, GLenum interface, GLenum location_property) {
+  GLint count = 0;
+  glGetProgramInterfaceiv(program, interface, GL_ACTIVE_RESOURCES, &count);
+  for (GLint i = 0; i < count; ++i) {
+    char name[256] = {};
+    glGetProgramResourceName(program, interface, static_cast<GLuint>(i), sizeof name, nullptr, name);
+    GLint location = -1;
+    glGetProgramResourceiv(program, interface, static_cast<GLuint>(i), 1, &location_property, 1, nullptr, &location);
+    printf("interface %#x: %s at %d\n", interface, name, location);
+  }
+}
+
 GLuint compile(GLenum stage, const char* source, bool* same_source) {
   GLuint s = glCreateShader(stage);
   glShaderSource(s, 1, &source, nullptr);
@@ -94,6 +108,10 @@ int main(int argc, char** argv) {
     fprintf(stderr, "probe_counted: glGetShaderSource does not return the app's source\n");
     return 4;
   }
+  print_interface(program, GL_UNIFORM, GL_LOCATION);
+  print_interface(program, GL_PROGRAM_INPUT, GL_LOCATION);
+  print_interface(program, GL_PROGRAM_OUTPUT, GL_LOCATION);
+  print_interface(program, GL_UNIFORM_BLOCK, GL_BUFFER_BINDING);
   // A 4x4 texture of distinct texels.
   std::vector<unsigned char> texels(4 * 4 * 4);
   for (size_t i = 0; i < texels.size(); ++i) texels[i] = static_cast<unsigned char>(i * 13 + 7);

@@ -131,6 +131,9 @@ TEST_CASE("instrumented loops, texture taps and a partly taken branch measure th
   // See the hand counts in testapps/probes/probe_counted.cpp.
   check_stage(stages.at("vertex"), 2, 0, 6 * frames);
   check_stage(stages.at("fragment"), 28.0 + 8.0 / width, 3, uint64_t(width) * height * frames);
+  // The app sees the same interface: names and locations of uniforms, inputs and outputs.
+  CHECK(r.plain.out.find("interface") != std::string::npos);
+  CHECK(r.shim.out == r.plain.out);
   fs::remove_all(r.dir);
 }
 
