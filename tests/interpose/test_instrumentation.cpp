@@ -1,6 +1,7 @@
 // Integration (issue 6): shader instrumentation in the shim. Under GLBUDGET_DUMP the probes
 // render the same images with the same exit codes, the measured per-invocation figures equal
-// hand counts of their shaders, every shader of the demo renderer instruments and its metals
+// hand counts of their shaders, every shader of the demo renderer instruments (its images
+// unchanged) and its metals
 // quality levels order as expected, and a shader that cannot be instrumented runs unchanged
 // with one `glbudget:` line.
 #include <unistd.h>
@@ -196,15 +197,36 @@ struct DemoRun {
   size_t shaders = 0, instrumented = 0;
 };
 
+std::vector<std::string> demo_args(const std::string& config, const fs::path& images) {
+  return {DEMO_PATH, "--scene", "hall", "--detail", "0.05", "--width", "128", "--height", "72", "--frames", "6",
+          "--config", config, "--dump", images.string(), "--dump-every", "5"};
+}
+
+// The images the demo wrote, by file name.
+std::map<std::string, std::string> read_images(const fs::path& dir) {
+  std::map<std::string, std::string> images;
+  for (const auto& entry : fs::directory_iterator(dir))
+    images[entry.path().filename().string()] = read_file(entry.path().string());
+  return images;
+}
+
+// The demo instrumented, with its shader dump; its images must equal a plain run's.
 DemoRun run_demo_dump(const std::string& config) {
-  const fs::path dir = temp_path("demo_dump_" + config);
-  fs::remove_all(dir);
-  ProcessResult p = run_process({DEMO_PATH, "--scene", "hall", "--detail", "0.05", "--width", "128", "--height", "72",
-                                 "--frames", "6", "--config", config},
+  const fs::path dir = temp_path("demo_dump_" + config), plain_images = temp_path("demo_plain_" + config),
+                 shim_images = temp_path("demo_shim_" + config);
+  for (const fs::path& d : {dir, plain_images, shim_images}) fs::remove_all(d);
+  ProcessResult plain = run_process(demo_args(config, plain_images), {});
+  ProcessResult p = run_process(demo_args(config, shim_images),
                                 {{"LD_PRELOAD", shim_path()}, {"GLBUDGET_DUMP", dir.string()}, {"GLBUDGET_SENSOR", "cpu"}});
-  INFO(p.err);
+  INFO(plain.err << p.err);
+  REQUIRE(plain.exit_code == 0);
   REQUIRE(p.exit_code == 0);
   CHECK(p.err.find("glbudget:") == std::string::npos);
+  const auto plain_png = read_images(plain_images);
+  CHECK(plain_png.size() == 2);
+  CHECK(read_images(shim_images) == plain_png);
+  fs::remove_all(plain_images);
+  fs::remove_all(shim_images);
   DemoRun run;
   run.dump = read_dump(dir);
   for (const auto& entry : fs::directory_iterator(dir)) {
