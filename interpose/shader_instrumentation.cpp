@@ -173,6 +173,23 @@ void handle_glGetShaderiv(pfn_glGetShaderiv real, GLuint shader, GLenum pname, G
     *params = static_cast<GLint>(it->second.source.size() + 1);  // with its terminating null
 }
 
+void handle_glGetProgramBinary(pfn_glGetProgramBinary real, GLuint program, GLsizei bufSize, GLsizei* length,
+                               GLenum* binaryFormat, void* binary) {
+  ContextState* c = current_context();
+  if (c && c->instrumentation) {
+    std::lock_guard lock(c->group->mu);
+    auto it = c->group->programs.find(program);
+    if (it != c->group->programs.end() && it->second.instrumented) {
+      // An app that caches binaries would keep our counters in a later run without glbudget,
+      // writing to a binding nobody bound. An empty binary fails to load, and apps then
+      // build from source, as they must when a driver update invalidates their cache.
+      if (length) *length = 0;
+      return;
+    }
+  }
+  real(program, bufSize, length, binaryFormat, binary);
+}
+
 void after_link(ContextState& c, ShareGroup& g, GLuint program, ProgramInfo& info, pfn_glLinkProgram real) {
   info.instrumented = false;
   Instrumentation* inst = instrumentation_of(c);

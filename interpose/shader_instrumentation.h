@@ -5,6 +5,7 @@
 // to the app's source, with one `glbudget:` line, if anything fails. glGetShaderSource keeps
 // answering with the app's source. Draws of instrumented programs write counters into a
 // buffer at the highest shader-storage binding, read back a few frames late.
+// glGetProgramBinary of an instrumented program returns an empty binary (never cache ours).
 // Limits: compute shaders and glCreateShaderProgramv programs are not instrumented (their
 // dispatches/pipelines are not bound to counters); GLSL ES 1.00 has no storage buffers.
 #pragma once

@@ -26,7 +26,7 @@ CUSTOM = [
     'glCreateShaderProgramv', 'glDeleteProgram', 'glDeleteShader', 'glCreateShader',
     'glBeginQuery', 'glEndQuery', 'glBeginQueryIndexed', 'glEndQueryIndexed',
     'glGetQueryiv', 'glGetQueryIndexediv',
-    'glCompileShader', 'glGetShaderSource', 'glGetShaderiv',
+    'glCompileShader', 'glGetShaderSource', 'glGetShaderiv', 'glGetProgramBinary',
     'glBegin', 'glEnd', 'glNewList', 'glEndList', 'glCallList', 'glCallLists',
 ]
 ALIASES_OF_CUSTOM = {
@@ -40,6 +40,7 @@ ALIASES_OF_CUSTOM = {
     'glBindProgramPipelineEXT': 'glBindProgramPipeline',
     'glUseProgramStagesEXT': 'glUseProgramStages',
     'glCompileShaderARB': 'glCompileShader', 'glGetShaderSourceARB': 'glGetShaderSource',
+    'glGetProgramBinaryOES': 'glGetProgramBinary',
 }
 
 # Window-system entry points: implemented by hand (they carry frame and context logic), but

@@ -2,7 +2,8 @@
 // fragment shader loops over a uniform number of texture taps and takes a branch in the
 // left 8 columns only. It also checks what an app can see of its shader: glGetShaderSource
 // and GL_SHADER_SOURCE_LENGTH must return its own source (exit code 4 if not), and prints
-// its program's interface (uniforms, attributes, uniform blocks) for tests to compare.
+// its program's interface (uniforms, attributes, uniform blocks) for tests to compare, and on
+// stderr whether glGetProgramBinary gave it a binary to cache.
 //
 // Hand counts (instrument/instrument.hpp's rule), with taps = 3 on a W x H window:
 //   vertex:   gl_Position = vec4(pos, 0.0, 1.0)            2 instructions, 0 texel accesses
@@ -108,6 +109,13 @@ int main(int argc, char** argv) {
     fprintf(stderr, "probe_counted: glGetShaderSource does not return the app's source\n");
     return 4;
   }
+  GLint binary_size = 0;
+  glGetProgramiv(program, GL_PROGRAM_BINARY_LENGTH, &binary_size);
+  std::vector<char> binary(static_cast<size_t>(binary_size > 0 ? binary_size : 1));
+  GLsizei binary_length = 0;
+  GLenum binary_format = 0;
+  glGetProgramBinary(program, static_cast<GLsizei>(binary.size()), &binary_length, &binary_format, binary.data());
+  fprintf(stderr, "probe_counted: program binary %s\n", binary_length > 0 ? "given" : "empty");
   print_interface(program, GL_UNIFORM, GL_LOCATION);
   print_interface(program, GL_PROGRAM_INPUT, GL_LOCATION);
   print_interface(program, GL_PROGRAM_OUTPUT, GL_LOCATION);

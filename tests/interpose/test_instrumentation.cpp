@@ -135,6 +135,9 @@ TEST_CASE("instrumented loops, texture taps and a partly taken branch measure th
   // The app sees the same interface: names and locations of uniforms, inputs and outputs.
   CHECK(r.plain.out.find("interface") != std::string::npos);
   CHECK(r.shim.out == r.plain.out);
+  // Its binary is not given out to be cached (it would carry our counters into later runs).
+  CHECK(r.plain.err.find("program binary given") != std::string::npos);
+  CHECK(r.shim.err.find("program binary empty") != std::string::npos);
   fs::remove_all(r.dir);
 }
 
