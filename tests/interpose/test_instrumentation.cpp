@@ -143,20 +143,36 @@ TEST_CASE("instrumented loops, texture taps and a partly taken branch measure th
 
 TEST_CASE("the known scene renders the same image instrumented and measures each pass exactly",
           "[integration][instrumentation]") {
+  struct Case {
+    const char* probe;
+    std::vector<std::string> args;
+    const char* pass_a;  // a line only pass A's fragment shader has
+    const char* pass_b;
+  };
+  // GLSL 3.30 core, GLSL ES 3.00 in a GLES context, GLSL 1.20 in a compatibility context.
+  const Case cases[] = {
+      {"probe_direct", {}, "frag = color;", "frag = vec4(1.0) - color;"},
+      {"probe_getproc", {"--es", "3"}, "frag = color;", "frag = vec4(1.0) - color;"},
+      {"probe_compat", {}, "gl_FragColor = color;", "gl_FragColor = vec4(1.0) - color;"},
+  };
   const int frames = 6;
-  DumpRun r = run_probe_both("probe_direct", {}, frames);
-  CHECK(r.shim.err.find("glbudget:") == std::string::npos);
-  const Dump dump = read_dump(r.dir);
-  REQUIRE(dump.size() == 2);
-  // Pass A: frag = color (1 operation), 2 half-window quads of 64x64; pass B: frag =
-  // vec4(1.0) - color (2), 3 quads of 16x16. Vertex: gl_Position = vec4(pos, 0.0, 1.0) (2).
-  const auto& a = program_with(dump, "frag = color;");
-  const auto& b = program_with(dump, "frag = vec4(1.0) - color;");
-  check_stage(a.at("vertex"), 2, 0, 12 * frames);
-  check_stage(a.at("fragment"), 1, 0, 2 * 32 * 64 * frames);
-  check_stage(b.at("vertex"), 2, 0, 18 * frames);
-  check_stage(b.at("fragment"), 2, 0, 3 * 16 * 16 * frames);
-  fs::remove_all(r.dir);
+  for (const Case& c : cases) {
+    SECTION(std::string(c.probe) + (c.args.empty() ? "" : " " + c.args[0] + " " + c.args[1])) {
+      DumpRun r = run_probe_both(c.probe, c.args, frames);
+      CHECK(r.shim.err.find("glbudget:") == std::string::npos);
+      const Dump dump = read_dump(r.dir);
+      REQUIRE(dump.size() == 2);
+      // Pass A: its colour (1 operation: the assignment), 2 half-window quads of 64x64; pass
+      // B: vec4(1.0) - colour (2), 3 quads of 16x16. Vertex: gl_Position = vec4(pos, 0.0, 1.0) (2).
+      const auto& a = program_with(dump, c.pass_a);
+      const auto& b = program_with(dump, c.pass_b);
+      check_stage(a.at("vertex"), 2, 0, 12 * frames);
+      check_stage(a.at("fragment"), 1, 0, 2 * 32 * 64 * frames);
+      check_stage(b.at("vertex"), 2, 0, 18 * frames);
+      check_stage(b.at("fragment"), 2, 0, 3 * 16 * 16 * frames);
+      fs::remove_all(r.dir);
+    }
+  }
 }
 
 TEST_CASE("shaders that cannot be instrumented run unchanged with one glbudget line each",
