@@ -11,14 +11,8 @@
 int main(int argc, char** argv) {
   ProbeArgs args = parse_probe_args(argc, argv);
   EglFns egl;
-  egl.load_linked();
   EglWindow w;
-  std::string error;
-  if (!egl_create(egl, ContextKind::kCompat, args.width, args.height, EGL_NO_CONTEXT, &w, &error)) {
-    fprintf(stderr, "probe_compat: %s\n", error.c_str());
-    return 2;
-  }
-  eglMakeCurrent(w.display, w.surface, w.surface, w.context);
+  if (!open_current_window("probe_compat", egl, ContextKind::kCompat, args.width, args.height, &w)) return 2;
   GlFns gl;
   if (const char* missing = gl.load([&](const char* n) { return (void*)eglGetProcAddress(n); })) {
     fprintf(stderr, "probe_compat: no %s\n", missing);

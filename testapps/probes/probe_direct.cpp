@@ -8,14 +8,8 @@
 int main(int argc, char** argv) {
   ProbeArgs args = parse_probe_args(argc, argv);
   EglFns egl;
-  egl.load_linked();
   EglWindow w;
-  std::string error;
-  if (!egl_create(egl, ContextKind::kCore45, args.width, args.height, EGL_NO_CONTEXT, &w, &error)) {
-    fprintf(stderr, "probe_direct: %s\n", error.c_str());
-    return 2;
-  }
-  eglMakeCurrent(w.display, w.surface, w.surface, w.context);
+  if (!open_current_window("probe_direct", egl, ContextKind::kCore45, args.width, args.height, &w)) return 2;
   GlFns gl;
 #define DIRECT(type, name) gl.name = &::gl##name;
   PROBE_GL_FUNCTIONS(DIRECT)

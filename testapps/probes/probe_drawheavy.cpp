@@ -30,14 +30,8 @@ int main(int argc, char** argv) {
   if (passes < 1) passes = 1;
   if (run < 1) run = 1;
   EglFns egl;
-  egl.load_linked();
   EglWindow w;
-  std::string error;
-  if (!egl_create(egl, ContextKind::kCore45, 64, 64, EGL_NO_CONTEXT, &w, &error)) {
-    fprintf(stderr, "probe_drawheavy: %s\n", error.c_str());
-    return 2;
-  }
-  eglMakeCurrent(w.display, w.surface, w.surface, w.context);
+  if (!open_current_window("probe_drawheavy", egl, ContextKind::kCore45, 64, 64, &w)) return 2;
   std::vector<GLuint> programs;
   for (int p = 0; p < passes; ++p) {
     char fs[200];

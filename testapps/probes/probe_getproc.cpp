@@ -11,16 +11,10 @@ int main(int argc, char** argv) {
   int es = 0;
   for (int i = 1; i + 1 < argc; ++i)
     if (!strcmp(argv[i], "--es")) es = atoi(argv[i + 1]);
-  EglFns egl;
-  egl.load_linked();
   ContextKind kind = es == 2 ? ContextKind::kGles2 : es == 3 ? ContextKind::kGles3 : ContextKind::kCore45;
+  EglFns egl;
   EglWindow w;
-  std::string error;
-  if (!egl_create(egl, kind, args.width, args.height, EGL_NO_CONTEXT, &w, &error)) {
-    fprintf(stderr, "probe_getproc: %s\n", error.c_str());
-    return 2;
-  }
-  egl.MakeCurrent(w.display, w.surface, w.surface, w.context);
+  if (!open_current_window("probe_getproc", egl, kind, args.width, args.height, &w)) return 2;
   GlFns gl;
   if (const char* missing = gl.load([&](const char* n) { return (void*)egl.GetProcAddress(n); })) {
     fprintf(stderr, "probe_getproc: no %s\n", missing);

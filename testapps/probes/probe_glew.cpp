@@ -9,14 +9,8 @@
 int main(int argc, char** argv) {
   ProbeArgs args = parse_probe_args(argc, argv);
   EglFns egl;
-  egl.load_linked();
   EglWindow w;
-  std::string error;
-  if (!egl_create(egl, ContextKind::kCore45, args.width, args.height, EGL_NO_CONTEXT, &w, &error)) {
-    fprintf(stderr, "probe_glew: %s\n", error.c_str());
-    return 2;
-  }
-  egl.MakeCurrent(w.display, w.surface, w.surface, w.context);
+  if (!open_current_window("probe_glew", egl, ContextKind::kCore45, args.width, args.height, &w)) return 2;
   glewExperimental = GL_TRUE;
   GLenum r = glewInit();
   // Debian's GLEW is built for GLX: with an EGL context it loads the GL entry points and then

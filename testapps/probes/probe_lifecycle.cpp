@@ -15,14 +15,8 @@
 
 static int render(const ProbeArgs& args, int frames) {
   EglFns egl;
-  egl.load_linked();
   EglWindow w;
-  std::string error;
-  if (!egl_create(egl, ContextKind::kCore45, args.width, args.height, EGL_NO_CONTEXT, &w, &error)) {
-    fprintf(stderr, "probe_lifecycle: %s\n", error.c_str());
-    return 2;
-  }
-  egl.MakeCurrent(w.display, w.surface, w.surface, w.context);
+  if (!open_current_window("probe_lifecycle", egl, ContextKind::kCore45, args.width, args.height, &w)) return 2;
   GlFns gl;
   gl.load([&](const char* n) { return (void*)egl.GetProcAddress(n); });
   KnownScene scene(gl, ShaderDialect::kGlsl330Core, args.width, args.height);

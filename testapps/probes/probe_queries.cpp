@@ -19,14 +19,8 @@ static void expect(bool ok, const char* what, long long got, long long want) {
 int main(int argc, char** argv) {
   ProbeArgs args = parse_probe_args(argc, argv);
   EglFns egl;
-  egl.load_linked();
   EglWindow w;
-  std::string error;
-  if (!egl_create(egl, ContextKind::kCore45, args.width, args.height, EGL_NO_CONTEXT, &w, &error)) {
-    fprintf(stderr, "probe_queries: %s\n", error.c_str());
-    return 2;
-  }
-  egl.MakeCurrent(w.display, w.surface, w.surface, w.context);
+  if (!open_current_window("probe_queries", egl, ContextKind::kCore45, args.width, args.height, &w)) return 2;
   GlFns gl;
   gl.load([&](const char* n) { return (void*)egl.GetProcAddress(n); });
   KnownScene scene(gl, ShaderDialect::kGlsl330Core, args.width, args.height);

@@ -1,5 +1,7 @@
 #include "egl_setup.h"
 
+#include <cstdio>
+
 void EglFns::load_linked() {
   GetPlatformDisplayEXT =
       reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
@@ -85,5 +87,16 @@ bool egl_create(const EglFns& egl, ContextKind kind, int width, int height, EGLC
     return false;
   }
   *out = w;
+  return true;
+}
+
+bool open_current_window(const char* probe, EglFns& egl, ContextKind kind, int width, int height, EglWindow* out) {
+  egl.load_linked();
+  std::string error;
+  if (!egl_create(egl, kind, width, height, EGL_NO_CONTEXT, out, &error)) {
+    fprintf(stderr, "%s: %s\n", probe, error.c_str());
+    return false;
+  }
+  egl.MakeCurrent(out->display, out->surface, out->surface, out->context);
   return true;
 }

@@ -33,6 +33,10 @@ struct EglWindow {
   EGLContext context = EGL_NO_CONTEXT;
 };
 
+// The usual opening of a probe: EGL from the linked libEGL, one pbuffer and context of `kind`,
+// made current. On failure prints "<probe>: <reason>" on stderr and returns false.
+bool open_current_window(const char* probe, EglFns& egl, ContextKind kind, int width, int height, EglWindow* out);
+
 // Creates display, pbuffer and context (sharing with `share` if given); on failure returns
 // false with a reason in `error`. Does not make it current.
 bool egl_create(const EglFns& egl, ContextKind kind, int width, int height, EGLContext share,
