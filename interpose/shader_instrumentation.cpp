@@ -235,14 +235,16 @@ void after_link(ContextState& c, ShareGroup& g, GLuint program, ProgramInfo& inf
 }
 
 void bind_counters(ContextState& c) {
-  if (!c.instrumentation) return;
+  // Made here too: a context may draw programs another context of its share group built.
+  Instrumentation* inst = instrumentation_of(c);
+  if (!inst) return;
   std::lock_guard lock(c.group->mu);
   auto instrumented = [&](GLuint program) -> const ProgramInfo* {
     auto it = c.group->programs.find(program);
     return it != c.group->programs.end() && it->second.instrumented ? &it->second : nullptr;
   };
   if (c.program) {
-    if (const ProgramInfo* p = instrumented(c.program)) c.instrumentation->buffers().bind(c.program, hash_text(p->pass));
+    if (const ProgramInfo* p = instrumented(c.program)) inst->buffers().bind(c.program, hash_text(p->pass));
     return;
   }
   // A pipeline has one counter buffer, credited to its first instrumented program (stages
@@ -251,7 +253,7 @@ void bind_counters(ContextState& c) {
   if (!c.pipeline || it == c.pipeline_stages.end()) return;
   for (GLuint program : it->second)
     if (const ProgramInfo* p = instrumented(program)) {
-      c.instrumentation->buffers().bind((uint64_t{1} << 32) | c.pipeline, hash_text(p->pass));
+      inst->buffers().bind((uint64_t{1} << 32) | c.pipeline, hash_text(p->pass));
       return;
     }
 }

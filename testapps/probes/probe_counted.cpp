@@ -3,7 +3,8 @@
 // left 8 columns only. It also checks what an app can see of its shader: glGetShaderSource
 // and GL_SHADER_SOURCE_LENGTH must return its own source (exit code 4 if not), and prints
 // its program's interface (uniforms, attributes, uniform blocks) for tests to compare, and on
-// stderr whether glGetProgramBinary gave it a binary to cache.
+// stderr whether glGetProgramBinary gave it a binary to cache. With --contexts 2, the program
+// is built in one context and drawn in a second one that shares its objects.
 //
 // Hand counts (instrument/instrument.hpp's rule), with taps = 3 on a W x H window:
 //   vertex:   gl_Position = vec4(pos, 0.0, 1.0)            2 instructions, 0 texel accesses
@@ -21,6 +22,7 @@
 #include <GL/glext.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <vector>
 
@@ -83,6 +85,8 @@ GLuint compile(GLenum stage, const char* source, bool* same_source) {
 
 int main(int argc, char** argv) {
   ProbeArgs args = parse_probe_args(argc, argv);
+  bool shared = false;  // options come in pairs, as in parse_probe_args
+  for (int i = 1; i + 1 < argc; i += 2) shared = shared || (std::strcmp(argv[i], "--contexts") == 0 && std::atoi(argv[i + 1]) == 2);
   EglFns egl;
   egl.load_linked();
   EglWindow w;
@@ -120,6 +124,14 @@ int main(int argc, char** argv) {
   print_interface(program, GL_PROGRAM_INPUT, GL_LOCATION);
   print_interface(program, GL_PROGRAM_OUTPUT, GL_LOCATION);
   print_interface(program, GL_UNIFORM_BLOCK, GL_BUFFER_BINDING);
+  EglWindow drawing = w;
+  if (shared) {
+    if (!egl_create(egl, ContextKind::kCore45, args.width, args.height, w.context, &drawing, &error, w.display)) {
+      fprintf(stderr, "probe_counted: %s\n", error.c_str());
+      return 2;
+    }
+    eglMakeCurrent(drawing.display, drawing.surface, drawing.surface, drawing.context);
+  }
   // A 4x4 texture of distinct texels.
   std::vector<unsigned char> texels(4 * 4 * 4);
   for (size_t i = 0; i < texels.size(); ++i) texels[i] = static_cast<unsigned char>(i * 13 + 7);
@@ -148,9 +160,10 @@ int main(int argc, char** argv) {
     glClear(GL_COLOR_BUFFER_BIT);
     glDrawArrays(GL_TRIANGLES, 0, 6);
     if (f + 1 == args.frames) glReadPixels(0, 0, args.width, args.height, GL_RGBA, GL_UNSIGNED_BYTE, image.data());
-    eglSwapBuffers(w.display, w.surface);
+    eglSwapBuffers(drawing.display, drawing.surface);
   }
   eglMakeCurrent(w.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  if (shared) eglDestroyContext(w.display, drawing.context);
   eglDestroyContext(w.display, w.context);
   eglTerminate(w.display);
   if (!write_ppm(args.out, image, args.width, args.height)) return 3;

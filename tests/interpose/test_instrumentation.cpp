@@ -124,7 +124,10 @@ void check_stage(const StageFigures& f, double instructions, double texel_access
 TEST_CASE("instrumented loops, texture taps and a partly taken branch measure their hand counts",
           "[integration][instrumentation]") {
   const int frames = 5, width = 32, height = 32;  // --size: a square window
-  DumpRun r = run_probe_both("probe_counted", {"--size", std::to_string(width)}, frames);
+  std::vector<std::string> args = {"--size", std::to_string(width)};
+  SECTION("built and drawn in one context") {}
+  SECTION("built in one context, drawn in another of its share group") { args.insert(args.end(), {"--contexts", "2"}); }
+  DumpRun r = run_probe_both("probe_counted", args, frames);
   CHECK(r.shim.err.find("glbudget:") == std::string::npos);
   const Dump dump = read_dump(r.dir);
   REQUIRE(dump.size() == 1);
