@@ -72,10 +72,12 @@ struct DumpRun {
 
 // Runs a probe plainly and under the shim with GLBUDGET_DUMP; the exit code and the image
 // must be identical.
-DumpRun run_probe_both(const std::string& probe, std::vector<std::string> args, int frames) {
+DumpRun run_probe_both(const std::string& probe, std::vector<std::string> args, int frames,
+                       const fs::path& dump_dir = {}) {
   DumpRun r;
-  r.dir = temp_path(probe + "_dump");
-  fs::remove_all(r.dir);
+  r.dir = dump_dir.empty() ? fs::path(temp_path(probe + "_dump")) : dump_dir;
+  std::error_code ignored;
+  fs::remove_all(r.dir, ignored);
   const std::string plain_img = temp_path(probe + "_plain.ppm"), shim_img = temp_path(probe + "_shim.ppm");
   std::vector<std::string> base = {probe_path(probe), "--frames", std::to_string(frames)};
   base.insert(base.end(), args.begin(), args.end());
@@ -211,6 +213,13 @@ TEST_CASE("a program whose instrumented version cannot link is relinked from the
   REQUIRE(dump.size() == 1);
   for (const auto& [stage, figures] : dump.begin()->second) CHECK_FALSE(figures.instructions);  // nothing counted
   fs::remove_all(r.dir);
+}
+
+TEST_CASE("an unwritable GLBUDGET_DUMP is said once and the app runs unchanged", "[integration][instrumentation]") {
+  DumpRun r = run_probe_both("probe_direct", {}, 3, "/dev/null/shaders");
+  INFO(r.shim.err);
+  CHECK(count_lines_with(r.shim.err, "glbudget:") == 1);
+  CHECK(count_lines_with(r.shim.err, "glbudget: GLBUDGET_DUMP: ") == 1);
 }
 
 namespace {
