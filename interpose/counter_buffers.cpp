@@ -47,10 +47,10 @@ bool CounterBuffers::create(Entry& e) {
   return true;
 }
 
-void CounterBuffers::bind(uint64_t key, const std::string& program_hash) {
+void CounterBuffers::bind(uint64_t key, const std::vector<std::string>& program_hashes) {
   Entry& e = entries_[key];
   if (!e.counters) {
-    e.program_hash = program_hash;
+    e.program_hashes = program_hashes;
     e.source = g_next_source++;
     if (!create(e)) return;
   }
@@ -100,7 +100,7 @@ void CounterBuffers::harvest(Entry& e, GLuint buffer) {
     std::memcpy(words.data(), mapped, instrument::kCounterBytes);
     g.UnmapBuffer(GL_COPY_READ_BUFFER);
   }
-  dump_registry::set_counters(e.program_hash, e.source, words);
+  for (const std::string& hash : e.program_hashes) dump_registry::set_counters(hash, e.source, words);
 }
 
 void CounterBuffers::poll(uint64_t frame) {

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 #include "gl_types.h"
 #include "glbudget/instrument/instrument.hpp"
@@ -18,8 +19,9 @@ class CounterBuffers {
   CounterBuffers(const CounterBuffers&) = delete;
   CounterBuffers& operator=(const CounterBuffers&) = delete;
 
-  // The draws that follow use `key`'s counters (named `program_hash` in the dump).
-  void bind(uint64_t key, const std::string& program_hash);
+  // The draws that follow use `key`'s counters, credited in the dump to `program_hashes` (a
+  // pipeline's programs: each reads the words of its own stages).
+  void bind(uint64_t key, const std::vector<std::string>& program_hashes);
   // A relinked program starts a new count: its buffer is dropped (what was read back stays).
   void forget(uint64_t key);
   // At each swap: harvests finished copies, starts new ones every few frames. Never waits.
@@ -29,7 +31,7 @@ class CounterBuffers {
 
  private:
   struct Entry {
-    std::string program_hash;
+    std::vector<std::string> program_hashes;
     uint64_t source = 0;     // unique id of this buffer in the dump registry
     GLuint counters = 0;     // bound for the draws
     GLuint staging = 0;      // copy target, mapped once the copy's fence has signalled

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <mutex>
 #include <optional>
 #include <set>
@@ -244,18 +245,23 @@ void bind_counters(ContextState& c) {
     return it != c.group->programs.end() && it->second.instrumented ? &it->second : nullptr;
   };
   if (c.program) {
-    if (const ProgramInfo* p = instrumented(c.program)) inst->buffers().bind(c.program, hash_text(p->pass));
+    if (const ProgramInfo* p = instrumented(c.program)) inst->buffers().bind(c.program, {hash_text(p->pass)});
     return;
   }
-  // A pipeline has one counter buffer, credited to its first instrumented program (stages
-  // write disjoint words, so no count is mixed with another stage's).
+  // A pipeline has one counter buffer; its stages write disjoint words, so each of its
+  // programs is credited with the words of its own stages.
   auto it = c.pipeline_stages.find(c.pipeline);
   if (!c.pipeline || it == c.pipeline_stages.end()) return;
+  std::vector<std::string> hashes;
   for (GLuint program : it->second)
     if (const ProgramInfo* p = instrumented(program)) {
-      inst->buffers().bind((uint64_t{1} << 32) | c.pipeline, hash_text(p->pass));
-      return;
+      std::string hash = hash_text(p->pass);
+      if (std::find(hashes.begin(), hashes.end(), hash) == hashes.end()) hashes.push_back(std::move(hash));
     }
+  // Keyed by the pipeline and its programs: changing a stage's program starts a new count.
+  uint64_t key = fnv1a_u64(c.pipeline, fnv1a("pipeline"));
+  for (const std::string& hash : hashes) key = fnv1a(hash, key);
+  if (!hashes.empty()) inst->buffers().bind(key, hashes);
 }
 
 void instrumentation_swap(ContextState& c) {

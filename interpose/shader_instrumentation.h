@@ -6,8 +6,9 @@
 // answering with the app's source. Draws of instrumented programs write counters into a
 // buffer at the highest shader-storage binding, read back a few frames late.
 // glGetProgramBinary of an instrumented program returns an empty binary (never cache ours).
-// Limits: compute shaders and glCreateShaderProgramv programs are not instrumented (their
-// dispatches/pipelines are not bound to counters); GLSL ES 1.00 has no storage buffers.
+// Limits: compute shaders (dispatches are not bound to counters) and glCreateShaderProgramv
+// programs (no compile step to hook) are not instrumented; GLSL ES 1.00 has no storage
+// buffers. The app must leave the highest shader-storage binding unused.
 #pragma once
 #include <memory>
 #include <string>

@@ -180,6 +180,22 @@ TEST_CASE("the known scene renders the same image instrumented and measures each
   }
 }
 
+TEST_CASE("separable programs in a pipeline are each credited with their own stage",
+          "[integration][instrumentation]") {
+  const int frames = 4;
+  DumpRun r = run_probe_both("probe_pipeline", {}, frames);
+  CHECK(r.shim.err.find("glbudget:") == std::string::npos);
+  const Dump dump = read_dump(r.dir);
+  REQUIRE(dump.size() == 2);
+  // See the hand counts in testapps/probes/probe_pipeline.cpp (64x64 window, full quad).
+  for (const auto& [hash, stages] : dump) {
+    REQUIRE(stages.size() == 1);
+    if (stages.count("vertex")) check_stage(stages.at("vertex"), 2, 0, 6 * frames);
+    else check_stage(stages.at("fragment"), 2, 0, 64 * 64 * frames);
+  }
+  fs::remove_all(r.dir);
+}
+
 TEST_CASE("shaders that cannot be instrumented run unchanged with one glbudget line each",
           "[integration][instrumentation]") {
   // GLSL ES 1.00 has no shader storage buffers: nothing to count into. The known scene has
