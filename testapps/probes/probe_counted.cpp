@@ -88,14 +88,8 @@ int main(int argc, char** argv) {
   bool shared = false;  // options come in pairs, as in parse_probe_args
   for (int i = 1; i + 1 < argc; i += 2) shared = shared || (std::strcmp(argv[i], "--contexts") == 0 && std::atoi(argv[i + 1]) == 2);
   EglFns egl;
-  egl.load_linked();
   EglWindow w;
-  std::string error;
-  if (!egl_create(egl, ContextKind::kCore45, args.width, args.height, EGL_NO_CONTEXT, &w, &error)) {
-    fprintf(stderr, "probe_counted: %s\n", error.c_str());
-    return 2;
-  }
-  eglMakeCurrent(w.display, w.surface, w.surface, w.context);
+  if (!open_current_window("probe_counted", egl, ContextKind::kCore45, args.width, args.height, &w)) return 2;
   bool same_source = true;
   GLuint vs = compile(GL_VERTEX_SHADER, kVertex, &same_source);
   GLuint fs = compile(GL_FRAGMENT_SHADER, kFragment, &same_source);
@@ -126,6 +120,7 @@ int main(int argc, char** argv) {
   print_interface(program, GL_UNIFORM_BLOCK, GL_BUFFER_BINDING);
   EglWindow drawing = w;
   if (shared) {
+    std::string error;
     if (!egl_create(egl, ContextKind::kCore45, args.width, args.height, w.context, &drawing, &error, w.display)) {
       fprintf(stderr, "probe_counted: %s\n", error.c_str());
       return 2;

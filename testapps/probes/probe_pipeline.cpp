@@ -41,14 +41,8 @@ GLuint separable_program(GLenum stage, const char* source) {
 int main(int argc, char** argv) {
   ProbeArgs args = parse_probe_args(argc, argv);
   EglFns egl;
-  egl.load_linked();
   EglWindow w;
-  std::string error;
-  if (!egl_create(egl, ContextKind::kCore45, args.width, args.height, EGL_NO_CONTEXT, &w, &error)) {
-    fprintf(stderr, "probe_pipeline: %s\n", error.c_str());
-    return 2;
-  }
-  eglMakeCurrent(w.display, w.surface, w.surface, w.context);
+  if (!open_current_window("probe_pipeline", egl, ContextKind::kCore45, args.width, args.height, &w)) return 2;
   GLuint vertex = separable_program(GL_VERTEX_SHADER, kVertex);
   GLuint fragment = separable_program(GL_FRAGMENT_SHADER, kFragment);
   if (!vertex || !fragment) {

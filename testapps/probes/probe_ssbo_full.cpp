@@ -43,14 +43,8 @@ GLuint compile(GLenum stage, const char* source) {
 int main(int argc, char** argv) {
   ProbeArgs args = parse_probe_args(argc, argv);
   EglFns egl;
-  egl.load_linked();
   EglWindow w;
-  std::string error;
-  if (!egl_create(egl, ContextKind::kCore45, args.width, args.height, EGL_NO_CONTEXT, &w, &error)) {
-    fprintf(stderr, "probe_ssbo_full: %s\n", error.c_str());
-    return 2;
-  }
-  eglMakeCurrent(w.display, w.surface, w.surface, w.context);
+  if (!open_current_window("probe_ssbo_full", egl, ContextKind::kCore45, args.width, args.height, &w)) return 2;
   GLint blocks = 0;
   glGetIntegerv(GL_MAX_FRAGMENT_SHADER_STORAGE_BLOCKS, &blocks);
   const std::string fs_source = fragment_source(blocks);
