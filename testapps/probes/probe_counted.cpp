@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "common/egl_setup.h"
+#include "common/fullscreen_quad.h"
 #include "common/known_scene.h"
 
 namespace {
@@ -136,16 +137,7 @@ int main(int argc, char** argv) {
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 4, 4, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  const float quad[] = {-1, -1, 1, -1, 1, 1, -1, -1, 1, 1, -1, 1};
-  GLuint vao = 0, vbo = 0;
-  glGenVertexArrays(1, &vao);
-  glBindVertexArray(vao);
-  glGenBuffers(1, &vbo);
-  glBindBuffer(GL_ARRAY_BUFFER, vbo);
-  glBufferData(GL_ARRAY_BUFFER, sizeof quad, quad, GL_STATIC_DRAW);
-  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
-  glEnableVertexAttribArray(0);
-  glViewport(0, 0, args.width, args.height);
+  bind_fullscreen_quad(args.width, args.height);
   glUseProgram(program);
   glUniform1i(glGetUniformLocation(program, "tex"), 0);
   glUniform1i(glGetUniformLocation(program, "taps"), 3);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "common/egl_setup.h"
+#include "common/fullscreen_quad.h"
 #include "common/known_scene.h"
 
 namespace {
@@ -56,16 +57,7 @@ int main(int argc, char** argv) {
   glBindProgramPipeline(pipeline);
   glProgramUniform4f(fragment, glGetUniformLocation(fragment, "color"), 102 / 255.0f, 204 / 255.0f, 50 / 255.0f, 1);
 
-  const float quad[] = {-1, -1, 1, -1, 1, 1, -1, -1, 1, 1, -1, 1};
-  GLuint vao = 0, vbo = 0;
-  glGenVertexArrays(1, &vao);
-  glBindVertexArray(vao);
-  glGenBuffers(1, &vbo);
-  glBindBuffer(GL_ARRAY_BUFFER, vbo);
-  glBufferData(GL_ARRAY_BUFFER, sizeof quad, quad, GL_STATIC_DRAW);
-  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
-  glEnableVertexAttribArray(0);
-  glViewport(0, 0, args.width, args.height);
+  bind_fullscreen_quad(args.width, args.height);
   std::vector<uint8_t> image(static_cast<size_t>(args.width) * args.height * 4);
   for (int f = 0; f < args.frames; ++f) {
     glClear(GL_COLOR_BUFFER_BIT);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common/egl_setup.h"
+#include "common/fullscreen_quad.h"
 #include "common/known_scene.h"
 
 namespace {
@@ -67,16 +68,7 @@ int main(int argc, char** argv) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(i), buffers[static_cast<size_t>(i)]);
     glBufferData(GL_SHADER_STORAGE_BUFFER, sizeof v, v, GL_STATIC_DRAW);
   }
-  const float quad[] = {-1, -1, 1, -1, 1, 1, -1, -1, 1, 1, -1, 1};
-  GLuint vao = 0, vbo = 0;
-  glGenVertexArrays(1, &vao);
-  glBindVertexArray(vao);
-  glGenBuffers(1, &vbo);
-  glBindBuffer(GL_ARRAY_BUFFER, vbo);
-  glBufferData(GL_ARRAY_BUFFER, sizeof quad, quad, GL_STATIC_DRAW);
-  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
-  glEnableVertexAttribArray(0);
-  glViewport(0, 0, args.width, args.height);
+  bind_fullscreen_quad(args.width, args.height);
   glUseProgram(program);
   std::vector<uint8_t> image(static_cast<size_t>(args.width) * args.height * 4);
   for (int f = 0; f < args.frames; ++f) {
