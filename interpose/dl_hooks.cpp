@@ -12,7 +12,6 @@
 
 using namespace glbudget;
 
-#define EXPORT extern "C" __attribute__((visibility("default")))
 
 namespace glbudget {
 
@@ -67,7 +66,7 @@ void* next_after(const void* caller, const char* name) {
 }
 }  // namespace
 
-EXPORT void* dlsym(void* __restrict handle, const char* __restrict name) {
+GLBUDGET_EXPORT void* dlsym(void* __restrict handle, const char* __restrict name) {
   if (handle == RTLD_NEXT) return next_after(__builtin_return_address(0), name);
   return hook_for_proc(name, real_dlsym(handle, name));
 }
@@ -80,12 +79,12 @@ EXPORT void* dlsym(void* __restrict handle, const char* __restrict name) {
   __builtin_unreachable();
 }
 
-EXPORT void _exit(int status) {
+GLBUDGET_EXPORT void _exit(int status) {
   final_flush();
   real_exit_call("_exit", status);
 }
 
-EXPORT void _Exit(int status) {
+GLBUDGET_EXPORT void _Exit(int status) {
   final_flush();
   real_exit_call("_Exit", status);
 }

@@ -3,6 +3,9 @@
 #pragma once
 #include "hooks_generated.h"
 
+// What the shim exports (the version script exports these names and nothing else).
+#define GLBUDGET_EXPORT extern "C" __attribute__((visibility("default")))
+
 namespace glbudget {
 
 extern const char* const kHookNames[kHookCount];
@@ -25,6 +28,12 @@ void* resolve_real(int id);
 inline void* real_entry(int id) {
   void* p = g_real[id];
   return p ? p : resolve_real(id);
+}
+
+// The same, typed: real_function<decltype(&eglSwapBuffers)>(kHook_eglSwapBuffers).
+template <typename F>
+F real_function(int id) {
+  return reinterpret_cast<F>(real_entry(id));
 }
 
 // Records a real entry point obtained from the driver (GetProcAddress or dlsym on a GL library).

@@ -9,30 +9,24 @@
 
 using namespace glbudget;
 
-#define EXPORT extern "C" __attribute__((visibility("default")))
 
-template <typename F>
-static F real(int id) {
-  return reinterpret_cast<F>(real_entry(id));
-}
-
-EXPORT __eglMustCastToProperFunctionPointerType eglGetProcAddress(const char* name) {
-  auto fn = real<decltype(&eglGetProcAddress)>(kHook_eglGetProcAddress);
+GLBUDGET_EXPORT __eglMustCastToProperFunctionPointerType eglGetProcAddress(const char* name) {
+  auto fn = real_function<decltype(&eglGetProcAddress)>(kHook_eglGetProcAddress);
   if (!fn) return nullptr;
   auto p = reinterpret_cast<void*>(fn(name));
   return reinterpret_cast<__eglMustCastToProperFunctionPointerType>(hook_for_proc(name, p));
 }
 
-EXPORT EGLContext eglCreateContext(EGLDisplay dpy, EGLConfig config, EGLContext share, const EGLint* attribs) {
-  auto fn = real<decltype(&eglCreateContext)>(kHook_eglCreateContext);
+GLBUDGET_EXPORT EGLContext eglCreateContext(EGLDisplay dpy, EGLConfig config, EGLContext share, const EGLint* attribs) {
+  auto fn = real_function<decltype(&eglCreateContext)>(kHook_eglCreateContext);
   if (!fn) return EGL_NO_CONTEXT;
   EGLContext c = fn(dpy, config, share, attribs);
   if (c != EGL_NO_CONTEXT) context_created(c, dpy, share);
   return c;
 }
 
-EXPORT EGLBoolean eglMakeCurrent(EGLDisplay dpy, EGLSurface draw, EGLSurface read, EGLContext ctx) {
-  auto fn = real<decltype(&eglMakeCurrent)>(kHook_eglMakeCurrent);
+GLBUDGET_EXPORT EGLBoolean eglMakeCurrent(EGLDisplay dpy, EGLSurface draw, EGLSurface read, EGLContext ctx) {
+  auto fn = real_function<decltype(&eglMakeCurrent)>(kHook_eglMakeCurrent);
   if (!fn) return EGL_FALSE;
   context_will_change(ctx);
   EGLBoolean ok = fn(dpy, draw, read, ctx);
@@ -40,22 +34,22 @@ EXPORT EGLBoolean eglMakeCurrent(EGLDisplay dpy, EGLSurface draw, EGLSurface rea
   return ok;
 }
 
-EXPORT EGLBoolean eglDestroyContext(EGLDisplay dpy, EGLContext ctx) {
-  auto fn = real<decltype(&eglDestroyContext)>(kHook_eglDestroyContext);
+GLBUDGET_EXPORT EGLBoolean eglDestroyContext(EGLDisplay dpy, EGLContext ctx) {
+  auto fn = real_function<decltype(&eglDestroyContext)>(kHook_eglDestroyContext);
   if (!fn) return EGL_FALSE;
   context_destroyed(ctx);
   return fn(dpy, ctx);
 }
 
-EXPORT EGLBoolean eglTerminate(EGLDisplay dpy) {
-  auto fn = real<decltype(&eglTerminate)>(kHook_eglTerminate);
+GLBUDGET_EXPORT EGLBoolean eglTerminate(EGLDisplay dpy) {
+  auto fn = real_function<decltype(&eglTerminate)>(kHook_eglTerminate);
   if (!fn) return EGL_FALSE;
   display_terminated(dpy);
   return fn(dpy);
 }
 
-EXPORT EGLBoolean eglReleaseThread(void) {
-  auto fn = real<decltype(&eglReleaseThread)>(kHook_eglReleaseThread);
+GLBUDGET_EXPORT EGLBoolean eglReleaseThread(void) {
+  auto fn = real_function<decltype(&eglReleaseThread)>(kHook_eglReleaseThread);
   if (!fn) return EGL_FALSE;
   context_will_change(nullptr);
   EGLBoolean ok = fn();
@@ -63,8 +57,8 @@ EXPORT EGLBoolean eglReleaseThread(void) {
   return ok;
 }
 
-EXPORT EGLBoolean eglSwapBuffers(EGLDisplay dpy, EGLSurface surface) {
-  auto fn = real<decltype(&eglSwapBuffers)>(kHook_eglSwapBuffers);
+GLBUDGET_EXPORT EGLBoolean eglSwapBuffers(EGLDisplay dpy, EGLSurface surface) {
+  auto fn = real_function<decltype(&eglSwapBuffers)>(kHook_eglSwapBuffers);
   if (!fn) return EGL_FALSE;
   swap_begin();
   EGLBoolean ok = fn(dpy, surface);
@@ -72,8 +66,9 @@ EXPORT EGLBoolean eglSwapBuffers(EGLDisplay dpy, EGLSurface surface) {
   return ok;
 }
 
-EXPORT EGLBoolean eglSwapBuffersWithDamageKHR(EGLDisplay dpy, EGLSurface surface, const EGLint* rects, EGLint n) {
-  auto fn = real<PFNEGLSWAPBUFFERSWITHDAMAGEKHRPROC>(kHook_eglSwapBuffersWithDamageKHR);
+// The KHR and EXT entry points have the same signature and the same meaning.
+static EGLBoolean swap_with_damage(int hook, EGLDisplay dpy, EGLSurface surface, const EGLint* rects, EGLint n) {
+  auto fn = real_function<PFNEGLSWAPBUFFERSWITHDAMAGEKHRPROC>(hook);
   if (!fn) return EGL_FALSE;
   swap_begin();
   EGLBoolean ok = fn(dpy, surface, rects, n);
@@ -81,11 +76,10 @@ EXPORT EGLBoolean eglSwapBuffersWithDamageKHR(EGLDisplay dpy, EGLSurface surface
   return ok;
 }
 
-EXPORT EGLBoolean eglSwapBuffersWithDamageEXT(EGLDisplay dpy, EGLSurface surface, const EGLint* rects, EGLint n) {
-  auto fn = real<PFNEGLSWAPBUFFERSWITHDAMAGEEXTPROC>(kHook_eglSwapBuffersWithDamageEXT);
-  if (!fn) return EGL_FALSE;
-  swap_begin();
-  EGLBoolean ok = fn(dpy, surface, rects, n);
-  swap_end();
-  return ok;
+GLBUDGET_EXPORT EGLBoolean eglSwapBuffersWithDamageKHR(EGLDisplay dpy, EGLSurface surface, const EGLint* rects, EGLint n) {
+  return swap_with_damage(kHook_eglSwapBuffersWithDamageKHR, dpy, surface, rects, n);
+}
+
+GLBUDGET_EXPORT EGLBoolean eglSwapBuffersWithDamageEXT(EGLDisplay dpy, EGLSurface surface, const EGLint* rects, EGLint n) {
+  return swap_with_damage(kHook_eglSwapBuffersWithDamageEXT, dpy, surface, rects, n);
 }

@@ -8,55 +8,49 @@
 
 using namespace glbudget;
 
-#define EXPORT extern "C" __attribute__((visibility("default")))
 
-template <typename F>
-static F real(int id) {
-  return reinterpret_cast<F>(real_entry(id));
-}
-
-EXPORT __GLXextFuncPtr glXGetProcAddressARB(const GLubyte* name) {
-  auto fn = real<__GLXextFuncPtr (*)(const GLubyte*)>(kHook_glXGetProcAddressARB);
+GLBUDGET_EXPORT __GLXextFuncPtr glXGetProcAddressARB(const GLubyte* name) {
+  auto fn = real_function<__GLXextFuncPtr (*)(const GLubyte*)>(kHook_glXGetProcAddressARB);
   if (!fn) return nullptr;
   auto p = reinterpret_cast<void*>(fn(name));
   return reinterpret_cast<__GLXextFuncPtr>(hook_for_proc(reinterpret_cast<const char*>(name), p));
 }
 
-EXPORT __GLXextFuncPtr glXGetProcAddress(const GLubyte* name) {
-  auto fn = real<__GLXextFuncPtr (*)(const GLubyte*)>(kHook_glXGetProcAddress);
+GLBUDGET_EXPORT __GLXextFuncPtr glXGetProcAddress(const GLubyte* name) {
+  auto fn = real_function<__GLXextFuncPtr (*)(const GLubyte*)>(kHook_glXGetProcAddress);
   if (!fn) return nullptr;
   auto p = reinterpret_cast<void*>(fn(name));
   return reinterpret_cast<__GLXextFuncPtr>(hook_for_proc(reinterpret_cast<const char*>(name), p));
 }
 
-EXPORT GLXContext glXCreateContext(Display* dpy, XVisualInfo* vis, GLXContext share, Bool direct) {
-  auto fn = real<decltype(&glXCreateContext)>(kHook_glXCreateContext);
+GLBUDGET_EXPORT GLXContext glXCreateContext(Display* dpy, XVisualInfo* vis, GLXContext share, Bool direct) {
+  auto fn = real_function<decltype(&glXCreateContext)>(kHook_glXCreateContext);
   if (!fn) return nullptr;
   GLXContext c = fn(dpy, vis, share, direct);
   context_created(c, dpy, share);
   return c;
 }
 
-EXPORT GLXContext glXCreateNewContext(Display* dpy, GLXFBConfig config, int type, GLXContext share, Bool direct) {
-  auto fn = real<decltype(&glXCreateNewContext)>(kHook_glXCreateNewContext);
+GLBUDGET_EXPORT GLXContext glXCreateNewContext(Display* dpy, GLXFBConfig config, int type, GLXContext share, Bool direct) {
+  auto fn = real_function<decltype(&glXCreateNewContext)>(kHook_glXCreateNewContext);
   if (!fn) return nullptr;
   GLXContext c = fn(dpy, config, type, share, direct);
   context_created(c, dpy, share);
   return c;
 }
 
-EXPORT GLXContext glXCreateContextAttribsARB(Display* dpy, GLXFBConfig config, GLXContext share, Bool direct,
+GLBUDGET_EXPORT GLXContext glXCreateContextAttribsARB(Display* dpy, GLXFBConfig config, GLXContext share, Bool direct,
                                              const int* attribs) {
   using Fn = GLXContext (*)(Display*, GLXFBConfig, GLXContext, Bool, const int*);
-  auto fn = real<Fn>(kHook_glXCreateContextAttribsARB);
+  auto fn = real_function<Fn>(kHook_glXCreateContextAttribsARB);
   if (!fn) return nullptr;
   GLXContext c = fn(dpy, config, share, direct, attribs);
   context_created(c, dpy, share);
   return c;
 }
 
-EXPORT Bool glXMakeCurrent(Display* dpy, GLXDrawable drawable, GLXContext ctx) {
-  auto fn = real<decltype(&glXMakeCurrent)>(kHook_glXMakeCurrent);
+GLBUDGET_EXPORT Bool glXMakeCurrent(Display* dpy, GLXDrawable drawable, GLXContext ctx) {
+  auto fn = real_function<decltype(&glXMakeCurrent)>(kHook_glXMakeCurrent);
   if (!fn) return False;
   context_will_change(ctx);
   Bool ok = fn(dpy, drawable, ctx);
@@ -64,8 +58,8 @@ EXPORT Bool glXMakeCurrent(Display* dpy, GLXDrawable drawable, GLXContext ctx) {
   return ok;
 }
 
-EXPORT Bool glXMakeContextCurrent(Display* dpy, GLXDrawable draw, GLXDrawable read, GLXContext ctx) {
-  auto fn = real<decltype(&glXMakeContextCurrent)>(kHook_glXMakeContextCurrent);
+GLBUDGET_EXPORT Bool glXMakeContextCurrent(Display* dpy, GLXDrawable draw, GLXDrawable read, GLXContext ctx) {
+  auto fn = real_function<decltype(&glXMakeContextCurrent)>(kHook_glXMakeContextCurrent);
   if (!fn) return False;
   context_will_change(ctx);
   Bool ok = fn(dpy, draw, read, ctx);
@@ -73,15 +67,15 @@ EXPORT Bool glXMakeContextCurrent(Display* dpy, GLXDrawable draw, GLXDrawable re
   return ok;
 }
 
-EXPORT void glXDestroyContext(Display* dpy, GLXContext ctx) {
-  auto fn = real<decltype(&glXDestroyContext)>(kHook_glXDestroyContext);
+GLBUDGET_EXPORT void glXDestroyContext(Display* dpy, GLXContext ctx) {
+  auto fn = real_function<decltype(&glXDestroyContext)>(kHook_glXDestroyContext);
   if (!fn) return;
   context_destroyed(ctx);
   fn(dpy, ctx);
 }
 
-EXPORT void glXSwapBuffers(Display* dpy, GLXDrawable drawable) {
-  auto fn = real<decltype(&glXSwapBuffers)>(kHook_glXSwapBuffers);
+GLBUDGET_EXPORT void glXSwapBuffers(Display* dpy, GLXDrawable drawable) {
+  auto fn = real_function<decltype(&glXSwapBuffers)>(kHook_glXSwapBuffers);
   if (!fn) return;
   swap_begin();
   fn(dpy, drawable);

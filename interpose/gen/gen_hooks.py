@@ -137,7 +137,6 @@ def main():
     cpp.append('#include "hook_table.h"')
     cpp.append('#include "draw_count.h"')
     cpp.append('using namespace glbudget;')
-    cpp.append('#define GLBUDGET_EXPORT extern "C" __attribute__((visibility("default")))')
     for n in gl_hooks:
         c = commands[n]
         ret_void = c.ret == 'void'
