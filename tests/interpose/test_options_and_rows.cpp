@@ -6,33 +6,26 @@
 
 #include "frame_log.h"
 #include "options.h"
+#include "parse_env.h"
 
 using namespace glbudget;
 
-namespace {
-Options parse(std::vector<std::string> vars, std::string* warnings) {
-  std::vector<char*> env;
-  for (auto& v : vars) env.push_back(v.data());
-  env.push_back(nullptr);
-  return parse_options(env.data(), warnings);
-}
-}  // namespace
 
 TEST_CASE("GLBUDGET_FPS accepts positive rates and says why it refuses the rest", "[unit]") {
   std::string w;
-  CHECK(parse({"GLBUDGET_FPS=30"}, &w).fps == 30);
-  CHECK(parse({"GLBUDGET_FPS=59.94"}, &w).fps == Approx(59.94));
-  CHECK(parse({"GLBUDGET_FPS=10000"}, &w).fps == 10000);
+  CHECK(parse_env({"GLBUDGET_FPS=30"}, &w).fps == 30);
+  CHECK(parse_env({"GLBUDGET_FPS=59.94"}, &w).fps == Approx(59.94));
+  CHECK(parse_env({"GLBUDGET_FPS=10000"}, &w).fps == 10000);
   CHECK(w.empty());
   for (const char* off : {"GLBUDGET_FPS=", "GLBUDGET_FPS=off", "GLBUDGET_FPS=0"}) {
-    CHECK(parse({off}, &w).fps == 0);
+    CHECK(parse_env({off}, &w).fps == 0);
     CHECK(w.empty());
   }
   for (const char* bad : {"GLBUDGET_FPS=fast", "GLBUDGET_FPS=-5", "GLBUDGET_FPS=30fps", "GLBUDGET_FPS=nan",
                           "GLBUDGET_FPS=inf", "GLBUDGET_FPS=1e9", "GLBUDGET_FPS=1e-400"}) {
     INFO(bad);
     w.clear();
-    CHECK(parse({bad}, &w).fps == 0);
+    CHECK(parse_env({bad}, &w).fps == 0);
     CHECK(w.rfind("glbudget: GLBUDGET_FPS=", 0) == 0);
     CHECK(std::count(w.begin(), w.end(), '\n') == 1);
   }
@@ -40,7 +33,7 @@ TEST_CASE("GLBUDGET_FPS accepts positive rates and says why it refuses the rest"
 
 TEST_CASE("unknown GLBUDGET_ variables are named; others are ignored", "[unit]") {
   std::string w;
-  Options o = parse({"GLBUDGET_LOG=/tmp/x.csv", "GLBUDGET_LGO=/tmp/y.csv", "HOME=/root", "GLBUDGET", "GLBUDGET_POWER=40%"}, &w);
+  Options o = parse_env({"GLBUDGET_LOG=/tmp/x.csv", "GLBUDGET_LGO=/tmp/y.csv", "HOME=/root", "GLBUDGET", "GLBUDGET_POWER=40%"}, &w);
   CHECK(o.log_path == "/tmp/x.csv");
   CHECK(w == "glbudget: unknown variable GLBUDGET_LGO ignored\n");
 }
