@@ -43,7 +43,7 @@ void* real_dlsym(void* handle, const char* name) {
 using GetProcFn = void* (*)(const char*);
 
 // The driver's GetProcAddress: whichever window-system library the process has loaded.
-// Under libglvnd both return the same context-independent dispatch stubs.
+// Under libglvnd both return the same context-independent dispatch entry points.
 static void* driver_get_proc(const char* name) {
   static const char* const kLibs[] = {"libEGL.so.1", "libGLX.so.0", "libGL.so.1"};
   static const char* const kFns[] = {"eglGetProcAddress", "glXGetProcAddressARB", "glXGetProcAddressARB"};
