@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "common/egl_setup.h"
-#include "common/fullscreen_quad.h"
+#include "common/direct_gl.h"
 #include "common/known_scene.h"
 
 namespace {
@@ -73,13 +73,8 @@ void print_interface(GLuint program, GLenum interface, GLenum location_property)
 }
 
 GLuint compile(GLenum stage, const char* source, bool* same_source) {
-  GLuint s = glCreateShader(stage);
-  glShaderSource(s, 1, &source, nullptr);
-  glCompileShader(s);
-  GLint ok = 0;
-  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) return 0;
-  *same_source = *same_source && source_round_trips(s, source);
+  GLuint s = compile_shader(stage, source);
+  if (s) *same_source = *same_source && source_round_trips(s, source);
   return s;
 }
 }  // namespace
@@ -142,13 +137,7 @@ int main(int argc, char** argv) {
   glUniform1i(glGetUniformLocation(program, "tex"), 0);
   glUniform1i(glGetUniformLocation(program, "taps"), 3);
 
-  std::vector<uint8_t> image(static_cast<size_t>(args.width) * args.height * 4);
-  for (int f = 0; f < args.frames; ++f) {
-    glClear(GL_COLOR_BUFFER_BIT);
-    glDrawArrays(GL_TRIANGLES, 0, 6);
-    if (f + 1 == args.frames) glReadPixels(0, 0, args.width, args.height, GL_RGBA, GL_UNSIGNED_BYTE, image.data());
-    eglSwapBuffers(drawing.display, drawing.surface);
-  }
+  std::vector<uint8_t> image = draw_quad_frames(args.frames, args.width, args.height, drawing.display, drawing.surface);
   eglMakeCurrent(w.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   if (shared) eglDestroyContext(w.display, drawing.context);
   eglDestroyContext(w.display, w.context);

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "common/egl_setup.h"
-#include "common/fullscreen_quad.h"
+#include "common/direct_gl.h"
 #include "common/known_scene.h"
 
 namespace {
@@ -58,13 +58,7 @@ int main(int argc, char** argv) {
   glProgramUniform4f(fragment, glGetUniformLocation(fragment, "color"), 102 / 255.0f, 204 / 255.0f, 50 / 255.0f, 1);
 
   bind_fullscreen_quad(args.width, args.height);
-  std::vector<uint8_t> image(static_cast<size_t>(args.width) * args.height * 4);
-  for (int f = 0; f < args.frames; ++f) {
-    glClear(GL_COLOR_BUFFER_BIT);
-    glDrawArrays(GL_TRIANGLES, 0, 6);
-    if (f + 1 == args.frames) glReadPixels(0, 0, args.width, args.height, GL_RGBA, GL_UNSIGNED_BYTE, image.data());
-    eglSwapBuffers(w.display, w.surface);
-  }
+  std::vector<uint8_t> image = draw_quad_frames(args.frames, args.width, args.height, w.display, w.surface);
   eglMakeCurrent(w.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   eglDestroyContext(w.display, w.context);
   eglTerminate(w.display);

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "common/egl_setup.h"
-#include "common/fullscreen_quad.h"
+#include "common/direct_gl.h"
 #include "common/known_scene.h"
 
 namespace {
@@ -31,14 +31,6 @@ const char* const kVertex =
     "layout(location=0) in vec2 pos;\n"
     "void main(){ gl_Position = vec4(pos, 0.0, 1.0); }\n";
 
-GLuint compile(GLenum stage, const char* source) {
-  GLuint s = glCreateShader(stage);
-  glShaderSource(s, 1, &source, nullptr);
-  glCompileShader(s);
-  GLint ok = 0;
-  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  return ok ? s : 0;
-}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -49,7 +41,7 @@ int main(int argc, char** argv) {
   GLint blocks = 0;
   glGetIntegerv(GL_MAX_FRAGMENT_SHADER_STORAGE_BLOCKS, &blocks);
   const std::string fs_source = fragment_source(blocks);
-  GLuint vs = compile(GL_VERTEX_SHADER, kVertex), fs = compile(GL_FRAGMENT_SHADER, fs_source.c_str());
+  GLuint vs = compile_shader(GL_VERTEX_SHADER, kVertex), fs = compile_shader(GL_FRAGMENT_SHADER, fs_source.c_str());
   GLuint program = glCreateProgram();
   glAttachShader(program, vs);
   glAttachShader(program, fs);
@@ -70,13 +62,7 @@ int main(int argc, char** argv) {
   }
   bind_fullscreen_quad(args.width, args.height);
   glUseProgram(program);
-  std::vector<uint8_t> image(static_cast<size_t>(args.width) * args.height * 4);
-  for (int f = 0; f < args.frames; ++f) {
-    glClear(GL_COLOR_BUFFER_BIT);
-    glDrawArrays(GL_TRIANGLES, 0, 6);
-    if (f + 1 == args.frames) glReadPixels(0, 0, args.width, args.height, GL_RGBA, GL_UNSIGNED_BYTE, image.data());
-    eglSwapBuffers(w.display, w.surface);
-  }
+  std::vector<uint8_t> image = draw_quad_frames(args.frames, args.width, args.height, w.display, w.surface);
   eglMakeCurrent(w.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   eglDestroyContext(w.display, w.context);
   eglTerminate(w.display);
