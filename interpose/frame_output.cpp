@@ -19,12 +19,6 @@
 namespace glbudget {
 
 namespace {
-int64_t monotonic_ns() {
-  timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return int64_t(ts.tv_sec) * 1000000000 + ts.tv_nsec;
-}
-
 void emit_row(const FrameRow& row) { FrameLog::get().push(row); }
 
 // Set while this thread runs the code that changes a counter's queue of pending frames.
@@ -60,7 +54,7 @@ void install_signal_flush(int sig) {
 
 void pace(ContextState& c, double fps) {
   const int64_t period = static_cast<int64_t>(std::llround(1e9 / fps));
-  const int64_t now = monotonic_ns();
+  const int64_t now = sensors::monotonic_now_ns();
   if (c.next_deadline_ns == 0 || now > c.next_deadline_ns + period) {
     c.next_deadline_ns = now + period;  // first frame, or fell behind: restart the cadence
     return;
@@ -131,7 +125,7 @@ void swap_begin() {
   // Pacing sleeps before the frame is presented, so frames reach the screen evenly spaced.
   if (options().fps > 0) pace(*c, options().fps);
   InFrameCode guard;
-  const int64_t now = monotonic_ns();
+  const int64_t now = sensors::monotonic_now_ns();
   c->counter->end_frame(++c->frame, now, c->index, frame_energy(now));
 }
 
