@@ -1,10 +1,12 @@
 // Replays a frame log (GLBUDGET_LOG with power columns) through the run-time power model and
 // the Vatjus-Anttila 2013 baseline, and prints both models' prediction errors on the same
 // frames: MAPE and mean/max error relative to P_M - P_m, for frames in the fitted
-// configuration and for frames predicted by reusing the coefficients.
+// configuration, for frames predicted by reusing the coefficients, and for the next
+// configuration predicted before each switch; per frame and averaged over --average frames,
+// beside the noise floor of the recording (see replay.hpp).
 //
 //   model_replay_bench LOG.csv --profile PROFILE.json [--variants VARIANTS.json]
-//                      [--fit-window N] [--check-window N] [--threshold SHARE]
+//                      [--fit-window N] [--check-window N] [--threshold SHARE] [--average N]
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -16,9 +18,14 @@ using namespace glbudget::model;
 
 namespace {
 
-void print_row(const char* model, const char* frames, const PredictionError& e) {
-    std::printf("%-16s %-8s %7zu %9.2f %14.2f %13.2f\n", model, frames, e.count(), e.mape_percent(),
+void print_row(const char* model, const char* frames, const char* scope, const PredictionError& e) {
+    std::printf("%-16s %-8s %-10s %7zu %9.2f %14.2f %13.2f\n", model, frames, scope, e.count(), e.mape_percent(),
                 100.0 * e.mean_share_of_range(), 100.0 * e.max_share_of_range());
+}
+
+void print_rows(const char* model, const char* frames, const ReplayErrors& e, const std::string& averaged) {
+    print_row(model, frames, "per frame", e.per_frame);
+    print_row(model, frames, averaged.c_str(), e.averaged);
 }
 
 // A positive number, or the default with one `glbudget:` line.
@@ -36,7 +43,7 @@ T parse_or_keep(const char* flag, const char* text, T fallback) {
 
 int usage() {
     std::cerr << "usage: model_replay_bench LOG.csv --profile PROFILE.json [--variants VARIANTS.json]"
-                 " [--fit-window N] [--check-window N] [--threshold SHARE]\n";
+                 " [--fit-window N] [--check-window N] [--threshold SHARE] [--average N]\n";
     return 2;
 }
 
@@ -45,6 +52,7 @@ int usage() {
 int main(int argc, char** argv) {
     std::string log_path, profile_path, variants_path;
     FitSettings settings;
+    ReplayOptions options;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         const bool has_value = i + 1 < argc;
@@ -53,6 +61,7 @@ int main(int argc, char** argv) {
         else if (arg == "--fit-window" && has_value) settings.fitting_window = parse_or_keep("--fit-window", argv[++i], settings.fitting_window);
         else if (arg == "--check-window" && has_value) settings.check_window = parse_or_keep("--check-window", argv[++i], settings.check_window);
         else if (arg == "--threshold" && has_value) settings.refit_threshold = parse_or_keep("--threshold", argv[++i], settings.refit_threshold);
+        else if (arg == "--average" && has_value) options.average_frames = parse_or_keep("--average", argv[++i], options.average_frames);
         else if (log_path.empty() && arg.rfind("--", 0) != 0) log_path = arg;
         else return usage();
     }
@@ -69,15 +78,20 @@ int main(int argc, char** argv) {
     }
 
     const auto frames = frames_of_busiest_context(*log);
-    const ReplayReport report = replay_frames(frames, *profile, variants, settings);
-    std::printf("%s: %zu frames (%zu unusable), %zu configurations, %zu fits (%zu failed checks), "
-                "chi %.4g psi %.4g\n",
-                log_path.c_str(), report.frames, report.frames_unusable, variants.space.size(), report.fits,
-                report.checks_failed, report.reuse.chi, report.reuse.psi);
-    std::printf("%-16s %-8s %7s %9s %14s %13s\n", "model", "frames", "count", "MAPE %", "mean %range", "max %range");
-    print_row("ours", "fitted", report.ours_fitted);
-    print_row("ours", "reused", report.ours_reused);
-    print_row("vatjus-anttila", "fitted", report.baseline_fitted);
-    print_row("vatjus-anttila", "reused", report.baseline_reused);
+    const ReplayReport report = replay_frames(frames, *profile, variants, settings, options);
+    std::printf("%s: %zu frames (%zu unusable), %zu configuration runs of %zu configurations, %zu fits "
+                "(%zu failed checks), chi %.4g psi %.4g\n",
+                log_path.c_str(), report.frames, report.frames_unusable, report.configuration_runs,
+                variants.space.size(), report.fits, report.checks_failed, report.reuse.chi, report.reuse.psi);
+    const std::string averaged = std::to_string(options.average_frames) + "-frame";
+    std::printf("%-16s %-8s %-10s %7s %9s %14s %13s\n", "model", "frames", "scope", "count", "MAPE %", "mean %range",
+                "max %range");
+    print_rows("ours", "fitted", report.ours_fitted, averaged);
+    print_rows("ours", "reused", report.ours_reused, averaged);
+    print_row("ours", "switch", "next run", report.ours_switch);
+    print_rows("vatjus-anttila", "fitted", report.baseline_fitted, averaged);
+    print_rows("vatjus-anttila", "reused", report.baseline_reused, averaged);
+    print_row("vatjus-anttila", "switch", "next run", report.baseline_switch);
+    print_rows("noise floor", "all", report.floor, averaged);
     return 0;
 }

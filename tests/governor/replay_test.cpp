@@ -23,12 +23,12 @@ TEST_CASE("replay of the synthetic six-pass log: fitted and reused within 2% MAP
     CHECK(report.frames_unusable == 0);
     CHECK(report.fits >= 1);
     // Every frame after the first fitting window is predicted, in one class or the other.
-    CHECK(report.ours_fitted.count() + report.ours_reused.count() == 270);
-    CHECK(report.ours_reused.count() > 0);
-    CHECK(report.ours_fitted.mape_percent() < 2.0);
-    CHECK(report.ours_reused.mape_percent() < 2.0);
-    CHECK(report.baseline_fitted.count() == report.ours_fitted.count());
-    CHECK(report.baseline_reused.mape_percent() > report.ours_reused.mape_percent());
+    CHECK(report.ours_fitted.per_frame.count() + report.ours_reused.per_frame.count() == 270);
+    CHECK(report.ours_reused.per_frame.count() > 0);
+    CHECK(report.ours_fitted.per_frame.mape_percent() < 2.0);
+    CHECK(report.ours_reused.per_frame.mape_percent() < 2.0);
+    CHECK(report.baseline_fitted.per_frame.count() == report.ours_fitted.per_frame.count());
+    CHECK(report.baseline_reused.per_frame.mape_percent() > report.ours_reused.per_frame.mape_percent());
     // chi and psi are only loosely identified here (instructions and texels per fragment both
     // fall with every level in this log), but both costs are positive.
     CHECK(report.reuse.chi > 0.0);
@@ -41,8 +41,8 @@ TEST_CASE("replay without a variant table treats every program as its own pass",
     REQUIRE(profile);
     REQUIRE(log);
     const ReplayReport report = replay_frames(log->frames, *profile, VariantTable{});
-    CHECK(report.ours_reused.count() == 0);  // no configurations known
-    CHECK(report.ours_fitted.count() > 0);
+    CHECK(report.ours_reused.per_frame.count() == 0);  // no configurations known
+    CHECK(report.ours_fitted.per_frame.count() > 0);
     // A set of programs not seen before has no coefficients: the check fails and it is refitted.
     CHECK(report.checks_failed >= 1);
     CHECK(report.fits >= 2);
@@ -67,10 +67,10 @@ TEST_CASE("replay of the demo renderer's recorded logs: every scene predicted, r
         CHECK(report.frames == 200);
         CHECK(report.frames_unusable <= 12);  // the sensor's first swaps of each run carry no power
         CHECK(report.fits >= 1);
-        CHECK(report.ours_reused.count() >= 100);
+        CHECK(report.ours_reused.per_frame.count() >= 100);
         // Recorded: 3.5-4.1 % fitted, 2.0-6.0 % reused (Subway's skinned soldiers' programs are
         // outside the variant table).
-        CHECK(report.ours_fitted.mape_percent() < 8.0);
-        CHECK(report.ours_reused.mape_percent() < 8.0);
+        CHECK(report.ours_fitted.per_frame.mape_percent() < 8.0);
+        CHECK(report.ours_reused.per_frame.mape_percent() < 8.0);
     }
 }

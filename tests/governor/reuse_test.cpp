@@ -81,7 +81,7 @@ TEST_CASE("reused prediction is exact for the fitted configuration itself", "[mo
 }
 
 TEST_CASE("reuse without texel data keeps the previous psi", "[model][reuse][extremes]") {
-    ConfigurationSpace space({{"p", {{10, 100, 0}, {10, 50, 0}}}, {"q", {{10, 80, 0}}}});
+    ConfigurationSpace space({{"p", {{10, 100, 0}, {10, 50, 0}}, {}}, {"q", {{10, 80, 0}}, {}}});
     PowerModel model(synthetic_profile());
     model.set("p", {0.1, 0.2, 2.0});
     model.set("q", {0.1, 0.2, 1.6});

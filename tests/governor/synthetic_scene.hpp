@@ -48,7 +48,7 @@ inline HiddenModel six_pass_hidden_model() {
     std::vector<PassVariants> passes;
     const char* names[] = {"resolution", "shading", "reflections", "shadows", "metals", "antialiasing"};
     for (int i = 0; i < 6; ++i) {
-        PassVariants pass{names[i], {}};
+        PassVariants pass{names[i], {}, {}};
         for (int level = 0; level < 3; ++level) {
             const double quality = 3.0 - level;  // cheaper with every level
             pass.levels.push_back({20.0 + 4.0 * i, 40.0 * quality + 15.0 * i, 1.0 * quality + (i % 2)});

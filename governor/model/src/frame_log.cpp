@@ -44,6 +44,7 @@ struct Columns {
     int frame = kAbsent, time_ns = kAbsent, context = kAbsent, pass = kAbsent;
     int batches = kAbsent, vertices = kAbsent, fragments = kAbsent, primitives = kAbsent;
     int gpu_ns = kAbsent, power_w = kAbsent, energy_j = kAbsent, sensor = kAbsent;
+    int configuration = kAbsent;
 };
 
 Columns locate_columns(const std::vector<std::string_view>& header) {
@@ -53,6 +54,7 @@ Columns locate_columns(const std::vector<std::string_view>& header) {
         {"pass", &c.pass},           {"batches", &c.batches},   {"vertices", &c.vertices},
         {"fragments", &c.fragments}, {"primitives", &c.primitives}, {"gpu_ns", &c.gpu_ns},
         {"power_w", &c.power_w},     {"energy_j", &c.energy_j}, {"sensor", &c.sensor},
+        {"configuration", &c.configuration},
     };
     for (std::size_t i = 0; i < header.size(); ++i) {
         for (const auto& [name, index] : names) {
@@ -134,7 +136,8 @@ std::optional<FrameLog> read_frame_log(std::istream& in, const std::string& sour
         auto [it, inserted] = frame_index.try_emplace(key, log.frames.size());
         if (inserted) {
             log.frames.push_back({key.second, time_ns, key.first, {}, kNotMeasured, kNotMeasured,
-                                  std::string(row.text(columns.sensor))});
+                                  std::string(row.text(columns.sensor)),
+                                  std::string(row.text(columns.configuration))});
         }
         LoggedFrame& frame = log.frames[it->second];
         // Power is per frame; take the first row that carries it.

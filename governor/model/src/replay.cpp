@@ -1,56 +1,126 @@
 #include "glbudget/model/replay.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
 #include "glbudget/model/vatjus_anttila_model.hpp"
 
 namespace glbudget::model {
+namespace {
+
+// A frame both models predicted.
+struct ScoredFrame {
+    std::size_t run = 0;       // configuration run it belongs to
+    bool fitted_here = false;  // drawn in the configuration the model was fitted on
+    double measured = 0.0, ours = 0.0, baseline = 0.0;
+};
+
+// Sliding averages over `length` consecutive scored frames of one run and one class.
+void add_sliding_averages(const std::vector<ScoredFrame>& scored, std::size_t length,
+                          bool (*in_class)(const ScoredFrame&), double ScoredFrame::*predicted,
+                          const std::vector<double>* run_mean, PredictionError& out) {
+    std::size_t begin = 0;
+    while (begin < scored.size()) {
+        std::size_t end = begin;
+        while (end < scored.size() && scored[end].run == scored[begin].run &&
+               in_class(scored[end]) == in_class(scored[begin])) {
+            ++end;
+        }
+        if (in_class(scored[begin])) {
+            for (std::size_t first = begin; first + length <= end; ++first) {
+                double predicted_sum = 0.0, measured_sum = 0.0;
+                for (std::size_t i = first; i < first + length; ++i) {
+                    predicted_sum += run_mean ? (*run_mean)[scored[i].run] : scored[i].*predicted;
+                    measured_sum += scored[i].measured;
+                }
+                out.add(predicted_sum / static_cast<double>(length), measured_sum / static_cast<double>(length));
+            }
+        }
+        begin = end;
+    }
+}
+
+bool fitted_class(const ScoredFrame& f) { return f.fitted_here; }
+bool reused_class(const ScoredFrame& f) { return !f.fitted_here; }
+bool any_class(const ScoredFrame&) { return true; }
+
+}  // namespace
 
 ReplayReport replay_frames(const std::vector<LoggedFrame>& frames, const PlatformProfile& profile,
-                           const VariantTable& variants, const FitSettings& settings) {
+                           const VariantTable& variants, const FitSettings& settings,
+                           const ReplayOptions& options) {
     const double range = profile.range_w();
     ReplayReport report;
-    report.ours_fitted = report.ours_reused = PredictionError(range);
-    report.baseline_fitted = report.baseline_reused = PredictionError(range);
+    for (ReplayErrors* e : {&report.ours_fitted, &report.ours_reused, &report.baseline_fitted,
+                            &report.baseline_reused, &report.floor}) {
+        *e = {PredictionError(range), PredictionError(range)};
+    }
+    report.ours_switch = report.baseline_switch = PredictionError(range);
+    report.frames = frames.size();
+
+    // Resolve every frame first: the runs of one configuration, and which comes next, are
+    // known before the replay reaches them (the switch predictions need the next one).
+    std::vector<ResolvedFrame> resolved;
+    std::vector<std::size_t> run_of;
+    std::vector<std::size_t> run_start{0};
+    Configuration current(variants.space.pass_count(), 0);
+    for (std::size_t t = 0; t < frames.size(); ++t) {
+        resolved.push_back(resolve_frame(frames[t], variants, current));
+        if (t > 0 && resolved[t].configuration != current) run_start.push_back(t);
+        current = resolved[t].configuration;
+        run_of.push_back(run_start.size() - 1);
+    }
+    run_start.push_back(frames.size());
+    report.configuration_runs = frames.empty() ? 0 : run_start.size() - 1;
+    const auto run_end = [&](std::size_t run) { return run_start[run + 1]; };
+
     OnlineFitter fitter(profile, settings);
     VatjusAnttilaModel baseline(profile);
     std::vector<FrameTotals> baseline_window;
     std::vector<double> baseline_power;
-
-    Configuration current(variants.space.pass_count(), 0);
     Configuration fitted_configuration;
     std::optional<ConfigurationPredictor> predictor;
+    std::vector<ScoredFrame> scored;
+    // Per run: the predictions of the next run's power made during its last frames.
+    std::vector<double> switch_ours(report.configuration_runs, 0.0), switch_baseline(report.configuration_runs, 0.0);
+    std::vector<std::size_t> switch_count(report.configuration_runs, 0);
 
-    for (const LoggedFrame& logged : frames) {
-        ++report.frames;
-        const ResolvedFrame frame = resolve_frame(logged, variants, current);
+    for (std::size_t t = 0; t < frames.size(); ++t) {
+        const ResolvedFrame& frame = resolved[t];
         if (!is_usable(frame.sample)) {
             ++report.frames_unusable;
             continue;
         }
-        if (frame.configuration != current) {
-            current = frame.configuration;
-            fitter.configuration_changed();
-        }
-        const FrameTotals totals = frame.totals;
+        const std::size_t run = run_of[t];
+        if (t > 0 && run != run_of[t - 1]) fitter.configuration_changed();
+        current = frame.configuration;
 
         double predicted = std::nan("");
         if (predictor) {
-            predictor->set_frame(frame.sample.passes);
+            predictor->set_frame(frame.sample.passes, current);
             predicted = predictor->predict(current);
-            const double predicted_baseline = baseline.fitted() ? baseline.predict_power(totals) : std::nan("");
+            const double predicted_baseline = baseline.fitted() ? baseline.predict_power(frame.totals) : std::nan("");
             // Both models are scored on the same frames only.
             if (std::isfinite(predicted) && std::isfinite(predicted_baseline)) {
-                const bool fitted_here = current == fitted_configuration;
-                (fitted_here ? report.ours_fitted : report.ours_reused).add(predicted, frame.sample.power_w);
-                (fitted_here ? report.baseline_fitted : report.baseline_reused)
-                    .add(predicted_baseline, frame.sample.power_w);
+                scored.push_back({run, current == fitted_configuration, frame.sample.power_w, predicted,
+                                  predicted_baseline});
+            }
+            const bool has_next = run + 1 < report.configuration_runs;
+            if (has_next && t + options.switch_frames >= run_end(run) && baseline.fitted()) {
+                const Configuration& next = resolved[run_start[run + 1]].configuration;
+                const double ours = predictor->predict(next);
+                const double theirs = baseline.predict_power(totals_in(frame, variants, next));
+                if (std::isfinite(ours) && std::isfinite(theirs)) {
+                    switch_ours[run] += ours;
+                    switch_baseline[run] += theirs;
+                    ++switch_count[run];
+                }
             }
         }
 
-        if (!baseline.fitted() && std::isfinite(totals.triangles) && std::isfinite(totals.texels)) {
-            baseline_window.push_back(totals);
+        if (!baseline.fitted() && std::isfinite(frame.totals.triangles) && std::isfinite(frame.totals.texels)) {
+            baseline_window.push_back(frame.totals);
             baseline_power.push_back(frame.sample.power_w);
             if (baseline_window.size() >= settings.fitting_window) baseline.fit(baseline_window, baseline_power);
         }
@@ -62,8 +132,47 @@ ReplayReport replay_frames(const std::vector<LoggedFrame>& frames, const Platfor
             fitted_configuration = current;
             report.reuse = solve_reuse(fitter.model(), variants.space, fitted_configuration,
                                        fitter.last_window_mean(), report.reuse);
-            predictor.emplace(variants.space, fitter.model(), fitted_configuration, report.reuse);
+            if (predictor) predictor->refit(fitter.model(), fitted_configuration, report.reuse);
+            else predictor.emplace(variants.space, fitter.model(), fitted_configuration, report.reuse);
         }
+    }
+
+    for (const ScoredFrame& f : scored) {
+        (f.fitted_here ? report.ours_fitted : report.ours_reused).per_frame.add(f.ours, f.measured);
+        (f.fitted_here ? report.baseline_fitted : report.baseline_reused).per_frame.add(f.baseline, f.measured);
+    }
+    const std::size_t n = std::max<std::size_t>(1, options.average_frames);
+    add_sliding_averages(scored, n, fitted_class, &ScoredFrame::ours, nullptr, report.ours_fitted.averaged);
+    add_sliding_averages(scored, n, reused_class, &ScoredFrame::ours, nullptr, report.ours_reused.averaged);
+    add_sliding_averages(scored, n, fitted_class, &ScoredFrame::baseline, nullptr, report.baseline_fitted.averaged);
+    add_sliding_averages(scored, n, reused_class, &ScoredFrame::baseline, nullptr, report.baseline_reused.averaged);
+
+    // The floor: each scored frame predicted by its run's mean measured power.
+    std::vector<double> run_sum(report.configuration_runs, 0.0), run_mean(report.configuration_runs, 0.0);
+    std::vector<std::size_t> run_frames(report.configuration_runs, 0);
+    for (const ScoredFrame& f : scored) run_sum[f.run] += f.measured, ++run_frames[f.run];
+    for (std::size_t r = 0; r < run_mean.size(); ++r) {
+        run_mean[r] = run_frames[r] ? run_sum[r] / static_cast<double>(run_frames[r]) : std::nan("");
+    }
+    for (const ScoredFrame& f : scored) report.floor.per_frame.add(run_mean[f.run], f.measured);
+    add_sliding_averages(scored, n, any_class, &ScoredFrame::ours, &run_mean, report.floor.averaged);
+
+    // Switches: the mean prediction made in the old configuration's last frames against the
+    // new configuration's measured mean over as many frames, once it has settled.
+    for (std::size_t r = 0; r + 1 < report.configuration_runs; ++r) {
+        if (switch_count[r] == 0) continue;
+        double measured_sum = 0.0;
+        std::size_t measured = 0;
+        for (std::size_t t = run_start[r + 1] + options.settle_frames;
+             t < run_end(r + 1) && measured < options.switch_frames; ++t) {
+            if (!is_usable(resolved[t].sample)) continue;
+            measured_sum += resolved[t].sample.power_w;
+            ++measured;
+        }
+        if (measured == 0) continue;
+        const double count = static_cast<double>(switch_count[r]);
+        report.ours_switch.add(switch_ours[r] / count, measured_sum / static_cast<double>(measured));
+        report.baseline_switch.add(switch_baseline[r] / count, measured_sum / static_cast<double>(measured));
     }
     return report;
 }

@@ -71,16 +71,36 @@ ConfigurationPredictor::ConfigurationPredictor(const ConfigurationSpace& space,
                                                const Configuration& fitted_configuration,
                                                ReuseCoefficients reuse)
     : space_(space), fitted_(fitted) {
-    const bool have_fitted_levels = space.contains(fitted_configuration);
-    coefficients_.resize(space.pass_count());
-    alpha_.resize(space.pass_count());
-    decay_.resize(space.pass_count());
-    decay_minus_one_.resize(space.pass_count());
-    for (std::size_t i = 0; i < space.pass_count(); ++i) {
-        const PassVariants& pass = space.passes()[i];
-        alpha_[i].assign(pass.levels.size(), 0.0);
-        decay_[i].assign(pass.levels.size(), 1.0);
-        decay_minus_one_[i].assign(pass.levels.size(), 0.0);
+    const std::size_t passes = space.pass_count();
+    scalers_of_.resize(passes);
+    for (std::size_t p = 0; p < passes; ++p) {
+        bool scales_another = false;
+        for (const std::string& scaled : space.passes()[p].scales) {
+            for (std::size_t j = 0; j < passes; ++j) {
+                if (space.passes()[j].pass != scaled) continue;
+                scalers_of_[j].push_back(p);
+                scales_another = scales_another || j != p;
+            }
+        }
+        if (scales_another) outer_.push_back(p);
+    }
+    strides_.assign(passes, 1);
+    for (std::size_t i = passes; i-- > 1;) strides_[i - 1] = strides_[i] * space.passes()[i].levels.size();
+    reference_.resize(passes);
+    remembered_.resize(passes);
+    refit(fitted, fitted_configuration, reuse);
+}
+
+void ConfigurationPredictor::refit(const PowerModel& fitted, const Configuration& fitted_configuration,
+                                   ReuseCoefficients reuse) {
+    fitted_ = fitted;
+    fitted_configuration_ = space_.contains(fitted_configuration)
+                                ? fitted_configuration
+                                : Configuration(space_.pass_count(), 0);
+    const bool have_fitted_levels = space_.contains(fitted_configuration);
+    coefficients_.assign(space_.pass_count(), {});
+    for (std::size_t i = 0; i < space_.pass_count(); ++i) {
+        const PassVariants& pass = space_.passes()[i];
         const PassCoefficients* k = fitted.find(pass.pass);
         if (k == nullptr) {
             coefficients_[i].assign(pass.levels.size(), PassCoefficients{});  // never drew
@@ -102,18 +122,43 @@ PassCoefficients ConfigurationPredictor::coefficients(std::size_t pass, int leve
     return coefficients_[pass][static_cast<std::size_t>(level)];
 }
 
-void ConfigurationPredictor::set_frame(const std::vector<PassFrame>& frame) {
+double ConfigurationPredictor::fragment_scale(std::size_t pass, const Configuration& configuration) const {
+    double scale = 1.0;
+    for (std::size_t p : scalers_of_[pass]) {
+        scale *= space_.passes()[p].levels[static_cast<std::size_t>(configuration[p])].fragment_scale;
+    }
+    return scale;
+}
+
+std::size_t ConfigurationPredictor::outer_combination(const Configuration& configuration) const {
+    std::size_t combination = 0;
+    for (std::size_t p : outer_) {
+        combination = combination * space_.passes()[p].levels.size() + static_cast<std::size_t>(configuration[p]);
+    }
+    return combination;
+}
+
+void ConfigurationPredictor::set_frame(const std::vector<PassFrame>& frame,
+                                       const Configuration& frame_configuration) {
     const PlatformProfile& profile = fitted_.profile();
-    for (auto& levels : alpha_) std::fill(levels.begin(), levels.end(), 0.0);
+    const std::size_t passes = space_.pass_count();
+    const Configuration& drawn =
+        space_.contains(frame_configuration) ? frame_configuration : fitted_configuration_;
+
+    // Reference counts of the space's passes; the rest load every configuration alike.
+    for (ReferenceCounts& r : reference_) r = ReferenceCounts{{}, true};
     alpha_outside_space_ = 0.0;
     for (const PassFrame& p : frame) {
         bool in_space = false;
-        for (std::size_t i = 0; i < space_.pass_count(); ++i) {
+        for (std::size_t i = 0; i < passes; ++i) {
             if (space_.passes()[i].pass != p.pass) continue;
             in_space = true;
-            for (std::size_t l = 0; l < alpha_[i].size(); ++l) {
-                alpha_[i][l] += pass_alpha(profile, coefficients_[i][l], p.counts);
-            }
+            const double scale = fragment_scale(i, drawn);
+            PassCounts& counts = reference_[i].counts;
+            counts.batches += p.counts.batches;
+            counts.vertices += p.counts.vertices;
+            // A scale of 0 drew no fragments: nothing to learn about them.
+            if (scale > 0.0) counts.fragments += p.counts.fragments / scale;
             break;
         }
         if (!in_space) {
@@ -122,18 +167,50 @@ void ConfigurationPredictor::set_frame(const std::vector<PassFrame>& frame) {
             }
         }
     }
-    for (std::size_t i = 0; i < alpha_.size(); ++i) {
-        for (std::size_t l = 0; l < alpha_[i].size(); ++l) {
-            decay_[i][l] = std::exp(-alpha_[i][l]);
-            decay_minus_one_[i][l] = std::expm1(-alpha_[i][l]);
+    for (std::size_t i = 0; i < passes; ++i) {
+        const bool drew = space_.passes()[i].levels[static_cast<std::size_t>(drawn[i])].draws;
+        if (drew) remembered_[i] = reference_[i];
+        else reference_[i] = remembered_[i];  // skipped now: what it drew when last on, if ever
+    }
+
+    std::size_t combinations = 1;
+    for (std::size_t p : outer_) combinations *= space_.passes()[p].levels.size();
+    tables_.resize(combinations);
+    Configuration levels(passes, 0);
+    for (std::size_t o = 0; o < combinations; ++o) {
+        // The outer passes' levels of combination o (the last outer pass changes fastest).
+        std::size_t rest = o;
+        for (std::size_t n = outer_.size(); n-- > 0;) {
+            const std::size_t count = space_.passes()[outer_[n]].levels.size();
+            levels[outer_[n]] = static_cast<int>(rest % count);
+            rest /= count;
+        }
+        tables_[o].resize(passes);
+        for (std::size_t i = 0; i < passes; ++i) {
+            const PassVariants& pass = space_.passes()[i];
+            std::vector<LevelTerm>& terms = tables_[o][i];
+            terms.resize(pass.levels.size());
+            const int held = levels[i];  // an outer pass's level in this combination
+            for (std::size_t l = 0; l < pass.levels.size(); ++l) {
+                levels[i] = static_cast<int>(l);
+                double alpha = 0.0;
+                if (pass.levels[l].draws && reference_[i].known) {
+                    PassCounts counts = reference_[i].counts;
+                    counts.fragments *= fragment_scale(i, levels);
+                    alpha = pass_alpha(profile, coefficients_[i][l], counts);
+                }
+                terms[l] = {alpha, std::expm1(-alpha), std::exp(-alpha), l * strides_[i]};
+            }
+            levels[i] = held;
         }
     }
 }
 
 double ConfigurationPredictor::predict(const Configuration& configuration) const {
+    const std::vector<std::vector<LevelTerm>>& table = tables_[outer_combination(configuration)];
     double alpha = alpha_outside_space_;
-    for (std::size_t i = 0; i < alpha_.size(); ++i) {
-        alpha += alpha_[i][static_cast<std::size_t>(configuration[i])];
+    for (std::size_t i = 0; i < table.size(); ++i) {
+        alpha += table[i][static_cast<std::size_t>(configuration[i])].alpha;
     }
     return power_from_alpha(fitted_.profile(), alpha);
 }
@@ -145,25 +222,35 @@ double ConfigurationPredictor::predict(const Configuration& configuration) const
 //
 // The passes are split in two halves; each half's combinations are enumerated once, and every
 // configuration is then one multiply-add of a front entry with a back entry (27 x 27 for the
-// paper's 729), a loop the compiler vectorises.
-void ConfigurationPredictor::enumerate(std::size_t first, std::size_t last, double q0,
-                                       std::vector<double>& q, std::vector<double>* e) const {
+// paper's 729), a loop the compiler vectorises. A pass that scales other passes' fragments
+// (the render scale) makes their loads depend on its level: each of its levels is then a
+// table of its own, with that pass held at the level.
+void ConfigurationPredictor::enumerate(const std::vector<std::vector<LevelTerm>>& passes,
+                                       std::size_t first, std::size_t last, double q0,
+                                       std::vector<double>& q, std::vector<double>* e,
+                                       std::vector<std::size_t>& offsets) {
     q.assign(1, q0);
+    offsets.assign(1, 0);
     if (e) e->assign(1, 1.0);
     std::vector<double> next_q, next_e;
+    std::vector<std::size_t> next_offsets;
     for (std::size_t pass = first; pass < last; ++pass) {
-        const std::vector<double>& m_pass = decay_minus_one_[pass];
-        const std::vector<double>& e_pass = decay_[pass];
-        const std::size_t levels = m_pass.size();
+        const std::vector<LevelTerm>& terms = passes[pass];
+        const std::size_t levels = terms.size();
         next_q.resize(q.size() * levels);
+        next_offsets.resize(q.size() * levels);
         for (std::size_t i = 0; i < q.size(); ++i) {
-            for (std::size_t l = 0; l < levels; ++l) next_q[i * levels + l] = q[i] * e_pass[l] + m_pass[l];
+            for (std::size_t l = 0; l < levels; ++l) {
+                next_q[i * levels + l] = q[i] * terms[l].e + terms[l].m;
+                next_offsets[i * levels + l] = offsets[i] + terms[l].offset;
+            }
         }
         q.swap(next_q);
+        offsets.swap(next_offsets);
         if (e) {
             next_e.resize(e->size() * levels);
             for (std::size_t i = 0; i < e->size(); ++i) {
-                for (std::size_t l = 0; l < levels; ++l) next_e[i * levels + l] = (*e)[i] * e_pass[l];
+                for (std::size_t l = 0; l < levels; ++l) next_e[i * levels + l] = (*e)[i] * terms[l].e;
             }
             e->swap(next_e);
         }
@@ -171,17 +258,41 @@ void ConfigurationPredictor::enumerate(std::size_t first, std::size_t last, doub
 }
 
 void ConfigurationPredictor::predict_all(std::vector<double>& out) const {
-    const std::size_t split = decay_.size() / 2;
-    std::vector<double> front_q, back_q, back_e;
-    enumerate(0, split, std::expm1(-alpha_outside_space_), front_q, nullptr);
-    enumerate(split, decay_.size(), 0.0, back_q, &back_e);
+    const std::size_t passes = space_.pass_count();
+    const std::size_t split = passes / 2;
     const double p_min = fitted_.profile().p_min_w, range = fitted_.profile().range_w();
-    const std::size_t back = back_q.size();
-    out.resize(front_q.size() * back);
-    for (std::size_t i = 0; i < front_q.size(); ++i) {
-        double* row = out.data() + i * back;
-        const double q = front_q[i];
-        for (std::size_t j = 0; j < back; ++j) row[j] = p_min - range * (q * back_e[j] + back_q[j]);
+    out.resize(space_.size());
+    std::vector<double> front_q, back_q, back_e;
+    std::vector<std::size_t> front_offsets, back_offsets;
+    std::vector<std::vector<LevelTerm>> held;
+    for (std::size_t o = 0; o < tables_.size(); ++o) {
+        const std::vector<std::vector<LevelTerm>>* table = &tables_[o];
+        if (!outer_.empty()) {
+            held = tables_[o];
+            std::size_t rest = o;
+            for (std::size_t n = outer_.size(); n-- > 0;) {
+                std::vector<LevelTerm>& terms = held[outer_[n]];
+                const std::size_t level = rest % terms.size();
+                rest /= terms.size();
+                terms = {terms[level]};
+            }
+            table = &held;
+        }
+        enumerate(*table, 0, split, std::expm1(-alpha_outside_space_), front_q, nullptr, front_offsets);
+        enumerate(*table, split, passes, 0.0, back_q, &back_e, back_offsets);
+        const std::size_t back = back_q.size();
+        const bool contiguous = outer_.empty();  // then offsets are 0, 1, 2, ... in order
+        for (std::size_t i = 0; i < front_q.size(); ++i) {
+            const double q = front_q[i];
+            if (contiguous) {
+                double* row = out.data() + i * back;
+                for (std::size_t j = 0; j < back; ++j) row[j] = p_min - range * (q * back_e[j] + back_q[j]);
+            } else {
+                for (std::size_t j = 0; j < back; ++j) {
+                    out[front_offsets[i] + back_offsets[j]] = p_min - range * (q * back_e[j] + back_q[j]);
+                }
+            }
+        }
     }
 }
 

@@ -1,36 +1,41 @@
 #!/usr/bin/env python3
 """Records the replay logs of the power model from the demo renderer under the shim.
 
-For each scene: the variant table comes from instrumentation dumps (GLBUDGET_DUMP) of runs
-that draw every level of the shader-variant passes (base shading, metals); then the scene is
-rendered under the shim with the cpu power sensor, paced, in five configurations one after the
-other, and the logs are joined into one (frames renumbered in order) so that the replay sees
-configuration changes as a running app would. Writes, per scene, into OUTDIR:
-  demo_<scene>.csv, demo_<scene>.variants.json, and one demo_cpu.profile.json.
-Usage: record_demo_logs.py BUILD_DIR OUTDIR [--scenes hall,subway] [--frames 45] [--fps 2]
+For each scene: the variant table comes from instrumentation dumps (GLBUDGET_DUMP) of three
+runs that draw every knob at level 0, 1 and 2; then the scene is rendered under the shim with
+the cpu power sensor, paced, in a sequence of configurations that move every knob (render
+scale, shadow-map size and reflections off change how many fragments are drawn, the other
+levels what each costs), and the logs are joined into one (frames renumbered in order, a
+`configuration` column saying which configuration drew each frame, as the governor logs
+what it applied) so that the replay sees configuration changes as a running app would.
+Writes, per scene, into OUTDIR: demo_<scene>.csv, demo_<scene>.variants.json, and one
+demo_cpu.profile.json.
+Usage: record_demo_logs.py BUILD_DIR OUTDIR [--scenes hall,subway] [--frames 40] [--fps 2]
 """
 import argparse
 import csv
 import json
 import os
-import re
 import subprocess
 import tempfile
 
-# Demo passes by a text of their fragment shader (testapps/demo/shaders), and how a level
-# reads in the source. Passes whose program is the same at every level have one level here.
-PASSES = [
-    ("shadows", "Shadow map: depth only", None),
-    ("base", "SHADING_MODEL", ("SHADING_MODEL", ["2", "1", "0"])),
-    ("metals", "METAL_SAMPLES", ("METAL_SAMPLES", ["60", "6", "2"])),
-    ("reflections", "u_kernel_taps", None),
-    ("upscale", "Reinhard", None),
-    ("fxaa", "FXAA_STEPS", ("FXAA_STEPS", ["32", "2"])),
-]
-# Configurations recorded, in order: (resolution, base, reflections, shadows, metals, aa).
-# Only shader-variant knobs change, the case the model's reuse (paper §5.4) is about.
-CONFIGS = ["0,0,0,0,0,0", "0,1,0,0,1,0", "0,2,0,0,2,0", "0,0,0,0,2,0", "0,2,0,0,0,0"]
-DEMO_ARGS = ["--detail", "0.05", "--width", "128", "--height", "72"]
+# The demo's knobs in its --config order; they are the variant table's passes, so a
+# configuration column in that order is a configuration of the table's space (3^6 = 729).
+KNOBS = ["resolution", "base", "reflections", "shadows", "metals", "antialiasing"]
+RENDER_SCALE = [1.0, 0.8, 0.6]          # testapps/demo/config.cpp
+SHADOW_MAP = [2048, 1024, 512]
+# Programs by a text of their fragment shader (testapps/demo/shaders) -> the knob they belong
+# to; the upscale pass has no knob and stays outside the space.
+MARKERS = [("Shadow map: depth only", "shadows"), ("SHADING_MODEL", "base"),
+           ("METAL_SAMPLES", "metals"), ("u_kernel_taps", "reflections"),
+           ("FXAA_STEPS", "antialiasing"), ("Reinhard", None)]
+# Levels that skip the pass: reflections and antialiasing at 2 are off.
+OFF = {("reflections", 2), ("antialiasing", 2)}
+# The recorded sequence (resolution, base, reflections, shadows, metals, antialiasing).
+CONFIGS = ["0,0,0,0,0,0", "0,2,0,0,2,0", "1,0,0,1,0,0", "2,1,1,2,1,1",
+           "0,0,2,0,1,2", "2,2,2,2,2,2", "1,1,0,0,0,1", "0,0,0,0,0,0"]
+WIDTH, HEIGHT = 320, 180
+DEMO_ARGS = ["--detail", "0.05", "--width", str(WIDTH), "--height", str(HEIGHT)]
 
 
 def run_demo(build, scene, config, frames, env):
@@ -40,20 +45,23 @@ def run_demo(build, scene, config, frames, env):
                    env=full_env, check=True, capture_output=True)
 
 
-def classify(source):
-    for name, marker, level_define in PASSES:
-        if marker in source:
-            if level_define is None:
-                return name, 0
-            define, values = level_define
-            m = re.search(r"#define\s+%s\s+(\S+)" % define, source)
-            return name, values.index(m.group(1)) if m and m.group(1) in values else 0
-    return None, None
+def knob_of(fragment_source):
+    for marker, knob in MARKERS:
+        if marker in fragment_source:
+            return knob
+    return None
+
+
+def scaled_fraction(scale):
+    # The demo rounds the scaled framebuffer's size (renderer.cpp).
+    return round(WIDTH * scale) * round(HEIGHT * scale) / float(WIDTH * HEIGHT)
 
 
 def variant_table(build, scene):
-    levels = {}  # (pass, level) -> {hash, ins_v, ins_f, tex_f}
-    for config in ["0,0,0,0,0,0", "0,1,0,0,1,1", "0,2,0,0,2,0"]:
+    # (knob, level) -> {hashes, invocation-weighted sums of the costs}
+    found = {}
+    for level in range(3):
+        config = ",".join([str(level)] * len(KNOBS))
         with tempfile.TemporaryDirectory() as dump:
             run_demo(build, scene, config, 3, {"GLBUDGET_DUMP": dump})
             index = json.load(open(os.path.join(dump, "index.json")))
@@ -64,37 +72,66 @@ def variant_table(build, scene):
                 if not frag or not frag.get("measured") or frag["measured"]["invocations"] == 0:
                     continue  # not drawn in this run
                 source = open(os.path.join(dump, "shader-%s.fragment.glsl" % frag["shader"])).read()
-                name, level = classify(source)
-                if name is None or "#define SKINNED" in source:
-                    continue  # skinned variants: only the Subway soldiers, named apart below
-                vert = stages.get("vertex", {}).get("measured") or {}
-                levels[(name, level)] = {
-                    "hash": program["hash"],
-                    "ins_v": vert.get("instructions_per_invocation", 0.0),
-                    "ins_f": frag["measured"]["instructions_per_invocation"],
-                    "tex_f": frag["measured"]["texel_accesses_per_invocation"],
-                }
+                knob = knob_of(source)
+                if knob is None:
+                    continue
+                # Several programs can draw one knob's pass (the skinned soldiers' variants of
+                # the base and shadow programs): costs are averaged by invocations.
+                entry = found.setdefault((knob, level), {"hashes": [], "v": 0.0, "iv": 0.0, "f": 0.0,
+                                                          "if": 0.0, "tf": 0.0})
+                entry["hashes"].append(program["hash"])
+                vert = (stages.get("vertex") or {}).get("measured") or {}
+                nv = vert.get("invocations", 0)
+                entry["v"] += nv
+                entry["iv"] += nv * vert.get("instructions_per_invocation", 0.0)
+                nf = frag["measured"]["invocations"]
+                entry["f"] += nf
+                entry["if"] += nf * frag["measured"]["instructions_per_invocation"]
+                entry["tf"] += nf * frag["measured"]["texel_accesses_per_invocation"]
     passes = []
-    for name, _, _ in PASSES:
-        found = [levels[(name, l)] for l in range(3) if (name, l) in levels]
-        if found:
-            passes.append({"name": name, "levels": found})
+    for knob in KNOBS:
+        pass_entry = {"name": knob, "levels": []}
+        if knob == "resolution":
+            pass_entry["scales"] = ["base", "metals", "reflections"]
+            pass_entry["levels"] = [{"fragment_scale": scaled_fraction(s)} for s in RENDER_SCALE]
+            passes.append(pass_entry)
+            continue
+        if knob == "shadows":
+            pass_entry["scales"] = ["shadows"]
+        for level in range(3):
+            if (knob, level) in OFF:
+                pass_entry["levels"].append({"draws": False})
+                continue
+            entry = found.get((knob, level))
+            out = {"hashes": sorted(set(entry["hashes"]))} if entry else {}
+            if entry:
+                out["ins_v"] = entry["iv"] / entry["v"] if entry["v"] else 0.0
+                out["ins_f"] = entry["if"] / entry["f"] if entry["f"] else 0.0
+                out["tex_f"] = entry["tf"] / entry["f"] if entry["f"] else 0.0
+            if knob == "shadows":
+                out["fragment_scale"] = (SHADOW_MAP[level] / SHADOW_MAP[0]) ** 2
+            pass_entry["levels"].append(out)
+        if any(level.get("hashes") for level in pass_entry["levels"]):
+            passes.append(pass_entry)  # the scene draws this pass
     return {"passes": passes}
 
 
-def record(build, scene, frames, fps, out_csv):
+def record(build, scene, frames, fps, table, out_csv):
     rows, header, next_frame = [], None, 1
+    names = [p["name"] for p in table["passes"]]
     for config in CONFIGS:
+        levels = dict(zip(KNOBS, config.split(",")))
+        configuration = ":".join(levels[name] for name in names)
         with tempfile.NamedTemporaryFile(suffix=".csv") as log:
             run_demo(build, scene, config, frames,
                      {"GLBUDGET_LOG": log.name, "GLBUDGET_SENSOR": "cpu", "GLBUDGET_FPS": str(fps)})
             with open(log.name) as f:
                 reader = csv.reader(f)
-                header = next(reader)
+                header = next(reader) + ["configuration"]
                 numbered = {}
                 for row in reader:
                     frame = numbered.setdefault(row[0], next_frame + len(numbered))
-                    rows.append([str(frame)] + row[1:])
+                    rows.append([str(frame)] + row[1:] + [configuration])
                 next_frame += len(numbered)
     with open(out_csv, "w", newline="") as f:
         writer = csv.writer(f)
@@ -107,7 +144,7 @@ def main():
     ap.add_argument("build")
     ap.add_argument("outdir")
     ap.add_argument("--scenes", default="hall,sponza,valley,subway")
-    ap.add_argument("--frames", type=int, default=45)
+    ap.add_argument("--frames", type=int, default=40)
     ap.add_argument("--fps", type=float, default=2)
     a = ap.parse_args()
     os.makedirs(a.outdir, exist_ok=True)
@@ -119,8 +156,8 @@ def main():
     for scene in a.scenes.split(","):
         table = variant_table(a.build, scene)
         json.dump(table, open(os.path.join(a.outdir, "demo_%s.variants.json" % scene), "w"), indent=1)
-        record(a.build, scene, a.frames, a.fps, os.path.join(a.outdir, "demo_%s.csv" % scene))
-        print("recorded", scene)
+        record(a.build, scene, a.frames, a.fps, table, os.path.join(a.outdir, "demo_%s.csv" % scene))
+        print("recorded", scene, flush=True)
 
 
 if __name__ == "__main__":

@@ -14,11 +14,20 @@ struct VariantCost {
     double ins_v = 0.0;
     double ins_f = 0.0;
     double tex_f = 0.0;
+    // Levels that change how many fragments are drawn rather than what each costs: the paper's
+    // resolution "pass" (render scale 0.8 draws 0.64 of the fragments of the passes it scales)
+    // or a shadow-map size (its own pass). Relative to a level at 1.
+    double fragment_scale = 1.0;
+    // false: the level skips the pass's draws (reflections or antialiasing off).
+    bool draws = true;
 };
 
 struct PassVariants {
     std::string pass;
     std::vector<VariantCost> levels;  // best first; at least one
+    // Passes whose fragment counts this pass's fragment_scale multiplies: itself for a shadow
+    // map's size, the scene passes for the render scale. Empty: it scales nothing.
+    std::vector<std::string> scales;
 };
 
 using Configuration = std::vector<int>;  // level per pass, in ConfigurationSpace order

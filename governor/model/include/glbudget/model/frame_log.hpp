@@ -1,7 +1,7 @@
 #pragma once
 // Reader for the shim's per-frame CSV log (GLBUDGET_LOG):
 //   frame,time_ns,context,pass,batches,vertices,fragments,primitives,gpu_ns[,power_w,energy_j,sensor]
-// one row per frame and pass. Columns are found by header name, so reordered or additional
+// one row per frame and pass, optionally with a `configuration` column. Columns are found by header name, so reordered or additional
 // columns are fine; an empty field means "not measured" and reads as NaN.
 #include <cstddef>
 #include <cstdint>
@@ -31,6 +31,8 @@ struct LoggedFrame {
     double power_w = std::numeric_limits<double>::quiet_NaN();
     double energy_j = std::numeric_limits<double>::quiet_NaN();
     std::string sensor;
+    // The `configuration` column ("0:2:1:..."), where the writer knew which it drew.
+    std::string configuration;
 };
 
 struct FrameLog {

@@ -2,8 +2,16 @@
 // Replays a frame log through the run-time power model exactly as the governor would run it
 // (predict each frame with the coefficients available at that moment, then feed it to the
 // online fitter) and through the Vatjus-Anttila baseline (fitted once on the first window),
-// and reports both models' errors on the same frames, split into frames rendered in the
-// configuration the model was fitted on and frames whose prediction reused the coefficients.
+// and reports both models' errors on the same frames:
+//   fitted    frames rendered in the configuration the model was last fitted on;
+//   reused    frames of other configurations, predicted by reusing the coefficients (§5.4);
+//   switch    what the governor's selection relies on: before each configuration change, the
+//             power of the next configuration predicted from the counts of the frames still
+//             drawn in the old one, against what the next one then measured;
+// each per frame and as sliding averages over `average_frames` frames of one configuration
+// (the paper reports power averaged over 30 frames). A noise floor comes with them: the error
+// of predicting every frame by the mean power of its configuration's run, which no model of a
+// frame's counts can beat by much when the sensor's frame-to-frame scatter dominates.
 #include <cstddef>
 #include <vector>
 
@@ -15,16 +23,30 @@
 
 namespace glbudget::model {
 
+struct ReplayOptions {
+    std::size_t average_frames = 30;  // sliding average length for the averaged errors
+    std::size_t switch_frames = 10;   // frames on each side of a configuration change
+    std::size_t settle_frames = 2;    // frames after a change not counted as its measurement
+};
+
+struct ReplayErrors {
+    PredictionError per_frame, averaged;
+};
+
 struct ReplayReport {
-    PredictionError ours_fitted, ours_reused, baseline_fitted, baseline_reused;
+    ReplayErrors ours_fitted, ours_reused, baseline_fitted, baseline_reused;
+    PredictionError ours_switch, baseline_switch;  // one pair per configuration change
+    ReplayErrors floor;                            // configuration-run means, all scored frames
     std::size_t frames = 0;
     std::size_t frames_unusable = 0;  // no power or unmeasured counts
+    std::size_t configuration_runs = 0;
     std::size_t fits = 0;
     std::size_t checks_failed = 0;
     ReuseCoefficients reuse;          // after the last fit
 };
 
 ReplayReport replay_frames(const std::vector<LoggedFrame>& frames, const PlatformProfile& profile,
-                           const VariantTable& variants, const FitSettings& settings = {});
+                           const VariantTable& variants, const FitSettings& settings = {},
+                           const ReplayOptions& options = {});
 
 }  // namespace glbudget::model

@@ -29,33 +29,64 @@ ReuseCoefficients solve_reuse(const PowerModel& fitted, const ConfigurationSpace
                               ReuseCoefficients previous = {});
 
 // Predicts the power of every configuration for the counts of one frame.
+//
+// Counts are measured in the frame's own configuration. Levels that scale fragments (render
+// scale, shadow-map size) turn them into reference counts (all scales at 1) and back into each
+// configuration's counts; a pass whose level skips it (reflections off) is predicted from the
+// counts it drew the last time it was on.
 class ConfigurationPredictor {
 public:
     ConfigurationPredictor(const ConfigurationSpace& space, const PowerModel& fitted,
                            const Configuration& fitted_configuration, ReuseCoefficients reuse);
 
+    // New coefficients after a refit; the remembered counts of skipped passes are kept.
+    void refit(const PowerModel& fitted, const Configuration& fitted_configuration, ReuseCoefficients reuse);
+
     PassCoefficients coefficients(std::size_t pass, int level) const;
 
-    // Per-pass, per-level loads for a frame. Counts of passes outside the space (say the
-    // fixed-function pass) add the same load to every configuration.
-    void set_frame(const std::vector<PassFrame>& frame);
+    // Per-pass, per-level loads for a frame drawn in `frame_configuration`. Counts of passes
+    // outside the space (say the fixed-function pass) add the same load to every configuration.
+    void set_frame(const std::vector<PassFrame>& frame, const Configuration& frame_configuration);
+    // The frame was drawn in the fitted configuration.
+    void set_frame(const std::vector<PassFrame>& frame) { set_frame(frame, fitted_configuration_); }
 
     double predict(const Configuration& configuration) const;
     // out[space.index_of(c)] = predicted power of c.
     void predict_all(std::vector<double>& out) const;
 
 private:
-    // q = prod(1 + expm1(-alpha)) - 1 (starting from q0) and, if wanted, e = prod exp(-alpha)
-    // for every combination of levels of passes [first, last), in row-major order.
-    void enumerate(std::size_t first, std::size_t last, double q0, std::vector<double>& q,
-                   std::vector<double>* e) const;
+    // Reference counts of a pass: fragments as if every scale were 1.
+    struct ReferenceCounts {
+        PassCounts counts;
+        bool known = false;
+    };
+    // One selectable level of a pass in an enumeration: its m = expm1(-alpha), e = exp(-alpha)
+    // and its contribution to the configuration's index.
+    struct LevelTerm {
+        double alpha = 0.0, m = 0.0, e = 1.0;
+        std::size_t offset = 0;
+    };
+
+    double fragment_scale(std::size_t pass, const Configuration& configuration) const;
+    std::size_t outer_combination(const Configuration& configuration) const;
+    // q = prod(1 + m) - 1 (starting from q0), e = prod e and the index offset for every
+    // combination of the given passes' levels, in row-major order.
+    static void enumerate(const std::vector<std::vector<LevelTerm>>& passes, std::size_t first,
+                          std::size_t last, double q0, std::vector<double>& q, std::vector<double>* e,
+                          std::vector<std::size_t>& offsets);
 
     ConfigurationSpace space_;
     PowerModel fitted_;
+    Configuration fitted_configuration_;
     std::vector<std::vector<PassCoefficients>> coefficients_;  // [pass][level]
-    std::vector<std::vector<double>> alpha_;                   // [pass][level] for the frame
-    std::vector<std::vector<double>> decay_;                   // exp(-alpha)
-    std::vector<std::vector<double>> decay_minus_one_;         // expm1(-alpha)
+    std::vector<std::vector<std::size_t>> scalers_of_;         // [pass]: passes scaling its fragments
+    std::vector<std::size_t> outer_;       // passes that scale other passes' fragments
+    std::vector<std::size_t> strides_;     // index_of strides
+    std::vector<ReferenceCounts> reference_;  // [pass] for the current frame
+    std::vector<ReferenceCounts> remembered_; // [pass] when it last drew
+    // [outer combination][pass][level]: the pass's load for the frame with the outer passes at
+    // that combination's levels (one combination when no pass scales another).
+    std::vector<std::vector<std::vector<LevelTerm>>> tables_;
     double alpha_outside_space_ = 0.0;
 };
 

@@ -4,11 +4,17 @@
 // lets a replay of a frame log know configurations without the rest of the shim:
 //   {"passes": [{"name": "shading",
 //                "levels": [{"hash": "0123456789abcdef", "ins_v": 24, "ins_f": 180, "tex_f": 6},
-//                           ...]}, ...]}
+//                           ...]},
+//               {"name": "resolution", "scales": ["shading", ...],
+//                "levels": [{"fragment_scale": 1}, {"fragment_scale": 0.64}, ...]},
+//               {"name": "reflections",
+//                "levels": [{"hashes": ["..."], ...}, ..., {"draws": false}]}, ...]}
+// A level may name several programs ("hashes"), none (a render scale), or skip the pass.
 #include <cstddef>
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "glbudget/model/configuration_space.hpp"
@@ -20,7 +26,7 @@ namespace glbudget::model {
 
 struct VariantRef {
     std::size_t pass = 0;  // index in the space
-    int level = 0;
+    int level = 0;         // -1: the program serves several levels of its pass
 };
 
 struct VariantTable {
@@ -32,6 +38,10 @@ struct VariantTable {
 std::optional<VariantTable> parse_variant_table(const std::string& json_text, const std::string& source);
 std::optional<VariantTable> load_variant_table(const std::string& path);
 
+// "0:2:1:0:0:1", one level per pass of the space in its order; nullopt unless it is one of
+// the space's configurations.
+std::optional<Configuration> parse_configuration(std::string_view text, const ConfigurationSpace& space);
+
 // A logged frame as the model sees it. Variants listed in the table become their pass's name
 // and set that pass's level; other hashes are passes of their own outside the search space.
 // Passes of the space that drew nothing keep `default_configuration`'s level.
@@ -41,8 +51,17 @@ struct ResolvedFrame {
     // For the baseline; texels are fragments x texel accesses per fragment where the table
     // knows the variant, else fragments.
     FrameTotals totals;
+    std::vector<double> primitives;  // per entry of sample.passes
 };
+// The configuration comes from the log's `configuration` column when it has one.
 ResolvedFrame resolve_frame(const LoggedFrame& frame, const VariantTable& table,
                             const Configuration& default_configuration);
+
+// The level a configuration gives a pass of the table (a zero-cost level when not in it).
+VariantCost table_level(const VariantTable& table, const std::string& pass, const Configuration& configuration);
+
+// The baseline's totals for the frame's counts drawn in `target` instead: fragments follow the
+// levels' scales, texels the target levels' texel accesses, skipped passes drop out.
+FrameTotals totals_in(const ResolvedFrame& frame, const VariantTable& table, const Configuration& target);
 
 }  // namespace glbudget::model
