@@ -93,5 +93,12 @@ int main(int argc, char** argv) {
     print_rows("vatjus-anttila", "reused", report.baseline_reused, averaged);
     print_row("vatjus-anttila", "switch", "next run", report.baseline_switch);
     print_rows("noise floor", "all", report.floor, averaged);
+    std::printf("\nper configuration run: scored frames, mean measured, ours, baseline (W)\n");
+    for (const ReplayRun& run : report.runs) {
+        std::string configuration;
+        for (int level : run.configuration) configuration += (configuration.empty() ? "" : ":") + std::to_string(level);
+        std::printf("  %-14s %4zu %8.2f %8.2f %8.2f%s\n", configuration.c_str(), run.scored_frames, run.measured_w,
+                    run.ours_w, run.baseline_w, run.fitted_here ? "  (fitted)" : "");
+    }
     return 0;
 }

@@ -85,8 +85,16 @@ TEST_CASE("online fitter ignores broken frames and restarts windows on configura
         CHECK(fitter.add_frame(scene.sample(t, kBest), std::nan("")) == OnlineFitter::Event::None);
     }
     CHECK(fitter.add_frame(scene.sample(9, kBest), std::nan("")) == OnlineFitter::Event::Fitted);
+    // As in the paper, a new configuration starts a new fitting window.
     fitter.configuration_changed();
-    CHECK(fitter.phase() == OnlineFitter::Phase::Checking);
+    CHECK(fitter.phase() == OnlineFitter::Phase::Fitting);
+
+    settings.refit_on_change = false;
+    OnlineFitter checking_first(synthetic_profile(), settings);
+    for (int t = 0; t < 10; ++t) checking_first.add_frame(scene.sample(t, kBest), std::nan(""));
+    REQUIRE(checking_first.has_model());
+    checking_first.configuration_changed();
+    CHECK(checking_first.phase() == OnlineFitter::Phase::Checking);
     const FrameSample s = scene.sample(10, kBest);
-    CHECK(fitter.add_frame(s, std::nan("")) == OnlineFitter::Event::Rejected);  // no prediction to check
+    CHECK(checking_first.add_frame(s, std::nan("")) == OnlineFitter::Event::Rejected);  // no prediction to check
 }

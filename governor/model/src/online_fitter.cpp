@@ -61,7 +61,7 @@ void OnlineFitter::configuration_changed() {
     check_error_sum_ = 0.0;
     check_frames_ = 0;
     // Before the first fit there is nothing to check against: keep collecting.
-    phase_ = has_model() ? Phase::Checking : Phase::Fitting;
+    phase_ = has_model() && !settings_.refit_on_change ? Phase::Checking : Phase::Fitting;
 }
 
 void OnlineFitter::fit() {

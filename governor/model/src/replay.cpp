@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 
+#include "glbudget/model/run_time_model.hpp"
 #include "glbudget/model/vatjus_anttila_model.hpp"
 
 namespace glbudget::model {
@@ -75,12 +76,10 @@ ReplayReport replay_frames(const std::vector<LoggedFrame>& frames, const Platfor
     report.configuration_runs = frames.empty() ? 0 : run_start.size() - 1;
     const auto run_end = [&](std::size_t run) { return run_start[run + 1]; };
 
-    OnlineFitter fitter(profile, settings);
+    RunTimeModel model(profile, variants.space, settings, options.history);
     VatjusAnttilaModel baseline(profile);
     std::vector<FrameTotals> baseline_window;
     std::vector<double> baseline_power;
-    Configuration fitted_configuration;
-    std::optional<ConfigurationPredictor> predictor;
     std::vector<ScoredFrame> scored;
     // Per run: the predictions of the next run's power made during its last frames.
     std::vector<double> switch_ours(report.configuration_runs, 0.0), switch_baseline(report.configuration_runs, 0.0);
@@ -93,29 +92,22 @@ ReplayReport replay_frames(const std::vector<LoggedFrame>& frames, const Platfor
             continue;
         }
         const std::size_t run = run_of[t];
-        if (t > 0 && run != run_of[t - 1]) fitter.configuration_changed();
-        current = frame.configuration;
-
-        double predicted = std::nan("");
-        if (predictor) {
-            predictor->set_frame(frame.sample.passes, current);
-            predicted = predictor->predict(current);
-            const double predicted_baseline = baseline.fitted() ? baseline.predict_power(frame.totals) : std::nan("");
-            // Both models are scored on the same frames only.
-            if (std::isfinite(predicted) && std::isfinite(predicted_baseline)) {
-                scored.push_back({run, current == fitted_configuration, frame.sample.power_w, predicted,
-                                  predicted_baseline});
-            }
-            const bool has_next = run + 1 < report.configuration_runs;
-            if (has_next && t + options.switch_frames >= run_end(run) && baseline.fitted()) {
-                const Configuration& next = resolved[run_start[run + 1]].configuration;
-                const double ours = predictor->predict(next);
-                const double theirs = baseline.predict_power(totals_in(frame, variants, next));
-                if (std::isfinite(ours) && std::isfinite(theirs)) {
-                    switch_ours[run] += ours;
-                    switch_baseline[run] += theirs;
-                    ++switch_count[run];
-                }
+        const double predicted = model.predict_frame(frame.sample, frame.configuration);
+        const double predicted_baseline = baseline.fitted() ? baseline.predict_power(frame.totals) : std::nan("");
+        // Both models are scored on the same frames only.
+        if (std::isfinite(predicted) && std::isfinite(predicted_baseline)) {
+            scored.push_back({run, model.has_data_for(frame.configuration), frame.sample.power_w, predicted,
+                              predicted_baseline});
+        }
+        const bool has_next = run + 1 < report.configuration_runs;
+        if (has_next && t + options.switch_frames >= run_end(run) && baseline.fitted() && model.fitted()) {
+            const Configuration& next = resolved[run_start[run + 1]].configuration;
+            const double ours = model.predict(next);
+            const double theirs = baseline.predict_power(totals_in(frame, variants, next));
+            if (std::isfinite(ours) && std::isfinite(theirs)) {
+                switch_ours[run] += ours;
+                switch_baseline[run] += theirs;
+                ++switch_count[run];
             }
         }
 
@@ -125,17 +117,12 @@ ReplayReport replay_frames(const std::vector<LoggedFrame>& frames, const Platfor
             if (baseline_window.size() >= settings.fitting_window) baseline.fit(baseline_window, baseline_power);
         }
 
-        const OnlineFitter::Event event = fitter.add_frame(frame.sample, predicted);
+        const OnlineFitter::Event event = model.learn(frame.sample, frame.configuration, predicted);
         if (event == OnlineFitter::Event::CheckFailed) ++report.checks_failed;
-        if (event == OnlineFitter::Event::Fitted) {
-            ++report.fits;
-            fitted_configuration = current;
-            report.reuse = solve_reuse(fitter.model(), variants.space, fitted_configuration,
-                                       fitter.last_window_mean(), report.reuse);
-            if (predictor) predictor->refit(fitter.model(), fitted_configuration, report.reuse);
-            else predictor.emplace(variants.space, fitter.model(), fitted_configuration, report.reuse);
-        }
     }
+    report.fits = model.fits();
+    report.history_fits = model.history_fits();
+    report.reuse = model.reuse();
 
     for (const ScoredFrame& f : scored) {
         (f.fitted_here ? report.ours_fitted : report.ours_reused).per_frame.add(f.ours, f.measured);
@@ -146,6 +133,19 @@ ReplayReport replay_frames(const std::vector<LoggedFrame>& frames, const Platfor
     add_sliding_averages(scored, n, reused_class, &ScoredFrame::ours, nullptr, report.ours_reused.averaged);
     add_sliding_averages(scored, n, fitted_class, &ScoredFrame::baseline, nullptr, report.baseline_fitted.averaged);
     add_sliding_averages(scored, n, reused_class, &ScoredFrame::baseline, nullptr, report.baseline_reused.averaged);
+
+    report.runs.resize(report.configuration_runs);
+    for (std::size_t r = 0; r < report.configuration_runs; ++r) report.runs[r].configuration = resolved[run_start[r]].configuration;
+    for (const ScoredFrame& f : scored) {
+        ReplayRun& run = report.runs[f.run];
+        ++run.scored_frames;
+        run.fitted_here = run.fitted_here || f.fitted_here;
+        run.measured_w += f.measured, run.ours_w += f.ours, run.baseline_w += f.baseline;
+    }
+    for (ReplayRun& run : report.runs) {
+        const double n = static_cast<double>(std::max<std::size_t>(1, run.scored_frames));
+        run.measured_w /= n, run.ours_w /= n, run.baseline_w /= n;
+    }
 
     // The floor: each scored frame predicted by its run's mean measured power.
     std::vector<double> run_sum(report.configuration_runs, 0.0), run_mean(report.configuration_runs, 0.0);

@@ -207,6 +207,7 @@ void ConfigurationPredictor::set_frame(const std::vector<PassFrame>& frame,
 }
 
 double ConfigurationPredictor::predict(const Configuration& configuration) const {
+    if (tables_.empty()) return power_from_alpha(fitted_.profile(), 0.0);  // no frame given yet
     const std::vector<std::vector<LevelTerm>>& table = tables_[outer_combination(configuration)];
     double alpha = alpha_outside_space_;
     for (std::size_t i = 0; i < table.size(); ++i) {
@@ -261,7 +262,7 @@ void ConfigurationPredictor::predict_all(std::vector<double>& out) const {
     const std::size_t passes = space_.pass_count();
     const std::size_t split = passes / 2;
     const double p_min = fitted_.profile().p_min_w, range = fitted_.profile().range_w();
-    out.resize(space_.size());
+    out.assign(space_.size(), p_min);  // stays P_m when no frame has been given yet
     std::vector<double> front_q, back_q, back_e;
     std::vector<std::size_t> front_offsets, back_offsets;
     std::vector<std::vector<LevelTerm>> held;

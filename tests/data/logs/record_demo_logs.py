@@ -5,7 +5,8 @@ For each scene: the variant table comes from instrumentation dumps (GLBUDGET_DUM
 runs that draw every knob at level 0, 1 and 2; then the scene is rendered under the shim with
 the cpu power sensor, paced, in a sequence of configurations that move every knob (render
 scale, shadow-map size and reflections off change how many fragments are drawn, the other
-levels what each costs), and the logs are joined into one (frames renumbered in order, a
+levels what each costs), each run continuing the camera path of the one before, and the logs
+are joined into one (frames renumbered in order, a
 `configuration` column saying which configuration drew each frame, as the governor logs
 what it applied) so that the replay sees configuration changes as a running app would.
 Writes, per scene, into OUTDIR: demo_<scene>.csv, demo_<scene>.variants.json, and one
@@ -38,11 +39,11 @@ WIDTH, HEIGHT = 320, 180
 DEMO_ARGS = ["--detail", "0.05", "--width", str(WIDTH), "--height", str(HEIGHT)]
 
 
-def run_demo(build, scene, config, frames, env):
+def run_demo(build, scene, config, frames, env, start_frame=0):
     demo = os.path.join(build, "testapps/demo/demo")
     full_env = dict(os.environ, LD_PRELOAD=os.path.join(build, "interpose/libglbudget.so"), **env)
-    subprocess.run([demo, "--scene", scene, "--frames", str(frames), "--config", config] + DEMO_ARGS,
-                   env=full_env, check=True, capture_output=True)
+    subprocess.run([demo, "--scene", scene, "--frames", str(frames), "--start-frame", str(start_frame),
+                    "--config", config] + DEMO_ARGS, env=full_env, check=True, capture_output=True)
 
 
 def knob_of(fragment_source):
@@ -123,8 +124,11 @@ def record(build, scene, frames, fps, table, out_csv):
         levels = dict(zip(KNOBS, config.split(",")))
         configuration = ":".join(levels[name] for name in names)
         with tempfile.NamedTemporaryFile(suffix=".csv") as log:
+            # Each run continues the camera path where the previous one stopped, so the joined
+            # log is one walk through the scene whose configuration changes along the way.
             run_demo(build, scene, config, frames,
-                     {"GLBUDGET_LOG": log.name, "GLBUDGET_SENSOR": "cpu", "GLBUDGET_FPS": str(fps)})
+                     {"GLBUDGET_LOG": log.name, "GLBUDGET_SENSOR": "cpu", "GLBUDGET_FPS": str(fps)},
+                     start_frame=next_frame - 1)
             with open(log.name) as f:
                 reader = csv.reader(f)
                 header = next(reader) + ["configuration"]

@@ -13,6 +13,9 @@ struct FitSettings {
     std::size_t fitting_window = 30;   // frames per regression
     std::size_t check_window = 10;     // frames per accuracy check
     double refit_threshold = 0.10;     // mean |error| as a share of P_M - P_m that triggers a refit
+    // The paper starts fitting whenever a new configuration is set (§6.2); false: the new
+    // configuration is checked first and only refitted when the check fails.
+    bool refit_on_change = true;
     WindowFitSettings regression;
 };
 
@@ -29,8 +32,13 @@ public:
     Event add_frame(const FrameSample& sample, double predicted_power_w);
 
     // The rendered configuration changed: samples of the old one must not be mixed into a
-    // regression, so a partial fitting window is dropped, and the new one is checked first.
+    // window's regression, so a partial fitting window is dropped, and a new window starts
+    // (or, without refit_on_change, the new configuration is checked first).
     void configuration_changed();
+
+    // Coefficients found elsewhere (a fit over several configurations, history_fit.hpp) become
+    // the model that checks and the next window's prior.
+    void adopt(const PowerModel& model) { model_ = model; }
 
     Phase phase() const { return phase_; }
     bool has_model() const { return fits_ > 0; }

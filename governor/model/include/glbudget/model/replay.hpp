@@ -3,7 +3,7 @@
 // (predict each frame with the coefficients available at that moment, then feed it to the
 // online fitter) and through the Vatjus-Anttila baseline (fitted once on the first window),
 // and reports both models' errors on the same frames:
-//   fitted    frames rendered in the configuration the model was last fitted on;
+//   fitted    frames of configurations the last fit had frames of;
 //   reused    frames of other configurations, predicted by reusing the coefficients (§5.4);
 //   switch    what the governor's selection relies on: before each configuration change, the
 //             power of the next configuration predicted from the counts of the frames still
@@ -19,28 +19,42 @@
 #include "glbudget/model/online_fitter.hpp"
 #include "glbudget/model/prediction_error.hpp"
 #include "glbudget/model/reuse.hpp"
+#include "glbudget/model/run_time_model.hpp"
 #include "glbudget/model/variant_table.hpp"
 
 namespace glbudget::model {
 
 struct ReplayOptions {
     std::size_t average_frames = 30;  // sliding average length for the averaged errors
-    std::size_t switch_frames = 10;   // frames on each side of a configuration change
-    std::size_t settle_frames = 2;    // frames after a change not counted as its measurement
+    // Frames on each side of a configuration change for the switch error: more average out
+    // the sensor's scatter, fewer keep the view on both sides alike.
+    std::size_t switch_frames = 5;
+    std::size_t settle_frames = 1;    // frames after a change not counted as its measurement
+    HistorySettings history;          // the fit over several configurations (off: the paper's)
 };
 
 struct ReplayErrors {
     PredictionError per_frame, averaged;
 };
 
+// Means over one configuration run's scored frames.
+struct ReplayRun {
+    Configuration configuration;
+    std::size_t scored_frames = 0;
+    bool fitted_here = false;  // some of its frames were in the fitted configuration
+    double measured_w = 0.0, ours_w = 0.0, baseline_w = 0.0;
+};
+
 struct ReplayReport {
     ReplayErrors ours_fitted, ours_reused, baseline_fitted, baseline_reused;
     PredictionError ours_switch, baseline_switch;  // one pair per configuration change
     ReplayErrors floor;                            // configuration-run means, all scored frames
+    std::vector<ReplayRun> runs;
     std::size_t frames = 0;
     std::size_t frames_unusable = 0;  // no power or unmeasured counts
     std::size_t configuration_runs = 0;
     std::size_t fits = 0;
+    std::size_t history_fits = 0;     // of those, fits over several configurations
     std::size_t checks_failed = 0;
     ReuseCoefficients reuse;          // after the last fit
 };

@@ -1,0 +1,61 @@
+#pragma once
+// The power model as the governor runs it, frame by frame: predict the frame (and any other
+// configuration) from the coefficients of the moment, then learn from it. Wraps the paper's
+// online fitter (§5.3, §5.5: fitting and accuracy-check windows) and reuse (§5.4), and,
+// beyond the paper, refits over the recent frames of every configuration seen once there is
+// more than one (history_fit.hpp).
+#include <cstddef>
+#include <deque>
+#include <optional>
+#include <set>
+#include <vector>
+
+#include "glbudget/model/configuration_space.hpp"
+#include "glbudget/model/history_fit.hpp"
+#include "glbudget/model/online_fitter.hpp"
+#include "glbudget/model/reuse.hpp"
+
+namespace glbudget::model {
+
+struct HistorySettings {
+    bool enabled = true;
+    std::size_t frames = 300;  // usable frames kept, newest last
+    HistoryFitSettings fit;
+};
+
+class RunTimeModel {
+public:
+    RunTimeModel(PlatformProfile profile, ConfigurationSpace space, FitSettings fit = {},
+                 HistorySettings history = {});
+
+    // Sets the frame (its counts, drawn in `configuration`) and returns the predicted power of
+    // that configuration; NaN before the first fit.
+    double predict_frame(const FrameSample& frame, const Configuration& configuration);
+    // Another configuration for the frame last given to predict_frame().
+    double predict(const Configuration& configuration) const;
+    void predict_all(std::vector<double>& out) const;
+
+    // Learns from the frame last predicted (call after predict_frame, with its prediction).
+    OnlineFitter::Event learn(const FrameSample& frame, const Configuration& configuration, double predicted_w);
+
+    bool fitted() const { return predictor_.has_value(); }
+    // The last fit saw frames drawn in this configuration.
+    bool has_data_for(const Configuration& configuration) const { return fitted_configurations_.count(configuration) > 0; }
+    std::size_t fits() const { return fitter_.fits(); }
+    std::size_t history_fits() const { return history_fits_; }
+    ReuseCoefficients reuse() const { return reuse_; }
+
+private:
+    ConfigurationSpace space_;
+    HistorySettings history_settings_;
+    OnlineFitter fitter_;
+    std::deque<ConfiguredSample> history_;
+    std::optional<ConfigurationPredictor> predictor_;
+    Configuration current_;
+    Configuration fitted_configuration_;
+    std::set<Configuration> fitted_configurations_;
+    ReuseCoefficients reuse_;
+    std::size_t history_fits_ = 0;
+};
+
+}  // namespace glbudget::model

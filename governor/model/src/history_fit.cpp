@@ -1,0 +1,165 @@
+#include "glbudget/model/history_fit.hpp"
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <map>
+#include <set>
+#include <string>
+
+#include "glbudget/model/nonnegative_least_squares.hpp"
+#include "glbudget/model/power_curve.hpp"
+
+namespace glbudget::model {
+namespace {
+
+// A level's instructions and texels above the pass's cheapest drawing level.
+struct Excess {
+    double ins_v = 0.0, ins_f = 0.0, tex_f = 0.0;
+};
+
+std::vector<std::vector<Excess>> level_excess(const ConfigurationSpace& space) {
+    std::vector<std::vector<Excess>> excess(space.pass_count());
+    for (std::size_t i = 0; i < space.pass_count(); ++i) {
+        const auto& levels = space.passes()[i].levels;
+        VariantCost least{1e300, 1e300, 1e300};
+        for (const VariantCost& cost : levels) {
+            if (!cost.draws) continue;
+            least.ins_v = std::min(least.ins_v, cost.ins_v);
+            least.ins_f = std::min(least.ins_f, cost.ins_f);
+            least.tex_f = std::min(least.tex_f, cost.tex_f);
+        }
+        for (const VariantCost& cost : levels) {
+            excess[i].push_back(cost.draws ? Excess{cost.ins_v - least.ins_v, cost.ins_f - least.ins_f,
+                                                    cost.tex_f - least.tex_f}
+                                           : Excess{});
+        }
+    }
+    return excess;
+}
+
+std::size_t index_in_space(const ConfigurationSpace& space, const std::string& pass) {
+    for (std::size_t i = 0; i < space.pass_count(); ++i) {
+        if (space.passes()[i].pass == pass) return i;
+    }
+    return space.pass_count();
+}
+
+}  // namespace
+
+std::optional<HistoryFit> fit_history(std::span<const ConfiguredSample> samples, const ConfigurationSpace& space,
+                                      const PowerModel& prior, const Configuration& prior_configuration,
+                                      ReuseCoefficients prior_reuse, const Configuration& express_at,
+                                      const HistoryFitSettings& settings) {
+    const PlatformProfile& profile = prior.profile();
+    if (!(profile.range_w() > 0.0) || !space.contains(express_at)) return std::nullopt;
+    std::vector<const ConfiguredSample*> usable;
+    std::set<Configuration> configurations;
+    for (const ConfiguredSample& s : samples) {
+        if (!is_usable(s.sample) || !space.contains(s.configuration)) continue;
+        usable.push_back(&s);
+        configurations.insert(s.configuration);
+    }
+    if (usable.empty()) return std::nullopt;
+    const std::vector<std::vector<Excess>> excess = level_excess(space);
+
+    // Columns: (pass, term) for every pass that drew something, then chi and psi.
+    std::map<std::string, std::array<int, 3>> column_of;
+    for (const ConfiguredSample* s : usable) {
+        for (const PassFrame& p : s->sample.passes) {
+            auto [it, inserted] = column_of.try_emplace(p.pass, std::array<int, 3>{-1, -1, -1});
+            const double counts[3] = {p.counts.batches, p.counts.vertices, p.counts.fragments};
+            for (int t = 0; t < 3; ++t) {
+                if (counts[t] > 0.0) it->second[t] = 0;
+            }
+        }
+    }
+    std::vector<std::pair<std::string, int>> columns;
+    for (auto& [pass, indices] : column_of) {
+        for (int t = 0; t < 3; ++t) {
+            if (indices[t] >= 0) {
+                indices[t] = static_cast<int>(columns.size());
+                columns.push_back({pass, t});
+            }
+        }
+    }
+    const auto chi_column = static_cast<Eigen::Index>(columns.size());
+    const Eigen::Index psi_column = chi_column + 1;
+    const Eigen::Index cols = psi_column + 1;
+    const auto rows = static_cast<Eigen::Index>(usable.size());
+
+    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(rows, cols);
+    Eigen::VectorXd y(rows);
+    for (Eigen::Index r = 0; r < rows; ++r) {
+        const ConfiguredSample& s = *usable[static_cast<std::size_t>(r)];
+        const LinearisedPower target = linearise_power(profile, s.sample.power_w);
+        y(r) = target.weight * target.alpha;
+        for (const PassFrame& p : s.sample.passes) {
+            const double x[3] = {p.counts.batches / profile.saturation_batches,
+                                 p.counts.vertices / profile.saturation_vertices,
+                                 p.counts.fragments / profile.saturation_fragments};
+            const auto& indices = column_of.at(p.pass);
+            for (int t = 0; t < 3; ++t) {
+                if (indices[t] >= 0) a(r, indices[t]) += target.weight * x[t];
+            }
+            const std::size_t i = index_in_space(space, p.pass);
+            if (i == space.pass_count()) continue;
+            const Excess& d = excess[i][static_cast<std::size_t>(s.configuration[i])];
+            a(r, chi_column) += target.weight * (d.ins_v * x[1] + d.ins_f * x[2]);
+            a(r, psi_column) += target.weight * d.tex_f * x[2];
+        }
+    }
+
+    // Prior: the previous model's costs, split into level-independent parts and chi, psi.
+    const bool prior_levels = space.contains(prior_configuration);
+    Eigen::VectorXd z_prior(cols);
+    for (Eigen::Index c = 0; c < chi_column; ++c) {
+        const auto& [pass, term] = columns[static_cast<std::size_t>(c)];
+        const PassCoefficients* k = prior.find(pass);
+        double value = k ? (term == 0 ? k->k_b : term == 1 ? k->k_v : k->k_f) : 0.0;
+        const std::size_t i = index_in_space(space, pass);
+        if (k && prior_levels && i < space.pass_count()) {
+            const Excess& d = excess[i][static_cast<std::size_t>(prior_configuration[i])];
+            if (term == 1) value -= prior_reuse.chi * d.ins_v;
+            if (term == 2) value -= prior_reuse.chi * d.ins_f + prior_reuse.psi * d.tex_f;
+        }
+        z_prior(c) = std::max(0.0, value);
+    }
+    z_prior(chi_column) = prior_reuse.chi;
+    z_prior(psi_column) = prior_reuse.psi;
+
+    // Unit columns, a ridge towards the prior, non-negative costs.
+    Eigen::VectorXd scale = a.colwise().norm().transpose();
+    for (Eigen::Index c = 0; c < cols; ++c) {
+        if (scale(c) > 0.0) a.col(c) /= scale(c);
+    }
+    const double lambda = settings.ridge * settings.ridge * static_cast<double>(cols);
+    Eigen::MatrixXd gram = a.transpose() * a;
+    gram.diagonal().array() += lambda;
+    const Eigen::VectorXd scaled_prior = z_prior.cwiseProduct(scale);
+    const Eigen::VectorXd z = solve_nonnegative(gram, a.transpose() * y + lambda * scaled_prior);
+    Eigen::VectorXd unknowns = z_prior;  // a column with no data keeps its prior
+    for (Eigen::Index c = 0; c < cols; ++c) {
+        if (scale(c) > 0.0) unknowns(c) = z(c) / scale(c);
+    }
+
+    HistoryFit fit{prior, express_at, {unknowns(chi_column), unknowns(psi_column)}, usable.size(),
+                   configurations.size(), static_cast<std::size_t>(cols)};
+    for (const auto& [pass, indices] : column_of) {
+        PassCoefficients k;
+        if (const PassCoefficients* previous = prior.find(pass)) k = *previous;
+        double* terms[3] = {&k.k_b, &k.k_v, &k.k_f};
+        const std::size_t i = index_in_space(space, pass);
+        const Excess d = i < space.pass_count() ? excess[i][static_cast<std::size_t>(express_at[i])] : Excess{};
+        for (int t = 0; t < 3; ++t) {
+            if (indices[t] < 0) continue;  // no data for this term: the prior's value stands
+            *terms[t] = unknowns(indices[t]);
+        }
+        if (indices[1] >= 0) k.k_v += fit.reuse.chi * d.ins_v;
+        if (indices[2] >= 0) k.k_f += fit.reuse.chi * d.ins_f + fit.reuse.psi * d.tex_f;
+        fit.model.set(pass, k);
+    }
+    return fit;
+}
+
+}  // namespace glbudget::model
