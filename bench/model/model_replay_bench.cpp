@@ -7,6 +7,9 @@
 //
 //   model_replay_bench LOG.csv --profile PROFILE.json [--variants VARIANTS.json]
 //                      [--fit-window N] [--check-window N] [--threshold SHARE] [--average N]
+//                      [--paper]   (no fit over several configurations: the paper's path only)
+//                      [--drift-frames N]  (drift correction length; 0: off)
+//                      [--frames-csv PATH]  (every scored frame: measured and both predictions)
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -43,14 +46,14 @@ T parse_or_keep(const char* flag, const char* text, T fallback) {
 
 int usage() {
     std::cerr << "usage: model_replay_bench LOG.csv --profile PROFILE.json [--variants VARIANTS.json]"
-                 " [--fit-window N] [--check-window N] [--threshold SHARE] [--average N]\n";
+                 " [--fit-window N] [--check-window N] [--threshold SHARE] [--average N] [--paper] [--drift-frames N] [--frames-csv PATH]\n";
     return 2;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::string log_path, profile_path, variants_path;
+    std::string log_path, profile_path, variants_path, frames_csv;
     FitSettings settings;
     ReplayOptions options;
     for (int i = 1; i < argc; ++i) {
@@ -61,6 +64,9 @@ int main(int argc, char** argv) {
         else if (arg == "--fit-window" && has_value) settings.fitting_window = parse_or_keep("--fit-window", argv[++i], settings.fitting_window);
         else if (arg == "--check-window" && has_value) settings.check_window = parse_or_keep("--check-window", argv[++i], settings.check_window);
         else if (arg == "--threshold" && has_value) settings.refit_threshold = parse_or_keep("--threshold", argv[++i], settings.refit_threshold);
+        else if (arg == "--paper") options.history.enabled = false;
+        else if (arg == "--drift-frames" && has_value) options.history.drift_frames = static_cast<std::size_t>(std::atoi(argv[++i]));
+        else if (arg == "--frames-csv" && has_value) frames_csv = argv[++i];
         else if (arg == "--average" && has_value) options.average_frames = parse_or_keep("--average", argv[++i], options.average_frames);
         else if (log_path.empty() && arg.rfind("--", 0) != 0) log_path = arg;
         else return usage();
@@ -80,9 +86,10 @@ int main(int argc, char** argv) {
     const auto frames = frames_of_busiest_context(*log);
     const ReplayReport report = replay_frames(frames, *profile, variants, settings, options);
     std::printf("%s: %zu frames (%zu unusable), %zu configuration runs of %zu configurations, %zu fits "
-                "(%zu failed checks), chi %.4g psi %.4g\n",
+                "(%zu over several configurations, %zu failed checks), chi %.4g psi %.4g\n",
                 log_path.c_str(), report.frames, report.frames_unusable, report.configuration_runs,
-                variants.space.size(), report.fits, report.checks_failed, report.reuse.chi, report.reuse.psi);
+                variants.space.size(), report.fits, report.history_fits, report.checks_failed, report.reuse.chi,
+                report.reuse.psi);
     const std::string averaged = std::to_string(options.average_frames) + "-frame";
     std::printf("%-16s %-8s %-10s %7s %9s %14s %13s\n", "model", "frames", "scope", "count", "MAPE %", "mean %range",
                 "max %range");
@@ -93,6 +100,22 @@ int main(int argc, char** argv) {
     print_rows("vatjus-anttila", "reused", report.baseline_reused, averaged);
     print_row("vatjus-anttila", "switch", "next run", report.baseline_switch);
     print_rows("noise floor", "all", report.floor, averaged);
+    if (!frames_csv.empty()) {
+        if (FILE* out = std::fopen(frames_csv.c_str(), "w")) {
+            std::fprintf(out, "frame,run,fitted,measured_w,ours_w,baseline_w\n");
+            for (const ReplayFrame& f : report.scored) {
+                std::fprintf(out, "%llu,%zu,%d,%.4f,%.4f,%.4f\n", static_cast<unsigned long long>(f.frame), f.run,
+                             f.fitted_here ? 1 : 0, f.measured, f.ours, f.baseline);
+            }
+            std::fclose(out);
+        } else {
+            std::cerr << "glbudget: cannot write " << frames_csv << "\n";
+        }
+    }
+    std::printf("\nlast model: per-frame load %.4g; k_b, k_v, k_f per pass\n", report.model.frame_alpha());
+    for (const auto& [pass, k] : report.model.coefficients()) {
+        std::printf("  %-20s %10.4g %10.4g %10.4g\n", pass.c_str(), k.k_b, k.k_v, k.k_f);
+    }
     std::printf("\nper configuration run: scored frames, mean measured, ours, baseline (W)\n");
     for (const ReplayRun& run : report.runs) {
         std::string configuration;

@@ -29,6 +29,12 @@ TEST_CASE("replay of the synthetic six-pass log: fitted and reused within 2% MAP
     CHECK(report.ours_reused.per_frame.mape_percent() < 2.0);
     CHECK(report.baseline_fitted.per_frame.count() == report.ours_fitted.per_frame.count());
     CHECK(report.baseline_reused.per_frame.mape_percent() > report.ours_reused.per_frame.mape_percent());
+    CHECK(report.configuration_runs == 5);
+    CHECK(report.ours_switch.count() == 4);  // one prediction of the next run per change
+    CHECK(report.scored.size() == 270);
+    // Averages over 30 frames of one run: fewer pairs, never more error than a frame's worst.
+    CHECK(report.ours_reused.averaged.count() > 0);
+    CHECK(report.ours_reused.averaged.max_share_of_range() <= report.ours_reused.per_frame.max_share_of_range());
     // chi and psi are only loosely identified here (instructions and texels per fragment both
     // fall with every level in this log), but both costs are positive.
     CHECK(report.reuse.chi > 0.0);
@@ -49,11 +55,13 @@ TEST_CASE("replay without a variant table treats every program as its own pass",
 }
 
 // Logs recorded from the demo renderer under the shim with the cpu sensor, paced at 2 fps, in
-// five configurations that change the base-shading and metals variants
-// (tests/data/logs/record_demo_logs.py). Real data: the goal is the paper's (<= 2 % MAPE);
-// what is asserted is what these recordings show with room for noise, so that a regression
-// in the model or the reader fails here. The figures are printed by model_replay_bench.
-TEST_CASE("replay of the demo renderer's recorded logs: every scene predicted, reuse used", "[model][replay]") {
+// eight configurations that move all six knobs along one camera path
+// (tests/data/logs/record_demo_logs.py). Real data: the goal is the paper's (<= 2 % MAPE), not
+// reached with this sensor (its frame-to-frame scatter alone is 1.8-3.7 %); what is asserted
+// is what these recordings show with a margin, so that a regression in the model, the reader
+// or the replay fails here. The figures are printed by model_replay_bench and
+// bench/model/replay_summary.py.
+TEST_CASE("replay of the demo renderer's recorded logs: every scene predicted, better than the baseline", "[model][replay]") {
     const auto profile = load_platform_profile(kLogs + "demo_cpu.profile.json");
     REQUIRE(profile);
     for (const char* scene : {"hall", "sponza", "valley", "subway"}) {
@@ -63,14 +71,42 @@ TEST_CASE("replay of the demo renderer's recorded logs: every scene predicted, r
         const auto log = read_frame_log_file(base + ".csv");
         REQUIRE(variants);
         REQUIRE(log);
+        // Valley has neither metals nor reflections: those knobs drop out of its space.
+        CHECK(variants->space.size() == (std::string(scene) == "valley" ? 81u : 729u));
         const ReplayReport report = replay_frames(frames_of_busiest_context(*log), *profile, *variants);
-        CHECK(report.frames == 200);
-        CHECK(report.frames_unusable <= 12);  // the sensor's first swaps of each run carry no power
-        CHECK(report.fits >= 1);
-        CHECK(report.ours_reused.per_frame.count() >= 100);
-        // Recorded: 3.5-4.1 % fitted, 2.0-6.0 % reused (Subway's skinned soldiers' programs are
-        // outside the variant table).
-        CHECK(report.ours_fitted.per_frame.mape_percent() < 8.0);
-        CHECK(report.ours_reused.per_frame.mape_percent() < 8.0);
+        CHECK(report.frames == 320);
+        CHECK(report.frames_unusable <= 16);  // each run's first and last swap carry no power or counts
+        CHECK(report.configuration_runs == 8);
+        CHECK(report.fits >= 8);               // one per configuration run
+        CHECK(report.history_fits >= 6);       // all but the first run's fit span several
+        CHECK(report.ours_reused.per_frame.count() >= 150);
+        CHECK(report.ours_switch.count() == 7);
+        // Recorded: fitted 2.3-7.6 %, reused 4.8-6.5 % per frame, switches 6.2-10.2 %; the
+        // baseline 7.4-18.3 % on the same reused frames.
+        CHECK(report.ours_fitted.per_frame.mape_percent() < 10.0);
+        CHECK(report.ours_reused.per_frame.mape_percent() < 9.0);
+        CHECK(report.ours_switch.mape_percent() < 13.0);
+        CHECK(report.ours_reused.per_frame.mape_percent() < report.baseline_reused.per_frame.mape_percent());
+        // The floor is the sensor's scatter around each run's mean: below every model's error.
+        CHECK(report.floor.per_frame.mape_percent() < report.ours_reused.per_frame.mape_percent());
+        CHECK(report.floor.averaged.mape_percent() < 1.0);
     }
+}
+
+TEST_CASE("replay without the fit over several configurations follows the paper's path", "[model][replay]") {
+    const auto profile = load_platform_profile(kLogs + "demo_cpu.profile.json");
+    const auto variants = load_variant_table(kLogs + "demo_subway.variants.json");
+    const auto log = read_frame_log_file(kLogs + "demo_subway.csv");
+    REQUIRE(profile);
+    REQUIRE(variants);
+    REQUIRE(log);
+    ReplayOptions paper;
+    paper.history.enabled = false;
+    const auto frames = frames_of_busiest_context(*log);
+    const ReplayReport one_window = replay_frames(frames, *profile, *variants, {}, paper);
+    const ReplayReport several = replay_frames(frames, *profile, *variants);
+    CHECK(one_window.history_fits == 0);
+    CHECK(one_window.fits == several.fits);
+    // Recorded on Subway: 17.4 % against 6.0 % on reused frames.
+    CHECK(several.ours_reused.per_frame.mape_percent() < 0.6 * one_window.ours_reused.per_frame.mape_percent());
 }

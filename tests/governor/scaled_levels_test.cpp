@@ -202,3 +202,18 @@ TEST_CASE("variant-table mistakes are reported and the rest is kept", "[model][v
     CHECK(messages.find("\"draws\" must be true or false") != std::string::npos);
     CHECK(messages.find("a level must be an object") != std::string::npos);
 }
+
+TEST_CASE("coefficients fitted while a pass was skipped are those of its cheapest drawing level", "[model][reuse][scale]") {
+    // Fitted with glass off: its k (say from a fit over several configurations) holds for its
+    // cheapest level, and the better level adds chi and psi times its extra instructions and
+    // texels, not its whole cost as if the skipped level cost nothing.
+    VariantCost off;
+    off.draws = false;
+    const ConfigurationSpace space({PassVariants{"glass", {{10, 300, 8}, {10, 200, 5}, off}, {}}});
+    PowerModel model(synthetic_profile());
+    model.set("glass", {0.1, 0.2, 3.0});
+    const ReuseCoefficients reuse{0.01, 0.2};
+    ConfigurationPredictor predictor(space, model, {2}, reuse);
+    CHECK(predictor.coefficients(0, 1).k_f == Approx(3.0));
+    CHECK(predictor.coefficients(0, 0).k_f == Approx(3.0 + 0.01 * 100 + 0.2 * 3));
+}

@@ -21,15 +21,9 @@ struct Excess {
 std::vector<std::vector<Excess>> level_excess(const ConfigurationSpace& space) {
     std::vector<std::vector<Excess>> excess(space.pass_count());
     for (std::size_t i = 0; i < space.pass_count(); ++i) {
-        const auto& levels = space.passes()[i].levels;
-        VariantCost least{1e300, 1e300, 1e300};
-        for (const VariantCost& cost : levels) {
-            if (!cost.draws) continue;
-            least.ins_v = std::min(least.ins_v, cost.ins_v);
-            least.ins_f = std::min(least.ins_f, cost.ins_f);
-            least.tex_f = std::min(least.tex_f, cost.tex_f);
-        }
-        for (const VariantCost& cost : levels) {
+        const VariantCost least = cheapest_drawing_level(space.passes()[i]);
+        for (const VariantCost& cost : space.passes()[i].levels) {
+            // A skipped level draws nothing; its entry is never used with a count.
             excess[i].push_back(cost.draws ? Excess{cost.ins_v - least.ins_v, cost.ins_f - least.ins_f,
                                                     cost.tex_f - least.tex_f}
                                            : Excess{});
@@ -85,7 +79,8 @@ std::optional<HistoryFit> fit_history(std::span<const ConfiguredSample> samples,
     }
     const auto chi_column = static_cast<Eigen::Index>(columns.size());
     const Eigen::Index psi_column = chi_column + 1;
-    const Eigen::Index cols = psi_column + 1;
+    const Eigen::Index frame_column = psi_column + 1;  // the per-frame load (power_model.hpp)
+    const Eigen::Index cols = frame_column + 1;
     const auto rows = static_cast<Eigen::Index>(usable.size());
 
     Eigen::MatrixXd a = Eigen::MatrixXd::Zero(rows, cols);
@@ -94,6 +89,7 @@ std::optional<HistoryFit> fit_history(std::span<const ConfiguredSample> samples,
         const ConfiguredSample& s = *usable[static_cast<std::size_t>(r)];
         const LinearisedPower target = linearise_power(profile, s.sample.power_w);
         y(r) = target.weight * target.alpha;
+        a(r, frame_column) = target.weight;
         for (const PassFrame& p : s.sample.passes) {
             const double x[3] = {p.counts.batches / profile.saturation_batches,
                                  p.counts.vertices / profile.saturation_vertices,
@@ -127,17 +123,22 @@ std::optional<HistoryFit> fit_history(std::span<const ConfiguredSample> samples,
     }
     z_prior(chi_column) = prior_reuse.chi;
     z_prior(psi_column) = prior_reuse.psi;
+    z_prior(frame_column) = prior.frame_alpha();
 
     // Unit columns, a ridge towards the prior, non-negative costs.
     Eigen::VectorXd scale = a.colwise().norm().transpose();
     for (Eigen::Index c = 0; c < cols; ++c) {
         if (scale(c) > 0.0) a.col(c) /= scale(c);
     }
+    // The per-frame load is not pulled towards its prior: what no count explains is the
+    // frame's own cost first, rather than the cost of a pass that happens to draw every frame.
     const double lambda = settings.ridge * settings.ridge * static_cast<double>(cols);
+    Eigen::VectorXd ridge = Eigen::VectorXd::Constant(cols, lambda);
+    ridge(frame_column) = settings.frame_ridge * settings.frame_ridge * static_cast<double>(cols);
     Eigen::MatrixXd gram = a.transpose() * a;
-    gram.diagonal().array() += lambda;
+    gram.diagonal() += ridge;
     const Eigen::VectorXd scaled_prior = z_prior.cwiseProduct(scale);
-    const Eigen::VectorXd z = solve_nonnegative(gram, a.transpose() * y + lambda * scaled_prior);
+    const Eigen::VectorXd z = solve_nonnegative(gram, a.transpose() * y + ridge.cwiseProduct(scaled_prior));
     Eigen::VectorXd unknowns = z_prior;  // a column with no data keeps its prior
     for (Eigen::Index c = 0; c < cols; ++c) {
         if (scale(c) > 0.0) unknowns(c) = z(c) / scale(c);
@@ -159,6 +160,7 @@ std::optional<HistoryFit> fit_history(std::span<const ConfiguredSample> samples,
         if (indices[2] >= 0) k.k_f += fit.reuse.chi * d.ins_f + fit.reuse.psi * d.tex_f;
         fit.model.set(pass, k);
     }
+    fit.model.set_frame_alpha(unknowns(frame_column));
     return fit;
 }
 

@@ -28,7 +28,7 @@ const PassCoefficients* PowerModel::find(const std::string& pass) const {
 }
 
 double PowerModel::alpha(const std::vector<PassFrame>& passes) const {
-    double sum = 0.0;
+    double sum = frame_alpha_;
     for (const PassFrame& pass : passes) {
         if (const PassCoefficients* k = find(pass.pass)) sum += pass_alpha(profile_, *k, pass.counts);
     }

@@ -10,12 +10,7 @@
 namespace glbudget::model {
 namespace {
 
-// A frame both models predicted.
-struct ScoredFrame {
-    std::size_t run = 0;       // configuration run it belongs to
-    bool fitted_here = false;  // drawn in the configuration the model was fitted on
-    double measured = 0.0, ours = 0.0, baseline = 0.0;
-};
+using ScoredFrame = ReplayFrame;
 
 // Sliding averages over `length` consecutive scored frames of one run and one class.
 void add_sliding_averages(const std::vector<ScoredFrame>& scored, std::size_t length,
@@ -96,8 +91,8 @@ ReplayReport replay_frames(const std::vector<LoggedFrame>& frames, const Platfor
         const double predicted_baseline = baseline.fitted() ? baseline.predict_power(frame.totals) : std::nan("");
         // Both models are scored on the same frames only.
         if (std::isfinite(predicted) && std::isfinite(predicted_baseline)) {
-            scored.push_back({run, model.has_data_for(frame.configuration), frame.sample.power_w, predicted,
-                              predicted_baseline});
+            scored.push_back({frames[t].frame, run, model.has_data_for(frame.configuration), frame.sample.power_w,
+                              predicted, predicted_baseline});
         }
         const bool has_next = run + 1 < report.configuration_runs;
         if (has_next && t + options.switch_frames >= run_end(run) && baseline.fitted() && model.fitted()) {
@@ -123,6 +118,8 @@ ReplayReport replay_frames(const std::vector<LoggedFrame>& frames, const Platfor
     report.fits = model.fits();
     report.history_fits = model.history_fits();
     report.reuse = model.reuse();
+    report.model = model.model();
+    report.model_configuration = model.fitted_configuration();
 
     for (const ScoredFrame& f : scored) {
         (f.fitted_here ? report.ours_fitted : report.ours_reused).per_frame.add(f.ours, f.measured);
@@ -174,6 +171,7 @@ ReplayReport replay_frames(const std::vector<LoggedFrame>& frames, const Platfor
         report.ours_switch.add(switch_ours[r] / count, measured_sum / static_cast<double>(measured));
         report.baseline_switch.add(switch_baseline[r] / count, measured_sum / static_cast<double>(measured));
     }
+    report.scored = std::move(scored);
     return report;
 }
 

@@ -20,6 +20,19 @@ const PassCounts* find_counts(const std::vector<PassFrame>& frame, const std::st
 
 }  // namespace
 
+VariantCost cheapest_drawing_level(const PassVariants& pass) {
+    VariantCost least{0.0, 0.0, 0.0};
+    bool any = false;
+    for (const VariantCost& cost : pass.levels) {
+        if (!cost.draws) continue;
+        least.ins_v = any ? std::min(least.ins_v, cost.ins_v) : cost.ins_v;
+        least.ins_f = any ? std::min(least.ins_f, cost.ins_f) : cost.ins_f;
+        least.tex_f = any ? std::min(least.tex_f, cost.tex_f) : cost.tex_f;
+        any = true;
+    }
+    return least;
+}
+
 ReuseCoefficients solve_reuse(const PowerModel& fitted, const ConfigurationSpace& space,
                               const Configuration& fitted_configuration,
                               const std::vector<PassFrame>& window_mean,
@@ -106,9 +119,11 @@ void ConfigurationPredictor::refit(const PowerModel& fitted, const Configuration
             coefficients_[i].assign(pass.levels.size(), PassCoefficients{});  // never drew
             continue;
         }
-        const VariantCost base =
-            have_fitted_levels ? pass.levels[static_cast<std::size_t>(fitted_configuration[i])]
-                               : VariantCost{};
+        VariantCost base = have_fitted_levels ? pass.levels[static_cast<std::size_t>(fitted_configuration[i])]
+                                              : VariantCost{};
+        // Fitted while the pass was skipped: its coefficients (remembered from when it drew,
+        // or from a fit over several configurations) are those of its cheapest drawing level.
+        if (!base.draws) base = cheapest_drawing_level(pass);
         for (const VariantCost& cost : pass.levels) {
             coefficients_[i].push_back(
                 {k->k_b, std::max(0.0, k->k_v + reuse.chi * (cost.ins_v - base.ins_v)),
@@ -147,7 +162,7 @@ void ConfigurationPredictor::set_frame(const std::vector<PassFrame>& frame,
 
     // Reference counts of the space's passes; the rest load every configuration alike.
     for (ReferenceCounts& r : reference_) r = ReferenceCounts{{}, true};
-    alpha_outside_space_ = 0.0;
+    alpha_outside_space_ = fitted_.frame_alpha() + load_offset_;
     for (const PassFrame& p : frame) {
         bool in_space = false;
         for (std::size_t i = 0; i < passes; ++i) {
@@ -207,7 +222,7 @@ void ConfigurationPredictor::set_frame(const std::vector<PassFrame>& frame,
 }
 
 double ConfigurationPredictor::predict(const Configuration& configuration) const {
-    if (tables_.empty()) return power_from_alpha(fitted_.profile(), 0.0);  // no frame given yet
+    if (tables_.empty()) return fitted_.profile().p_min_w;  // no frame given yet
     const std::vector<std::vector<LevelTerm>>& table = tables_[outer_combination(configuration)];
     double alpha = alpha_outside_space_;
     for (std::size_t i = 0; i < table.size(); ++i) {

@@ -3,11 +3,13 @@
 #include <cmath>
 #include <limits>
 
+#include "glbudget/model/power_curve.hpp"
+
 namespace glbudget::model {
 
 RunTimeModel::RunTimeModel(PlatformProfile profile, ConfigurationSpace space, FitSettings fit,
                            HistorySettings history)
-    : space_(std::move(space)), history_settings_(history), fitter_(profile, fit) {}
+    : space_(std::move(space)), history_settings_(history), fitter_(profile, fit), model_(profile) {}
 
 double RunTimeModel::predict_frame(const FrameSample& frame, const Configuration& configuration) {
     if (!current_.empty() && configuration != current_) fitter_.configuration_changed();
@@ -27,11 +29,37 @@ void RunTimeModel::predict_all(std::vector<double>& out) const {
     else out.assign(space_.size(), std::numeric_limits<double>::quiet_NaN());
 }
 
+// The history's coefficients explain several configurations over the last few hundred frames;
+// the power of the configuration being drawn may have drifted since (a sensor's slow drift, a
+// machine's speed, a scene's lighting). Shifting the per-frame load by the mean residual of
+// the fitting window keeps what the history learned about the differences between
+// configurations and predicts the current one as the window measured it, as the paper's
+// window fit does. The shift may make the per-frame load negative: it is a correction, not a
+// cost of its own.
+void RunTimeModel::anchor_to_recent(PowerModel& model, const Configuration& configuration) const {
+    const std::size_t window = fitter_.last_fit().samples_used;
+    double residual = 0.0;
+    std::size_t n = 0;
+    for (auto it = history_.rbegin(); it != history_.rend() && n < window; ++it) {
+        if (it->configuration != configuration) break;
+        residual += linearise_power(model.profile(), it->sample.power_w).alpha - model.alpha(it->sample.passes);
+        ++n;
+    }
+    if (n > 0) model.set_frame_alpha(model.frame_alpha() + residual / static_cast<double>(n));
+}
+
 OnlineFitter::Event RunTimeModel::learn(const FrameSample& frame, const Configuration& configuration,
                                         double predicted_w) {
     if (is_usable(frame) && space_.contains(configuration)) {
         history_.push_back({frame, configuration});
         while (history_.size() > history_settings_.frames) history_.pop_front();
+    }
+    if (predictor_ && history_settings_.drift_frames > 0 && is_usable(frame) && std::isfinite(predicted_w)) {
+        // The residual in load terms: what the frame measured beyond what was predicted.
+        const PlatformProfile& profile = model_.profile();
+        const double residual = linearise_power(profile, frame.power_w).alpha - linearise_power(profile, predicted_w).alpha;
+        drift_alpha_ += residual / static_cast<double>(history_settings_.drift_frames);
+        predictor_->set_load_offset(drift_alpha_);
     }
     const OnlineFitter::Event event = fitter_.add_frame(frame, predicted_w);
     if (event != OnlineFitter::Event::Fitted) return event;
@@ -51,15 +79,20 @@ OnlineFitter::Event RunTimeModel::learn(const FrameSample& frame, const Configur
                                        history_settings_.fit)) {
                 model = fit->model;
                 reuse_ = fit->reuse;
+                anchor_to_recent(model, configuration);
                 fitted_configurations_ = seen;
                 fitter_.adopt(model);
                 ++history_fits_;
             }
         }
     }
+    // A fit (and its anchoring to the window) starts the drift correction afresh.
+    drift_alpha_ = 0.0;
     fitted_configuration_ = fitted_at;
+    model_ = model;
     if (predictor_) predictor_->refit(model, fitted_at, reuse_);
     else predictor_.emplace(space_, model, fitted_at, reuse_);
+    predictor_->set_load_offset(0.0);
     return event;
 }
 

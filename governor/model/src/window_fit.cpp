@@ -6,7 +6,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <string>
 #include <vector>
 
@@ -18,6 +17,17 @@ namespace {
 
 constexpr int kTerms = 3;  // batches, vertices, fragments
 
+// Up to this many columns (8 passes x 3 terms) the small matrices of a solve (A'A, its
+// eigenvectors, the solver's workspace) have a fixed maximum size and live on the stack:
+// at these sizes heap allocations cost as much as the arithmetic. Wider windows (every
+// program its own pass, no manifest) use dynamic storage and compute the same.
+constexpr int kStackColumns = 24;
+
+template <int MaxCols>
+using SmallMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, MaxCols, MaxCols>;
+template <int MaxCols>
+using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, MaxCols, 1>;
+
 std::array<double, kTerms> normalised_counts(const PlatformProfile& profile, const PassCounts& c) {
     return {c.batches / profile.saturation_batches, c.vertices / profile.saturation_vertices,
             c.fragments / profile.saturation_fragments};
@@ -25,16 +35,19 @@ std::array<double, kTerms> normalised_counts(const PlatformProfile& profile, con
 
 double& term(PassCoefficients& k, int t) { return t == 0 ? k.k_b : t == 1 ? k.k_v : k.k_f; }
 
-struct Column {
-    std::string pass;
-    int term;
+// One pass of the window and its columns.
+struct WindowPass {
+    const std::string* name;
+    std::array<int, kTerms> column{-1, -1, -1};  // -1: no column (the term's count is 0 throughout)
+    const PassCoefficients* previous = nullptr;
 };
 
+template <int MaxCols>
 struct RidgeSolution {
-    Eigen::VectorXd coefficients;
+    SmallVector<MaxCols> coefficients;
     // Share of each estimate owed to the prior: lambda (G^-1)_jj on the scaled problem; 1 for a
     // column the data says nothing about, ~0 for a well-identified one.
-    Eigen::VectorXd prior_share;
+    SmallVector<MaxCols> prior_share;
 };
 
 // Generalised cross-validation (Golub, Heath & Wahba 1979) picks how far a window's
@@ -42,11 +55,11 @@ struct RidgeSolution {
 // noisy or barely varying counts a stronger pull instead of noise amplified into the
 // coefficients. Works on the eigen-decomposition of A'A: `s2` are the squared singular values
 // of A, `v_atr` = V' A' r for the residual r = y - A prior.
-double choose_lambda(const Eigen::VectorXd& s2, const Eigen::VectorXd& v_atr, double residual_norm2,
-                     double rows, double floor) {
+template <typename Vector>
+double choose_lambda(const Vector& s2, const Vector& v_atr, double residual_norm2, double rows, double floor) {
     // Squared components of r along A's left singular vectors: (v_i' A' r)^2 / s_i^2.
     const double negligible = 1e-14 * std::max(s2.maxCoeff(), 1e-300);
-    Eigen::VectorXd projected2(s2.size());
+    Vector projected2(s2.size());
     for (Eigen::Index i = 0; i < s2.size(); ++i) {
         projected2(i) = s2(i) > negligible ? v_atr(i) * v_atr(i) / s2(i) : 0.0;
     }
@@ -73,32 +86,41 @@ double choose_lambda(const Eigen::VectorXd& s2, const Eigen::VectorXd& v_atr, do
 // GCV, never below ridge^2 * columns: directions of A with singular values well below
 // sqrt(lambda) stay at the prior. One symmetric eigen-decomposition of A'A serves the choice
 // of lambda, the ridge solution and the prior shares; the active-set solver only runs when
-// that solution has a negative coefficient.
-RidgeSolution solve_ridge_nonnegative(Eigen::MatrixXd a, const Eigen::VectorXd& y,
-                                      const Eigen::VectorXd& prior, double ridge) {
+// that solution has a negative coefficient. MaxCols bounds A's columns (see kStackColumns).
+template <int MaxCols>
+RidgeSolution<MaxCols> solve_ridge_nonnegative(Eigen::MatrixXd a, const Eigen::VectorXd& y,
+                                               const SmallVector<MaxCols>& prior, double ridge) {
+    using Matrix = SmallMatrix<MaxCols>;
+    using Vector = SmallVector<MaxCols>;
     const Eigen::Index cols = a.cols();
-    const Eigen::VectorXd scale = a.colwise().norm().transpose();
+    const Vector scale = a.colwise().norm().transpose();
     for (Eigen::Index c = 0; c < cols; ++c) {
         if (scale(c) > 0.0) a.col(c) /= scale(c);
     }
-    const Eigen::VectorXd scaled_prior = prior.cwiseProduct(scale);
+    const Vector scaled_prior = prior.cwiseProduct(scale);
     const Eigen::VectorXd residual = y - a * scaled_prior;
-    Eigen::MatrixXd gram = a.transpose() * a;
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(gram);
-    const Eigen::VectorXd s2 = eigen.eigenvalues().cwiseMax(0.0);
-    const Eigen::MatrixXd& v = eigen.eigenvectors();
-    const Eigen::VectorXd v_atr = v.transpose() * (a.transpose() * residual);
+    // A'A by column dot products: Eigen's general product sets up blocking and a heap buffer,
+    // which costs more than the few thousand multiply-adds of a 30 x 18 window.
+    Matrix gram(cols, cols);
+    for (Eigen::Index j = 0; j < cols; ++j) {
+        for (Eigen::Index i = j; i < cols; ++i) gram(i, j) = gram(j, i) = a.col(i).dot(a.col(j));
+    }
+    const Eigen::SelfAdjointEigenSolver<Matrix> eigen(gram);
+    const Vector s2 = eigen.eigenvalues().cwiseMax(0.0);
+    const Matrix& v = eigen.eigenvectors();
+    const Vector v_atr = v.transpose() * (a.transpose() * residual);
     const double lambda = choose_lambda(s2, v_atr, residual.squaredNorm(), static_cast<double>(a.rows()),
                                         ridge * ridge * static_cast<double>(cols));
-    const Eigen::VectorXd inverse_eigen = (s2.array() + lambda).inverse().matrix();
+    const Vector inverse_eigen = (s2.array() + lambda).inverse().matrix();
 
-    Eigen::VectorXd z = scaled_prior + v * inverse_eigen.cwiseProduct(v_atr);
+    Vector z = scaled_prior + v * inverse_eigen.cwiseProduct(v_atr);
     if (z.minCoeff() < 0.0) {
         gram.diagonal().array() += lambda;
-        z = solve_nonnegative(gram, a.transpose() * y + lambda * scaled_prior);
+        const Vector rhs = a.transpose() * y + lambda * scaled_prior;
+        solve_nonnegative(gram, rhs, z);
     }
 
-    RidgeSolution solution;
+    RidgeSolution<MaxCols> solution;
     // Share of each estimate owed to the prior: lambda (G^-1)_jj, G = A'A + lambda I.
     solution.prior_share = lambda * (v.array().square().matrix() * inverse_eigen);
     solution.coefficients = prior;  // an all-zero column keeps its prior
@@ -106,6 +128,55 @@ RidgeSolution solve_ridge_nonnegative(Eigen::MatrixXd a, const Eigen::VectorXd& 
         if (scale(c) > 0.0) solution.coefficients(c) = z(c) / scale(c);
     }
     return solution;
+}
+
+// The regression of fit_window once the window is laid out as columns; MaxCols as above.
+template <int MaxCols>
+void fit_columns(Eigen::MatrixXd a, const Eigen::VectorXd& y, const std::vector<WindowPass>& passes,
+                 const WindowFitSettings& settings, WindowFitResult& result) {
+    const Eigen::Index cols = a.cols();
+    // Prior for each column: the previous coefficient where the pass has one; for a pass seen
+    // for the first time, the pooled fit below (one k_b, k_v, k_f shared by all passes, which
+    // a window identifies far better than per-pass values).
+    SmallVector<MaxCols> prior(cols);
+    bool any_new = false;
+    for (const WindowPass& pass : passes) {
+        PassCoefficients k = pass.previous ? *pass.previous : PassCoefficients{};
+        any_new = any_new || (pass.previous == nullptr && pass.column != std::array<int, kTerms>{-1, -1, -1});
+        for (int t = 0; t < kTerms; ++t) {
+            if (pass.column[t] >= 0) prior(pass.column[t]) = term(k, t);
+        }
+    }
+    if (any_new) {
+        // Three columns only: a 3 x 3 eigen-problem with stack storage.
+        Eigen::MatrixXd pooled = Eigen::MatrixXd::Zero(a.rows(), kTerms);
+        for (const WindowPass& pass : passes) {
+            for (int t = 0; t < kTerms; ++t) {
+                if (pass.column[t] >= 0) pooled.col(t) += a.col(pass.column[t]);
+            }
+        }
+        const RidgeSolution<kTerms> shared = solve_ridge_nonnegative<kTerms>(
+            std::move(pooled), y, SmallVector<kTerms>::Zero(kTerms), settings.ridge);
+        for (const WindowPass& pass : passes) {
+            if (pass.previous != nullptr) continue;
+            for (int t = 0; t < kTerms; ++t) {
+                if (pass.column[t] >= 0) prior(pass.column[t]) = shared.coefficients(t);
+            }
+        }
+    }
+    const RidgeSolution<MaxCols> solution = solve_ridge_nonnegative<MaxCols>(std::move(a), y, prior, settings.ridge);
+
+    for (Eigen::Index c = 0; c < cols; ++c) {
+        if (solution.prior_share(c) > settings.held_share) ++result.held_terms;
+    }
+    for (const WindowPass& pass : passes) {
+        if (pass.column == std::array<int, kTerms>{-1, -1, -1}) continue;  // keeps what it had
+        PassCoefficients k = pass.previous ? *pass.previous : PassCoefficients{};
+        for (int t = 0; t < kTerms; ++t) {
+            if (pass.column[t] >= 0) term(k, t) = solution.coefficients(pass.column[t]);
+        }
+        result.model.set(*pass.name, k);
+    }
 }
 
 }  // namespace
@@ -116,6 +187,7 @@ WindowFitResult fit_window(std::span<const FrameSample> window, const PowerModel
     const PlatformProfile& profile = previous.profile();
 
     std::vector<const FrameSample*> usable;
+    usable.reserve(window.size());
     for (const FrameSample& sample : window) {
         if (is_usable(sample)) usable.push_back(&sample);
         else ++result.samples_rejected;
@@ -123,74 +195,73 @@ WindowFitResult fit_window(std::span<const FrameSample> window, const PowerModel
     result.samples_used = usable.size();
     if (usable.empty() || !(profile.range_w() > 0.0)) return result;  // nothing to learn
 
-    // One column per (pass, term) with any non-zero count in the window.
-    std::map<std::string, std::array<int, kTerms>> column_of;  // -1: no column
+    // The window's distinct passes, and for every (sample, pass entry) which of them it is.
+    // Frames list their passes in much the same order, so the search starts where the same
+    // entry of the previous frame was found (a string map cost a fifth of the fit).
+    std::vector<WindowPass> passes;
+    std::vector<int> pass_of_entry;
+    std::size_t entries = 0;
+    for (const FrameSample* sample : usable) entries += sample->passes.size();
+    pass_of_entry.reserve(entries);
+    std::vector<bool> nonzero;  // per pass and term: any count > 0 in the window
+    std::vector<int> hint;      // per entry position: the pass found there in the last frame
     for (const FrameSample* sample : usable) {
-        for (const PassFrame& pass : sample->passes) {
-            auto [it, inserted] = column_of.try_emplace(pass.pass);
-            if (inserted) it->second.fill(-1);
-            const auto x = normalised_counts(profile, pass.counts);
+        for (std::size_t e = 0; e < sample->passes.size(); ++e) {
+            const PassFrame& entry = sample->passes[e];
+            if (hint.size() <= e) hint.push_back(0);
+            int found = -1;
+            for (std::size_t i = 0; i < passes.size() && found < 0; ++i) {
+                const int p = static_cast<int>((static_cast<std::size_t>(hint[e]) + i) % passes.size());
+                if (*passes[p].name == entry.pass) found = p;
+            }
+            if (found < 0) {
+                found = static_cast<int>(passes.size());
+                passes.push_back({&entry.pass});
+                nonzero.resize(nonzero.size() + kTerms, false);
+            }
+            hint[e] = found;
+            pass_of_entry.push_back(found);
+            const auto x = normalised_counts(profile, entry.counts);
             for (int t = 0; t < kTerms; ++t) {
-                if (x[t] > 0.0 && it->second[t] < 0) it->second[t] = 0;  // mark, numbered below
+                if (x[t] > 0.0) nonzero[static_cast<std::size_t>(found) * kTerms + t] = true;
             }
         }
     }
-    std::vector<Column> columns;
-    for (auto& [pass, indices] : column_of) {
+    // One column per (pass, term) with any non-zero count in the window, numbered in order of
+    // pass name (the order does not change the fit beyond rounding; it keeps it reproducible).
+    std::vector<int> by_name(passes.size());
+    for (std::size_t i = 0; i < by_name.size(); ++i) by_name[i] = static_cast<int>(i);
+    std::sort(by_name.begin(), by_name.end(), [&](int l, int r) { return *passes[l].name < *passes[r].name; });
+    int cols = 0;
+    for (int p : by_name) {
         for (int t = 0; t < kTerms; ++t) {
-            if (indices[t] >= 0) {
-                indices[t] = static_cast<int>(columns.size());
-                columns.push_back({pass, t});
-            }
+            if (nonzero[static_cast<std::size_t>(p) * kTerms + t]) passes[p].column[t] = cols++;
         }
+        passes[p].previous = previous.find(*passes[p].name);
     }
-    result.columns = columns.size();
-    if (columns.empty()) return result;
+    result.columns = static_cast<std::size_t>(cols);
+    if (cols == 0) return result;
 
     const auto rows = static_cast<Eigen::Index>(usable.size());
-    const auto cols = static_cast<Eigen::Index>(columns.size());
     Eigen::MatrixXd a = Eigen::MatrixXd::Zero(rows, cols);
     Eigen::VectorXd y(rows);
+    std::size_t next_entry = 0;
     for (Eigen::Index r = 0; r < rows; ++r) {
         const LinearisedPower target = linearise_power(profile, usable[r]->power_w);
         y(r) = target.weight * target.alpha;
-        for (const PassFrame& pass : usable[r]->passes) {
-            const auto& indices = column_of.at(pass.pass);
-            const auto x = normalised_counts(profile, pass.counts);
+        for (const PassFrame& entry : usable[r]->passes) {
+            const auto& column = passes[pass_of_entry[next_entry++]].column;
+            const auto x = normalised_counts(profile, entry.counts);
             for (int t = 0; t < kTerms; ++t) {
-                if (indices[t] >= 0) a(r, indices[t]) += target.weight * x[t];
+                if (column[t] >= 0) a(r, column[t]) += target.weight * x[t];
             }
         }
     }
 
-    // Prior for each column: the previous coefficient where the pass has one; for a pass seen
-    // for the first time, the pooled fit below (one k_b, k_v, k_f shared by all passes, which
-    // a window identifies far better than per-pass values).
-    Eigen::VectorXd prior(cols);
-    std::vector<bool> has_previous(static_cast<std::size_t>(cols));
-    for (Eigen::Index c = 0; c < cols; ++c) {
-        const PassCoefficients* found = previous.find(columns[c].pass);
-        has_previous[c] = found != nullptr;
-        PassCoefficients k = found ? *found : PassCoefficients{};
-        prior(c) = term(k, columns[c].term);
-    }
-    if (std::find(has_previous.begin(), has_previous.end(), false) != has_previous.end()) {
-        Eigen::MatrixXd pooled = Eigen::MatrixXd::Zero(rows, kTerms);
-        for (Eigen::Index c = 0; c < cols; ++c) pooled.col(columns[c].term) += a.col(c);
-        const RidgeSolution shared = solve_ridge_nonnegative(pooled, y, Eigen::VectorXd::Zero(kTerms), settings.ridge);
-        for (Eigen::Index c = 0; c < cols; ++c) {
-            if (!has_previous[c]) prior(c) = shared.coefficients(columns[c].term);
-        }
-    }
-    const RidgeSolution solution = solve_ridge_nonnegative(a, y, prior, settings.ridge);
-    const Eigen::VectorXd& prior_share = solution.prior_share;
-
-    for (Eigen::Index c = 0; c < cols; ++c) {
-        if (prior_share(c) > settings.held_share) ++result.held_terms;
-        PassCoefficients k;
-        if (const PassCoefficients* found = result.model.find(columns[c].pass)) k = *found;
-        term(k, columns[c].term) = solution.coefficients(c);
-        result.model.set(columns[c].pass, k);
+    if (cols <= kStackColumns) {
+        fit_columns<kStackColumns>(std::move(a), y, passes, settings, result);
+    } else {
+        fit_columns<Eigen::Dynamic>(std::move(a), y, passes, settings, result);
     }
     return result;
 }

@@ -12,7 +12,7 @@
 // together, with the paper's parameterisation:
 //   k_bi = b_i,   k_vi(l) = c_i + chi dIns_vi(l),   k_fi(l) = a_i + chi dIns_fi(l) + psi dTex_fi(l),
 // where d is the level's excess over the pass's cheapest level (so every cost stays >= 0 when
-// the unknowns are >= 0). Rows are weighted and columns scaled as in the window fit; a ridge
+// the unknowns are >= 0), plus the per-frame load of power_model.hpp. Rows are weighted and columns scaled as in the window fit; a ridge
 // towards the previous model holds what the history cannot identify.
 #include <cstddef>
 #include <optional>
@@ -33,6 +33,8 @@ struct ConfiguredSample {
 struct HistoryFitSettings {
     // Ridge strength relative to the scaled columns (see window_fit.hpp).
     double ridge = 1e-3;
+    // For the per-frame load: 0 leaves it free, so constant costs go there first.
+    double frame_ridge = 0.0;
 };
 
 struct HistoryFit {

@@ -50,12 +50,20 @@ public:
     const PassCoefficients* find(const std::string& pass) const;
     void set(const std::string& pass, const PassCoefficients& k) { coefficients_[pass] = k; }
 
+    // Beyond the paper: a load every frame carries whatever it draws (the app's and driver's
+    // own work per frame, clears, presentation), which P_m, the idle power, does not include.
+    // Without it such a cost is absorbed by whichever pass's draw count never changes, and
+    // vanishes from predictions of configurations that skip that pass.
+    double frame_alpha() const { return frame_alpha_; }
+    void set_frame_alpha(double alpha) { frame_alpha_ = alpha; }
+
     double alpha(const std::vector<PassFrame>& passes) const;
     double predict_power(const std::vector<PassFrame>& passes) const;
 
 private:
     PlatformProfile profile_;
     std::map<std::string, PassCoefficients> coefficients_;
+    double frame_alpha_ = 0.0;
 };
 
 }  // namespace glbudget::model

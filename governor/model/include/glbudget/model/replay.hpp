@@ -13,6 +13,7 @@
 // of predicting every frame by the mean power of its configuration's run, which no model of a
 // frame's counts can beat by much when the sensor's frame-to-frame scatter dominates.
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "glbudget/model/frame_log.hpp"
@@ -37,6 +38,14 @@ struct ReplayErrors {
     PredictionError per_frame, averaged;
 };
 
+// A frame both models predicted.
+struct ReplayFrame {
+    std::uint64_t frame = 0;   // as logged
+    std::size_t run = 0;       // configuration run it belongs to
+    bool fitted_here = false;  // the model had frames of its configuration
+    double measured = 0.0, ours = 0.0, baseline = 0.0;
+};
+
 // Means over one configuration run's scored frames.
 struct ReplayRun {
     Configuration configuration;
@@ -50,6 +59,7 @@ struct ReplayReport {
     PredictionError ours_switch, baseline_switch;  // one pair per configuration change
     ReplayErrors floor;                            // configuration-run means, all scored frames
     std::vector<ReplayRun> runs;
+    std::vector<ReplayFrame> scored;
     std::size_t frames = 0;
     std::size_t frames_unusable = 0;  // no power or unmeasured counts
     std::size_t configuration_runs = 0;
@@ -57,6 +67,8 @@ struct ReplayReport {
     std::size_t history_fits = 0;     // of those, fits over several configurations
     std::size_t checks_failed = 0;
     ReuseCoefficients reuse;          // after the last fit
+    PowerModel model;                 // after the last fit, at the levels of its configuration
+    Configuration model_configuration;
 };
 
 ReplayReport replay_frames(const std::vector<LoggedFrame>& frames, const PlatformProfile& profile,

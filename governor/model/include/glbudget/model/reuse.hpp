@@ -28,6 +28,10 @@ ReuseCoefficients solve_reuse(const PowerModel& fitted, const ConfigurationSpace
                               const std::vector<PassFrame>& window_mean,
                               ReuseCoefficients previous = {});
 
+// The least instructions and texel accesses among a pass's levels that draw (each taken
+// separately): the base the costs of the other levels are measured from.
+VariantCost cheapest_drawing_level(const PassVariants& pass);
+
 // Predicts the power of every configuration for the counts of one frame.
 //
 // Counts are measured in the frame's own configuration. Levels that scale fragments (render
@@ -43,6 +47,9 @@ public:
     void refit(const PowerModel& fitted, const Configuration& fitted_configuration, ReuseCoefficients reuse);
 
     PassCoefficients coefficients(std::size_t pass, int level) const;
+
+    // A load added to every configuration from the next set_frame() on (a drift correction).
+    void set_load_offset(double alpha) { load_offset_ = alpha; }
 
     // Per-pass, per-level loads for a frame drawn in `frame_configuration`. Counts of passes
     // outside the space (say the fixed-function pass) add the same load to every configuration.
@@ -88,6 +95,7 @@ private:
     // that combination's levels (one combination when no pass scales another).
     std::vector<std::vector<std::vector<LevelTerm>>> tables_;
     double alpha_outside_space_ = 0.0;
+    double load_offset_ = 0.0;
 };
 
 }  // namespace glbudget::model

@@ -21,6 +21,12 @@ struct HistorySettings {
     bool enabled = true;
     std::size_t frames = 300;  // usable frames kept, newest last
     HistoryFitSettings fit;
+    // Beyond the paper: between fits, the measured power's drift away from the fitted
+    // coefficients (a sensor's or machine's slow drift, a scene's slow change) is followed by
+    // an exponential average of the last frames' residuals over this many frames, added to
+    // every configuration's load. 0: off (the default, so that predictions of a configuration
+    // not yet fitted use no measurement of it; the README gives the measured trade).
+    std::size_t drift_frames = 0;
 };
 
 class RunTimeModel {
@@ -44,18 +50,25 @@ public:
     std::size_t fits() const { return fitter_.fits(); }
     std::size_t history_fits() const { return history_fits_; }
     ReuseCoefficients reuse() const { return reuse_; }
+    // The coefficients in use: at the levels of fitted_configuration().
+    const PowerModel& model() const { return model_; }
+    const Configuration& fitted_configuration() const { return fitted_configuration_; }
 
 private:
+    void anchor_to_recent(PowerModel& model, const Configuration& configuration) const;
+
     ConfigurationSpace space_;
     HistorySettings history_settings_;
     OnlineFitter fitter_;
     std::deque<ConfiguredSample> history_;
+    PowerModel model_;
     std::optional<ConfigurationPredictor> predictor_;
     Configuration current_;
     Configuration fitted_configuration_;
     std::set<Configuration> fitted_configurations_;
     ReuseCoefficients reuse_;
     std::size_t history_fits_ = 0;
+    double drift_alpha_ = 0.0;
 };
 
 }  // namespace glbudget::model
