@@ -66,6 +66,9 @@ OnlineFitter::Event RunTimeModel::learn(const FrameSample& frame, const Configur
 
     // The paper: the window's coefficients, chi and psi from them.
     PowerModel model = fitter_.model();
+    // The window's regression explains the whole load by its passes (the paper's model): a
+    // per-frame load adopted from an earlier fit over several configurations is not part of it.
+    model.set_frame_alpha(0.0);
     Configuration fitted_at = configuration;
     reuse_ = solve_reuse(model, space_, configuration, fitter_.last_window_mean(), reuse_);
     fitted_configurations_ = {configuration};
