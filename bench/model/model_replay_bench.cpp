@@ -99,6 +99,7 @@ int main(int argc, char** argv) {
     print_rows("vatjus-anttila", "fitted", report.baseline_fitted, averaged);
     print_rows("vatjus-anttila", "reused", report.baseline_reused, averaged);
     print_row("vatjus-anttila", "switch", "next run", report.baseline_switch);
+    print_row("no change", "switch", "next run", report.unchanged_switch);
     print_rows("noise floor", "all", report.floor, averaged);
     if (!frames_csv.empty()) {
         if (FILE* out = std::fopen(frames_csv.c_str(), "w")) {

@@ -11,7 +11,8 @@ import sys
 SCENES = ["hall", "sponza", "valley", "subway"]
 ROWS = [("ours", "fitted", "per frame"), ("ours", "reused", "per frame"), ("ours", "reused", "30-frame"),
         ("ours", "switch", "next run"), ("vatjus-anttila", "reused", "per frame"),
-        ("vatjus-anttila", "switch", "next run"), ("noise floor", "all", "per frame"),
+        ("vatjus-anttila", "switch", "next run"), ("no change", "switch", "next run"),
+        ("noise floor", "all", "per frame"),
         ("noise floor", "all", "30-frame")]
 
 

@@ -87,6 +87,9 @@ TEST_CASE("replay of the demo renderer's recorded logs: every scene predicted, b
         CHECK(report.ours_reused.per_frame.mape_percent() < 9.0);
         CHECK(report.ours_switch.mape_percent() < 13.0);
         CHECK(report.ours_reused.per_frame.mape_percent() < report.baseline_reused.per_frame.mape_percent());
+        // Predicting a switch beats assuming the power stays as it was (recorded 6-10 % against 11-19 %).
+        CHECK(report.unchanged_switch.count() == 7);
+        CHECK(report.ours_switch.mape_percent() < report.unchanged_switch.mape_percent());
         // The floor is the sensor's scatter around each run's mean: below every model's error.
         CHECK(report.floor.per_frame.mape_percent() < report.ours_reused.per_frame.mape_percent());
         CHECK(report.floor.averaged.mape_percent() < 1.0);

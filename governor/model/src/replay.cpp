@@ -52,7 +52,7 @@ ReplayReport replay_frames(const std::vector<LoggedFrame>& frames, const Platfor
                             &report.baseline_reused, &report.floor}) {
         *e = {PredictionError(range), PredictionError(range)};
     }
-    report.ours_switch = report.baseline_switch = PredictionError(range);
+    report.ours_switch = report.baseline_switch = report.unchanged_switch = PredictionError(range);
     report.frames = frames.size();
 
     // Resolve every frame first: the runs of one configuration, and which comes next, are
@@ -78,6 +78,7 @@ ReplayReport replay_frames(const std::vector<LoggedFrame>& frames, const Platfor
     std::vector<ScoredFrame> scored;
     // Per run: the predictions of the next run's power made during its last frames.
     std::vector<double> switch_ours(report.configuration_runs, 0.0), switch_baseline(report.configuration_runs, 0.0);
+    std::vector<double> switch_measured(report.configuration_runs, 0.0);
     std::vector<std::size_t> switch_count(report.configuration_runs, 0);
 
     for (std::size_t t = 0; t < frames.size(); ++t) {
@@ -102,6 +103,7 @@ ReplayReport replay_frames(const std::vector<LoggedFrame>& frames, const Platfor
             if (std::isfinite(ours) && std::isfinite(theirs)) {
                 switch_ours[run] += ours;
                 switch_baseline[run] += theirs;
+                switch_measured[run] += frame.sample.power_w;
                 ++switch_count[run];
             }
         }
@@ -170,6 +172,7 @@ ReplayReport replay_frames(const std::vector<LoggedFrame>& frames, const Platfor
         const double count = static_cast<double>(switch_count[r]);
         report.ours_switch.add(switch_ours[r] / count, measured_sum / static_cast<double>(measured));
         report.baseline_switch.add(switch_baseline[r] / count, measured_sum / static_cast<double>(measured));
+        report.unchanged_switch.add(switch_measured[r] / count, measured_sum / static_cast<double>(measured));
     }
     report.scored = std::move(scored);
     return report;

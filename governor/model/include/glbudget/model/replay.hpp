@@ -57,6 +57,9 @@ struct ReplayRun {
 struct ReplayReport {
     ReplayErrors ours_fitted, ours_reused, baseline_fitted, baseline_reused;
     PredictionError ours_switch, baseline_switch;  // one pair per configuration change
+    // The reference a model must beat at a switch: the next configuration "draws what this one
+    // measured" (its last frames' mean power).
+    PredictionError unchanged_switch;
     ReplayErrors floor;                            // configuration-run means, all scored frames
     std::vector<ReplayRun> runs;
     std::vector<ReplayFrame> scored;
