@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <Eigen/Jacobi>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -39,6 +40,7 @@ double& term(PassCoefficients& k, int t) { return t == 0 ? k.k_b : t == 1 ? k.k_
 struct WindowPass {
     const std::string* name;
     std::array<int, kTerms> column{-1, -1, -1};  // -1: no column (the term's count is 0 throughout)
+    std::array<bool, kTerms> nonzero{false, false, false};  // any count > 0 in the window
     const PassCoefficients* previous = nullptr;
 };
 
@@ -87,6 +89,127 @@ double choose_lambda(const Vector& s2, const Vector& v_atr, double residual_norm
 // sqrt(lambda) stay at the prior. One symmetric eigen-decomposition of A'A serves the choice
 // of lambda, the ridge solution and the prior shares; the active-set solver only runs when
 // that solution has a negative coefficient. MaxCols bounds A's columns (see kStackColumns).
+// The eigen-decomposition G = V diag(s2) V' of a symmetric matrix in the form the ridge
+// solve needs: eigenvalues, V' b for one vector b, and V d for one vector d. It runs Eigen's
+// own algorithm (SelfAdjointEigenSolver: scale, Householder tridiagonalisation
+// G = Q T Q', implicit symmetric QR steps with Wilkinson shifts T = W diag W', same deflation
+// test) but keeps Q as Householder vectors and W as the list of Givens rotations instead of
+// multiplying them out into V: forming V cost half of a whole fit, applying Q and W to a
+// vector costs n^2 and the rotation count.
+template <int MaxCols>
+class EigenSolve {
+public:
+    using Matrix = SmallMatrix<MaxCols>;
+    using Vector = SmallVector<MaxCols>;
+
+    explicit EigenSolve(const Matrix& g) {
+        const Eigen::Index n = g.rows();
+        scale_ = g.cwiseAbs().maxCoeff();
+        if (!(scale_ > 0.0)) scale_ = 1.0;
+        tridiagonal_.compute(g / scale_);
+        Vector diag = tridiagonal_.diagonal();
+        Vector subdiag = Vector::Zero(n);  // the last entry is never used
+        subdiag.head(n - 1) = tridiagonal_.subDiagonal();
+        rotations_.reserve(static_cast<std::size_t>(4 * n * n));
+        // Eigen's computeFromTridiagonal_impl, recording rotations rather than applying them.
+        constexpr int kMaxIterations = 30;
+        const double considered_zero = std::numeric_limits<double>::min();
+        const double precision_inverse = 1.0 / std::numeric_limits<double>::epsilon();
+        Eigen::Index end = n - 1, start = 0, iterations = 0;
+        while (end > 0) {
+            for (Eigen::Index i = start; i < end; ++i) {
+                if (std::abs(subdiag(i)) < considered_zero) {
+                    subdiag(i) = 0.0;
+                } else {
+                    const double scaled = precision_inverse * subdiag(i);
+                    if (scaled * scaled <= std::abs(diag(i)) + std::abs(diag(i + 1))) subdiag(i) = 0.0;
+                }
+            }
+            while (end > 0 && subdiag(end - 1) == 0.0) --end;
+            if (end <= 0) break;
+            if (++iterations > kMaxIterations * n) break;
+            start = end - 1;
+            while (start > 0 && subdiag(start - 1) != 0.0) --start;
+            qr_step(diag, subdiag, start, end);
+        }
+        eigenvalues_ = diag * scale_;
+    }
+
+    const Vector& eigenvalues() const { return eigenvalues_; }
+
+    // V' b = W' Q' b.
+    Vector transpose_times(const Vector& b) const {
+        Vector u = tridiagonal_.matrixQ().adjoint() * b;
+        for (const Rotation& r : rotations_) {
+            const double uk = u(r.k), ul = u(r.k + 1);
+            u(r.k) = r.c * uk - r.s * ul;
+            u(r.k + 1) = r.s * uk + r.c * ul;
+        }
+        return u;
+    }
+
+    // V d = Q W d.
+    Vector times(Vector d) const {
+        for (auto r = rotations_.rbegin(); r != rotations_.rend(); ++r) {
+            const double dk = d(r->k), dl = d(r->k + 1);
+            d(r->k) = r->c * dk + r->s * dl;
+            d(r->k + 1) = -r->s * dk + r->c * dl;
+        }
+        return tridiagonal_.matrixQ() * d;
+    }
+
+private:
+    struct Rotation {
+        Eigen::Index k;
+        double c, s;
+    };
+
+    // Eigen's tridiagonal_qr_step (Golub & Van Loan, algorithm 8.3.2).
+    void qr_step(Vector& diag, Vector& subdiag, Eigen::Index start, Eigen::Index end) {
+        const double td = (diag(end - 1) - diag(end)) * 0.5;
+        const double e = subdiag(end - 1);
+        double mu = diag(end);
+        if (td == 0.0) {
+            mu -= std::abs(e);
+        } else if (e != 0.0) {
+            const double e2 = e * e;
+            const double h = std::hypot(td, e);
+            if (e2 == 0.0) mu -= e / ((td + (td > 0.0 ? h : -h)) / e);
+            else mu -= e2 / (td + (td > 0.0 ? h : -h));
+        }
+        double x = diag(start) - mu;
+        double z = subdiag(start);
+        for (Eigen::Index k = start; k < end && z != 0.0; ++k) {
+            Eigen::JacobiRotation<double> rotation;
+            rotation.makeGivens(x, z);
+            const double c = rotation.c(), s = rotation.s();
+            const double sdk = s * diag(k) + c * subdiag(k);
+            const double dkp1 = s * subdiag(k) + c * diag(k + 1);
+            diag(k) = c * (c * diag(k) - s * subdiag(k)) - s * (c * subdiag(k) - s * diag(k + 1));
+            diag(k + 1) = s * sdk + c * dkp1;
+            subdiag(k) = c * sdk - s * dkp1;
+            if (k > start) subdiag(k - 1) = c * subdiag(k - 1) - s * z;
+            x = subdiag(k);
+            if (k < end - 1) {
+                z = -s * subdiag(k + 1);
+                subdiag(k + 1) = c * subdiag(k + 1);
+            }
+            rotations_.push_back({k, c, s});  // Eigen: eigenvectors.applyOnTheRight(k, k + 1, rotation)
+        }
+    }
+
+    double scale_ = 1.0;
+    Eigen::Tridiagonalization<Matrix> tridiagonal_;
+    std::vector<Rotation> rotations_;
+    Vector eigenvalues_;
+};
+
+// min |A k - y|^2 + lambda |D (k - prior)|^2 subject to k >= 0, where D scales A's columns to
+// unit norm (so the ridge means the same for counts of any magnitude). lambda is chosen by
+// GCV, never below ridge^2 * columns: directions of A with singular values well below
+// sqrt(lambda) stay at the prior. One symmetric eigen-decomposition of A'A serves the choice
+// of lambda and the ridge solution; the active-set solver only runs when that solution has a
+// negative coefficient. MaxCols bounds A's columns (see kStackColumns).
 template <int MaxCols>
 RidgeSolution<MaxCols> solve_ridge_nonnegative(Eigen::MatrixXd a, const Eigen::VectorXd& y,
                                                const SmallVector<MaxCols>& prior, double ridge) {
@@ -105,24 +228,39 @@ RidgeSolution<MaxCols> solve_ridge_nonnegative(Eigen::MatrixXd a, const Eigen::V
     for (Eigen::Index j = 0; j < cols; ++j) {
         for (Eigen::Index i = j; i < cols; ++i) gram(i, j) = gram(j, i) = a.col(i).dot(a.col(j));
     }
-    const Eigen::SelfAdjointEigenSolver<Matrix> eigen(gram);
+    const EigenSolve<MaxCols> eigen(gram);
     const Vector s2 = eigen.eigenvalues().cwiseMax(0.0);
-    const Matrix& v = eigen.eigenvectors();
-    const Vector v_atr = v.transpose() * (a.transpose() * residual);
+    const Vector v_atr = eigen.transpose_times(a.transpose() * residual);
     const double lambda = choose_lambda(s2, v_atr, residual.squaredNorm(), static_cast<double>(a.rows()),
                                         ridge * ridge * static_cast<double>(cols));
     const Vector inverse_eigen = (s2.array() + lambda).inverse().matrix();
 
-    Vector z = scaled_prior + v * inverse_eigen.cwiseProduct(v_atr);
+    gram.diagonal().array() += lambda;  // G = A'A + lambda I from here on
+    Vector z = scaled_prior + eigen.times(inverse_eigen.cwiseProduct(v_atr));
     if (z.minCoeff() < 0.0) {
-        gram.diagonal().array() += lambda;
         const Vector rhs = a.transpose() * y + lambda * scaled_prior;
         solve_nonnegative(gram, rhs, z);
     }
 
     RidgeSolution<MaxCols> solution;
-    // Share of each estimate owed to the prior: lambda (G^-1)_jj, G = A'A + lambda I.
-    solution.prior_share = lambda * (v.array().square().matrix() * inverse_eigen);
+    // Share of each estimate owed to the prior: lambda (G^-1)_jj, from G = L L' as the squared
+    // column norms of L^-1 (V itself is never formed, see EigenSolve). G >= lambda I > 0.
+    // Column j of L^-1 is L^-1 e_j, zero above row j: a forward substitution by hand, as
+    // Eigen's blocked triangular solve against an identity costs several times more here.
+    const Eigen::LLT<Matrix> cholesky(gram);
+    const Matrix& l = cholesky.matrixLLT();  // lower triangle holds L
+    solution.prior_share.resize(cols);
+    Vector column(cols);
+    for (Eigen::Index j = 0; j < cols; ++j) {
+        double norm2 = 0.0;
+        for (Eigen::Index i = j; i < cols; ++i) {
+            double sum = i == j ? 1.0 : 0.0;
+            for (Eigen::Index k = j; k < i; ++k) sum -= l(i, k) * column(k);
+            column(i) = sum / l(i, i);
+            norm2 += column(i) * column(i);
+        }
+        solution.prior_share(j) = lambda * norm2;
+    }
     solution.coefficients = prior;  // an all-zero column keeps its prior
     for (Eigen::Index c = 0; c < cols; ++c) {
         if (scale(c) > 0.0) solution.coefficients(c) = z(c) / scale(c);
@@ -203,7 +341,6 @@ WindowFitResult fit_window(std::span<const FrameSample> window, const PowerModel
     std::size_t entries = 0;
     for (const FrameSample* sample : usable) entries += sample->passes.size();
     pass_of_entry.reserve(entries);
-    std::vector<bool> nonzero;  // per pass and term: any count > 0 in the window
     std::vector<int> hint;      // per entry position: the pass found there in the last frame
     for (const FrameSample* sample : usable) {
         for (std::size_t e = 0; e < sample->passes.size(); ++e) {
@@ -217,13 +354,12 @@ WindowFitResult fit_window(std::span<const FrameSample> window, const PowerModel
             if (found < 0) {
                 found = static_cast<int>(passes.size());
                 passes.push_back({&entry.pass});
-                nonzero.resize(nonzero.size() + kTerms, false);
             }
             hint[e] = found;
             pass_of_entry.push_back(found);
             const auto x = normalised_counts(profile, entry.counts);
             for (int t = 0; t < kTerms; ++t) {
-                if (x[t] > 0.0) nonzero[static_cast<std::size_t>(found) * kTerms + t] = true;
+                if (x[t] > 0.0) passes[found].nonzero[t] = true;
             }
         }
     }
@@ -235,7 +371,7 @@ WindowFitResult fit_window(std::span<const FrameSample> window, const PowerModel
     int cols = 0;
     for (int p : by_name) {
         for (int t = 0; t < kTerms; ++t) {
-            if (nonzero[static_cast<std::size_t>(p) * kTerms + t]) passes[p].column[t] = cols++;
+            if (passes[p].nonzero[t]) passes[p].column[t] = cols++;
         }
         passes[p].previous = previous.find(*passes[p].name);
     }
