@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
+#include <string>
 
 #include "glbudget/model/window_fit.hpp"
 #include "synthetic_scene.hpp"
@@ -269,4 +271,29 @@ TEST_CASE("a cost that would be negative is fitted as zero", "[model][fit]") {
     const WindowFitResult fit = fit_window(window, previous);
     CHECK(fit.model.find("p")->k_v == 0.0);
     CHECK(fit.model.find("p")->k_b > 0.0);
+}
+
+TEST_CASE("a window wider than the stack-sized solve (10 passes, 30 columns) is fitted exactly",
+          "[model][fit]") {
+    // Up to 24 columns the solve uses fixed-maximum-size storage; wider windows take the
+    // dynamic path, which must compute the same regression. Counts drawn independently per
+    // pass, term and frame keep all 30 columns identifiable from 60 noiseless frames.
+    PowerModel truth(synthetic_profile());
+    for (int i = 0; i < 10; ++i) truth.set("p" + std::to_string(i), {0.3 + 0.1 * i, 0.2 + 0.05 * i, 1.0 + 0.2 * i});
+    std::mt19937_64 random(3);
+    std::uniform_real_distribution<double> load(0.5, 1.5);
+    std::vector<FrameSample> window;
+    for (int t = 0; t < 60; ++t) {
+        FrameSample sample;
+        for (int i = 0; i < 10; ++i) {
+            const double b = 100.0 * load(random), v = 3e5 * load(random), f = 4e6 * load(random);
+            sample.passes.push_back({"p" + std::to_string(i), {b, v, f}});
+        }
+        sample.power_w = truth.predict_power(sample.passes);
+        window.push_back(sample);
+    }
+    const WindowFitResult fit = fit_window(window, PowerModel(synthetic_profile()));
+    CHECK(fit.columns == 30);
+    CHECK(fit.held_terms == 0);
+    check_same_coefficients(fit.model, truth, 1e-6);
 }
