@@ -7,11 +7,13 @@
 #include <cmath>
 #include <cstdio>
 #include <numeric>
+#include <optional>
 #include <random>
 #include <string>
 #include <tuple>
 #include <vector>
 
+#include "glbudget/model/history_fit.hpp"
 #include "glbudget/model/power_curve.hpp"
 #include "glbudget/model/reuse.hpp"
 #include "glbudget/model/selection.hpp"
@@ -228,12 +230,49 @@ int main() {
     const double select_us = median_us([&] { selection = select_configuration(power, error, budget); }, 5000);
     const double sort_us = median_us([&] { g_sink = static_cast<double>(select_by_sorting(power, error, selection.budget_w)); }, 2000);
 
+    // The fit over several configurations (history_fit.hpp): the last 300 frames, here the
+    // scene's windows drawn alternately in two configurations (its power for the timing's
+    // sake is that of the fitted one).
+    std::vector<ConfiguredSample> history;
+    for (int w = 0; w <= kWindows; ++w) {
+        for (const FrameSample& sample : scene.windows[w]) {
+            history.push_back({sample, w % 2 ? scene.fitted_configuration : Configuration(6, 0)});
+        }
+    }
+    history.resize(std::min<std::size_t>(history.size(), 300));
+    std::optional<HistoryFit> history_fit;
+    const double history_us = median_us(
+        [&] {
+            history_fit = fit_history(history, scene.space, fit.model, scene.fitted_configuration, reuse,
+                                      scene.fitted_configuration);
+        },
+        50);
+
+    // Predict-all when a pass scales the others' fragments (the render scale): one table per
+    // level of that pass.
+    std::vector<PassVariants> scaled_passes = scene.space.passes();
+    scaled_passes[0].scales = {"pass1", "pass2", "pass3"};
+    for (int l = 0; l < 3; ++l) scaled_passes[0].levels[static_cast<std::size_t>(l)].fragment_scale = 1.0 - 0.2 * l;
+    const ConfigurationSpace scaled_space(scaled_passes);
+    ConfigurationPredictor scaled(scaled_space, fit.model, scene.fitted_configuration, reuse);
+    const double scaled_us = median_us(
+        [&] {
+            scaled.set_frame(frame, scene.fitted_configuration);
+            scaled.predict_all(power);
+            g_sink = power[7];
+        },
+        5000);
+    const double scaled_enumerate_us = median_us([&] { scaled.predict_all(power); g_sink = power[7]; }, 5000);
+
     std::printf("glbudget power model, 6 passes x 3 levels = %zu configurations, 30-frame window\n", scene.space.size());
     report("fit one window (18 unknowns)", fit_us, "plain QR least squares", qr_us, "goal <= 100 us, paper 2600 us");
     report("  refit from the previous model", refit_us, "plain QR least squares", qr_us, "goal <= 100 us");
     report("reuse: chi, psi + coefficient table", reuse_us, "(paper)", 700.0, "paper 700 us");
     report("predict all configurations", predict_us, "decode + evaluate each", naive_us, "goal <= 5 us, paper 20 us");
     report("  of which enumeration only", enumerate_us, "decode + evaluate each", naive_us, "(per-frame tables ready)");
+    report("  with a render-scale pass", scaled_us, "decode + evaluate each", naive_us, "one table per render scale");
+    report("    of which enumeration only", scaled_enumerate_us, "decode + evaluate each", naive_us, "");
+    report("fit over several configurations", history_us, "fit one window", fit_us, "300 frames, 20 unknowns");
     report("select under a 40% budget", select_us, "sort by error, scan", sort_us, "paper 30 us");
     // What the timed fits computed, so a degenerate case (nothing fitted, all held) shows.
     for (const auto& [name, fits, offset] : {std::tuple{"first fit", &first, 0}, std::tuple{"refit", &refit, 1}}) {

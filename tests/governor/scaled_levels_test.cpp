@@ -217,3 +217,28 @@ TEST_CASE("coefficients fitted while a pass was skipped are those of its cheapes
     CHECK(predictor.coefficients(0, 1).k_f == Approx(3.0));
     CHECK(predictor.coefficients(0, 0).k_f == Approx(3.0 + 0.01 * 100 + 0.2 * 3));
 }
+
+TEST_CASE("predict-all is right whichever position the scaling pass has in the space", "[model][reuse][scale]") {
+    // The render scale in the middle: its tables no longer fill contiguous blocks.
+    PassVariants resolution{"resolution", {}, {"scene", "glass"}};
+    for (double s : {1.0, 0.5}) {
+        VariantCost level;
+        level.fragment_scale = s;
+        resolution.levels.push_back(level);
+    }
+    VariantCost off;
+    off.draws = false;
+    const ConfigurationSpace space({PassVariants{"scene", {{10, 200, 4}, {10, 120, 2}, {10, 60, 1}}, {}}, resolution,
+                                    PassVariants{"glass", {{10, 300, 8}, off}, {}},
+                                    PassVariants{"shadows", {{10, 0, 0}}, {}}});
+    ConfigurationPredictor predictor(space, scaled_model(), {0, 0, 0, 0}, {0.01, 0.2});
+    predictor.set_frame({{"scene", {120, 3e5, 2e7}}, {"glass", {8, 2e4, 5e6}}, {"shadows", {60, 2e5, 4e7}}}, {1, 1, 0, 0});
+    std::vector<double> all;
+    predictor.predict_all(all);
+    REQUIRE(all.size() == space.size());
+    for (std::size_t i = 0; i < space.size(); ++i) {
+        CAPTURE(i);
+        CHECK(all[i] == Approx(predictor.predict(space.decode(i))).epsilon(1e-12));
+    }
+    CHECK(predictor.predict({0, 0, 0, 0}) > predictor.predict({0, 1, 0, 0}));
+}

@@ -97,6 +97,16 @@ ConfigurationPredictor::ConfigurationPredictor(const ConfigurationSpace& space,
         }
         if (scales_another) outer_.push_back(p);
     }
+    scaled_by_outer_.assign(passes, false);
+    for (std::size_t j = 0; j < passes; ++j) {
+        for (std::size_t p : scalers_of_[j]) {
+            if (std::find(outer_.begin(), outer_.end(), p) != outer_.end()) scaled_by_outer_[j] = true;
+        }
+    }
+    // When the passes that scale others come first (the render scale is the paper's first
+    // "pass"), each table fills one contiguous block of configurations.
+    outer_is_prefix_ = true;
+    for (std::size_t n = 0; n < outer_.size(); ++n) outer_is_prefix_ = outer_is_prefix_ && outer_[n] == n;
     strides_.assign(passes, 1);
     for (std::size_t i = passes; i-- > 1;) strides_[i - 1] = strides_[i] * space.passes()[i].levels.size();
     reference_.resize(passes);
@@ -204,6 +214,11 @@ void ConfigurationPredictor::set_frame(const std::vector<PassFrame>& frame,
         for (std::size_t i = 0; i < passes; ++i) {
             const PassVariants& pass = space_.passes()[i];
             std::vector<LevelTerm>& terms = tables_[o][i];
+            // Only passes whose fragments an outer pass scales differ between the tables.
+            if (o > 0 && !scaled_by_outer_[i]) {
+                terms = tables_[0][i];
+                continue;
+            }
             terms.resize(pass.levels.size());
             const int held = levels[i];  // an outer pass's level in this combination
             for (std::size_t l = 0; l < pass.levels.size(); ++l) {
@@ -242,70 +257,68 @@ double ConfigurationPredictor::predict(const Configuration& configuration) const
 // (the render scale) makes their loads depend on its level: each of its levels is then a
 // table of its own, with that pass held at the level.
 void ConfigurationPredictor::enumerate(const std::vector<std::vector<LevelTerm>>& passes,
-                                       std::size_t first, std::size_t last, double q0,
-                                       std::vector<double>& q, std::vector<double>* e,
-                                       std::vector<std::size_t>& offsets) {
-    q.assign(1, q0);
-    offsets.assign(1, 0);
-    if (e) e->assign(1, 1.0);
-    std::vector<double> next_q, next_e;
-    std::vector<std::size_t> next_offsets;
+                                       const std::vector<int>& held, std::size_t first, std::size_t last,
+                                       double q0, Enumeration& out) {
+    out.q.assign(1, q0);
+    out.offsets.assign(1, 0);
+    out.e.assign(1, 1.0);
     for (std::size_t pass = first; pass < last; ++pass) {
-        const std::vector<LevelTerm>& terms = passes[pass];
-        const std::size_t levels = terms.size();
-        next_q.resize(q.size() * levels);
-        next_offsets.resize(q.size() * levels);
-        for (std::size_t i = 0; i < q.size(); ++i) {
+        const std::vector<LevelTerm>& all = passes[pass];
+        // A held pass (one that scales others, in this table) contributes its one level.
+        const LevelTerm* terms = held[pass] >= 0 ? &all[static_cast<std::size_t>(held[pass])] : all.data();
+        const std::size_t levels = held[pass] >= 0 ? 1 : all.size();
+        const std::size_t n = out.q.size();
+        out.next_q.resize(n * levels);
+        out.next_e.resize(n * levels);
+        out.next_offsets.resize(n * levels);
+        for (std::size_t i = 0; i < n; ++i) {
             for (std::size_t l = 0; l < levels; ++l) {
-                next_q[i * levels + l] = q[i] * terms[l].e + terms[l].m;
-                next_offsets[i * levels + l] = offsets[i] + terms[l].offset;
+                out.next_q[i * levels + l] = out.q[i] * terms[l].e + terms[l].m;
+                out.next_e[i * levels + l] = out.e[i] * terms[l].e;
+                out.next_offsets[i * levels + l] = out.offsets[i] + terms[l].offset;
             }
         }
-        q.swap(next_q);
-        offsets.swap(next_offsets);
-        if (e) {
-            next_e.resize(e->size() * levels);
-            for (std::size_t i = 0; i < e->size(); ++i) {
-                for (std::size_t l = 0; l < levels; ++l) next_e[i * levels + l] = (*e)[i] * terms[l].e;
-            }
-            e->swap(next_e);
-        }
+        out.q.swap(out.next_q);
+        out.e.swap(out.next_e);
+        out.offsets.swap(out.next_offsets);
     }
 }
 
 void ConfigurationPredictor::predict_all(std::vector<double>& out) const {
     const std::size_t passes = space_.pass_count();
-    const std::size_t split = passes / 2;
     const double p_min = fitted_.profile().p_min_w, range = fitted_.profile().range_w();
     out.assign(space_.size(), p_min);  // stays P_m when no frame has been given yet
-    std::vector<double> front_q, back_q, back_e;
-    std::vector<std::size_t> front_offsets, back_offsets;
-    std::vector<std::vector<LevelTerm>> held;
+    std::vector<int>& held = held_scratch_;
+    held.assign(passes, -1);
+    // Contiguous: enumerate the passes after the outer ones and write each table's block in
+    // order. Otherwise every configuration's index is assembled from the passes' offsets.
+    const std::size_t first = outer_is_prefix_ ? outer_.size() : 0;
+    const std::size_t split = first + (passes - first) / 2;
     for (std::size_t o = 0; o < tables_.size(); ++o) {
-        const std::vector<std::vector<LevelTerm>>* table = &tables_[o];
-        if (!outer_.empty()) {
-            held = tables_[o];
-            std::size_t rest = o;
-            for (std::size_t n = outer_.size(); n-- > 0;) {
-                std::vector<LevelTerm>& terms = held[outer_[n]];
-                const std::size_t level = rest % terms.size();
-                rest /= terms.size();
-                terms = {terms[level]};
-            }
-            table = &held;
+        std::size_t rest = o, block = 0;
+        for (std::size_t n = outer_.size(); n-- > 0;) {
+            const std::size_t count = space_.passes()[outer_[n]].levels.size();
+            held[outer_[n]] = static_cast<int>(rest % count);
+            block += static_cast<std::size_t>(held[outer_[n]]) * strides_[outer_[n]];
+            rest /= count;
         }
-        enumerate(*table, 0, split, std::expm1(-alpha_outside_space_), front_q, nullptr, front_offsets);
-        enumerate(*table, split, passes, 0.0, back_q, &back_e, back_offsets);
-        const std::size_t back = back_q.size();
-        const bool contiguous = outer_.empty();  // then offsets are 0, 1, 2, ... in order
-        for (std::size_t i = 0; i < front_q.size(); ++i) {
-            const double q = front_q[i];
-            if (contiguous) {
-                double* row = out.data() + i * back;
-                for (std::size_t j = 0; j < back; ++j) row[j] = p_min - range * (q * back_e[j] + back_q[j]);
+        // The outer passes' own loads, at their held levels, start the product.
+        double q0 = std::expm1(-alpha_outside_space_);
+        for (std::size_t n = 0; n < first; ++n) {
+            const LevelTerm& t = tables_[o][n][static_cast<std::size_t>(held[n])];
+            q0 = q0 * t.e + t.m;
+        }
+        enumerate(tables_[o], held, first, split, q0, front_);
+        enumerate(tables_[o], held, split, passes, 0.0, back_);
+        const std::size_t back = back_.q.size();
+        for (std::size_t i = 0; i < front_.q.size(); ++i) {
+            const double q = front_.q[i];
+            if (outer_is_prefix_) {
+                double* row = out.data() + block + i * back;
+                for (std::size_t j = 0; j < back; ++j) row[j] = p_min - range * (q * back_.e[j] + back_.q[j]);
             } else {
                 for (std::size_t j = 0; j < back; ++j) {
-                    out[front_offsets[i] + back_offsets[j]] = p_min - range * (q * back_e[j] + back_q[j]);
+                    out[front_.offsets[i] + back_.offsets[j]] = p_min - range * (q * back_.e[j] + back_.q[j]);
                 }
             }
         }

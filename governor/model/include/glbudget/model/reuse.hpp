@@ -77,10 +77,14 @@ private:
     double fragment_scale(std::size_t pass, const Configuration& configuration) const;
     std::size_t outer_combination(const Configuration& configuration) const;
     // q = prod(1 + m) - 1 (starting from q0), e = prod e and the index offset for every
-    // combination of the given passes' levels, in row-major order.
-    static void enumerate(const std::vector<std::vector<LevelTerm>>& passes, std::size_t first,
-                          std::size_t last, double q0, std::vector<double>& q, std::vector<double>* e,
-                          std::vector<std::size_t>& offsets);
+    // combination of the levels of passes [first, last), in row-major order; a pass with
+    // held[pass] >= 0 takes only that level. The buffers are kept between calls.
+    struct Enumeration {
+        std::vector<double> q, e, next_q, next_e;
+        std::vector<std::size_t> offsets, next_offsets;
+    };
+    static void enumerate(const std::vector<std::vector<LevelTerm>>& passes, const std::vector<int>& held,
+                          std::size_t first, std::size_t last, double q0, Enumeration& out);
 
     ConfigurationSpace space_;
     PowerModel fitted_;
@@ -88,6 +92,8 @@ private:
     std::vector<std::vector<PassCoefficients>> coefficients_;  // [pass][level]
     std::vector<std::vector<std::size_t>> scalers_of_;         // [pass]: passes scaling its fragments
     std::vector<std::size_t> outer_;       // passes that scale other passes' fragments
+    std::vector<bool> scaled_by_outer_;    // [pass]: one of them scales its fragments
+    bool outer_is_prefix_ = true;          // they are the first passes of the space
     std::vector<std::size_t> strides_;     // index_of strides
     std::vector<ReferenceCounts> reference_;  // [pass] for the current frame
     std::vector<ReferenceCounts> remembered_; // [pass] when it last drew
@@ -96,6 +102,9 @@ private:
     std::vector<std::vector<std::vector<LevelTerm>>> tables_;
     double alpha_outside_space_ = 0.0;
     double load_offset_ = 0.0;
+    // Scratch space of predict_all(), so that it allocates nothing once warm.
+    mutable Enumeration front_, back_;
+    mutable std::vector<int> held_scratch_;
 };
 
 }  // namespace glbudget::model
