@@ -6,16 +6,30 @@ using namespace glbudget::model;
 
 namespace {
 const std::string kLogs = GLBUDGET_SOURCE_DIR "/tests/data/logs/";
+
+// A committed log with its variant table and platform profile, all required to load.
+struct Recording {
+    PlatformProfile profile;
+    VariantTable variants;
+    FrameLog log;
+};
+Recording load_recording(const std::string& name, const std::string& profile_name) {
+    const auto profile = load_platform_profile(kLogs + profile_name + ".profile.json");
+    auto variants = load_variant_table(kLogs + name + ".variants.json");
+    auto log = read_frame_log_file(kLogs + name + ".csv");
+    REQUIRE(profile);
+    REQUIRE(variants);
+    REQUIRE(log);
+    return {*profile, std::move(*variants), std::move(*log)};
+}
 }
 
 TEST_CASE("replay of the synthetic six-pass log: fitted and reused within 2% MAPE, better than the baseline",
           "[model][replay]") {
-    const auto profile = load_platform_profile(kLogs + "synthetic_six_pass.profile.json");
-    const auto variants = load_variant_table(kLogs + "synthetic_six_pass.variants.json");
-    const auto log = read_frame_log_file(kLogs + "synthetic_six_pass.csv");
-    REQUIRE(profile);
-    REQUIRE(variants);
-    REQUIRE(log);
+    const Recording r = load_recording("synthetic_six_pass", "synthetic_six_pass");
+    const auto* profile = &r.profile;
+    const auto* variants = &r.variants;
+    const auto* log = &r.log;
     CHECK(variants->space.size() == 729);
 
     const ReplayReport report = replay_frames(frames_of_busiest_context(*log), *profile, *variants);
@@ -62,15 +76,12 @@ TEST_CASE("replay without a variant table treats every program as its own pass",
 // or the replay fails here. The figures are printed by model_replay_bench and
 // bench/model/replay_summary.py.
 TEST_CASE("replay of the demo renderer's recorded logs: every scene predicted, better than the baseline", "[model][replay]") {
-    const auto profile = load_platform_profile(kLogs + "demo_cpu.profile.json");
-    REQUIRE(profile);
     for (const char* scene : {"hall", "sponza", "valley", "subway"}) {
         INFO(scene);
-        const std::string base = kLogs + "demo_" + scene;
-        const auto variants = load_variant_table(base + ".variants.json");
-        const auto log = read_frame_log_file(base + ".csv");
-        REQUIRE(variants);
-        REQUIRE(log);
+        const Recording r = load_recording(std::string("demo_") + scene, "demo_cpu");
+        const auto* profile = &r.profile;
+        const auto* variants = &r.variants;
+        const auto* log = &r.log;
         // Valley has neither metals nor reflections: those knobs drop out of its space.
         CHECK(variants->space.size() == (std::string(scene) == "valley" ? 81u : 729u));
         const ReplayReport report = replay_frames(frames_of_busiest_context(*log), *profile, *variants);
@@ -97,12 +108,10 @@ TEST_CASE("replay of the demo renderer's recorded logs: every scene predicted, b
 }
 
 TEST_CASE("replay without the fit over several configurations follows the paper's path", "[model][replay]") {
-    const auto profile = load_platform_profile(kLogs + "demo_cpu.profile.json");
-    const auto variants = load_variant_table(kLogs + "demo_subway.variants.json");
-    const auto log = read_frame_log_file(kLogs + "demo_subway.csv");
-    REQUIRE(profile);
-    REQUIRE(variants);
-    REQUIRE(log);
+    const Recording r = load_recording("demo_subway", "demo_cpu");
+    const auto* profile = &r.profile;
+    const auto* variants = &r.variants;
+    const auto* log = &r.log;
     ReplayOptions paper;
     paper.history.enabled = false;
     const auto frames = frames_of_busiest_context(*log);
