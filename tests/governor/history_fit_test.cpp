@@ -181,3 +181,41 @@ TEST_CASE("the run-time model fits, refits after each change and then knows ever
     CHECK(all[hidden.space.index_of(unseen)] == Approx(model.predict(unseen)).epsilon(1e-12));
     CHECK(std::isnan(model.predict({5, 5, 5, 5, 5, 5})));
 }
+
+TEST_CASE("the history fit stays exact for counts near 2^40 and windows of identical frames", "[model][history][extremes]") {
+    const HiddenModel hidden = six_pass_hidden_model();
+    SceneGenerator scene(hidden, 0.0);
+    const Truth truth{hidden};
+    const Configuration a{0, 0, 0, 0, 0, 0}, b{2, 1, 0, 2, 1, 0};
+    // Counts scaled up to ~2^40 with a profile scaled alike: the same loads, so the same powers.
+    PlatformProfile huge = synthetic_profile();
+    const double factor = std::ldexp(1.0, 40) / 2e7;
+    huge.saturation_batches *= factor;
+    huge.saturation_vertices *= factor;
+    huge.saturation_fragments *= factor;
+    std::vector<ConfiguredSample> history;
+    for (const Configuration& c : {a, b}) {
+        // Every frame of a configuration identical: nothing varies within a configuration.
+        FrameSample s = scene.sample(3, c);
+        const double power = truth(s.passes, c);
+        for (PassFrame& p : s.passes) {
+            p.counts.batches *= factor;
+            p.counts.vertices *= factor;
+            p.counts.fragments *= factor;
+        }
+        s.power_w = power;
+        for (int f = 0; f < 30; ++f) history.push_back({s, c});
+    }
+    const auto fit = fit_history(history, hidden.space, PowerModel(huge), a, {}, b);
+    REQUIRE(fit);
+    for (const auto& [pass, k] : fit->model.coefficients()) {
+        CHECK(std::isfinite(k.k_b));
+        CHECK(std::isfinite(k.k_v));
+        CHECK(std::isfinite(k.k_f));
+    }
+    ConfigurationPredictor predictor(hidden.space, fit->model, b, fit->reuse);
+    for (const ConfiguredSample* s : {&history.front(), &history.back()}) {
+        predictor.set_frame(s->sample.passes, s->configuration);
+        CHECK(predictor.predict(s->configuration) == Approx(s->sample.power_w).epsilon(1e-3));
+    }
+}
