@@ -96,9 +96,11 @@ int main(int argc, char** argv) {
     print_rows("ours", "fitted", report.ours_fitted, averaged);
     print_rows("ours", "reused", report.ours_reused, averaged);
     print_row("ours", "switch", "next run", report.ours_switch);
+    print_rows("ours", "all", report.ours_all, averaged);
     print_rows("vatjus-anttila", "fitted", report.baseline_fitted, averaged);
     print_rows("vatjus-anttila", "reused", report.baseline_reused, averaged);
     print_row("vatjus-anttila", "switch", "next run", report.baseline_switch);
+    print_rows("vatjus-anttila", "all", report.baseline_all, averaged);
     print_row("no change", "switch", "next run", report.unchanged_switch);
     print_rows("noise floor", "all", report.floor, averaged);
     if (!frames_csv.empty()) {

@@ -9,7 +9,7 @@ import subprocess
 import sys
 
 SCENES = ["hall", "sponza", "valley", "subway"]
-ROWS = [("ours", "fitted", "per frame"), ("ours", "reused", "per frame"), ("ours", "reused", "30-frame"),
+ROWS = [("ours", "all", "30-frame"), ("vatjus-anttila", "all", "30-frame"), ("ours", "fitted", "per frame"), ("ours", "reused", "per frame"), ("ours", "reused", "30-frame"),
         ("ours", "switch", "next run"), ("vatjus-anttila", "reused", "per frame"),
         ("vatjus-anttila", "switch", "next run"), ("no change", "switch", "next run"),
         ("noise floor", "all", "per frame"),

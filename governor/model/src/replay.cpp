@@ -49,7 +49,7 @@ ReplayReport replay_frames(const std::vector<LoggedFrame>& frames, const Platfor
     const double range = profile.range_w();
     ReplayReport report;
     for (ReplayErrors* e : {&report.ours_fitted, &report.ours_reused, &report.baseline_fitted,
-                            &report.baseline_reused, &report.floor}) {
+                            &report.baseline_reused, &report.ours_all, &report.baseline_all, &report.floor}) {
         *e = {PredictionError(range), PredictionError(range)};
     }
     report.ours_switch = report.baseline_switch = report.unchanged_switch = PredictionError(range);
@@ -126,12 +126,16 @@ ReplayReport replay_frames(const std::vector<LoggedFrame>& frames, const Platfor
     for (const ScoredFrame& f : scored) {
         (f.fitted_here ? report.ours_fitted : report.ours_reused).per_frame.add(f.ours, f.measured);
         (f.fitted_here ? report.baseline_fitted : report.baseline_reused).per_frame.add(f.baseline, f.measured);
+        report.ours_all.per_frame.add(f.ours, f.measured);
+        report.baseline_all.per_frame.add(f.baseline, f.measured);
     }
     const std::size_t n = std::max<std::size_t>(1, options.average_frames);
     add_sliding_averages(scored, n, fitted_class, &ScoredFrame::ours, nullptr, report.ours_fitted.averaged);
     add_sliding_averages(scored, n, reused_class, &ScoredFrame::ours, nullptr, report.ours_reused.averaged);
     add_sliding_averages(scored, n, fitted_class, &ScoredFrame::baseline, nullptr, report.baseline_fitted.averaged);
     add_sliding_averages(scored, n, reused_class, &ScoredFrame::baseline, nullptr, report.baseline_reused.averaged);
+    add_sliding_averages(scored, n, any_class, &ScoredFrame::ours, nullptr, report.ours_all.averaged);
+    add_sliding_averages(scored, n, any_class, &ScoredFrame::baseline, nullptr, report.baseline_all.averaged);
 
     report.runs.resize(report.configuration_runs);
     for (std::size_t r = 0; r < report.configuration_runs; ++r) report.runs[r].configuration = resolved[run_start[r]].configuration;

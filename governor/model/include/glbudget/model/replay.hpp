@@ -56,6 +56,9 @@ struct ReplayRun {
 
 struct ReplayReport {
     ReplayErrors ours_fitted, ours_reused, baseline_fitted, baseline_reused;
+    // Every scored frame, as the system runs (fitting, reusing, refitting): with 30-frame
+    // averages, the measure of the paper's figures.
+    ReplayErrors ours_all, baseline_all;
     PredictionError ours_switch, baseline_switch;  // one pair per configuration change
     // The reference a model must beat at a switch: the next configuration "draws what this one
     // measured" (its last frames' mean power).
