@@ -137,12 +137,11 @@ ResolvedFrame resolve_frame(const LoggedFrame& frame, const VariantTable& table,
     std::vector<double> texels_per_fragment;
     for (const LoggedPass& logged_pass : frame.passes) {
         std::string name = logged_pass.pass;
-        const VariantCost* cost = nullptr;
+        bool in_table = false;
         if (const auto it = table.by_hash.find(logged_pass.pass); it != table.by_hash.end()) {
-            const PassVariants& pass = table.space.passes()[it->second.pass];
-            name = pass.pass;
+            name = table.space.passes()[it->second.pass].pass;
             if (!logged && it->second.level >= 0) resolved.configuration[it->second.pass] = it->second.level;
-            cost = &pass.levels[static_cast<std::size_t>(it->second.level >= 0 ? it->second.level : 0)];
+            in_table = true;
         }
         resolved.totals.triangles += logged_pass.primitives;
         resolved.totals.batches += logged_pass.counts.batches;
@@ -160,7 +159,7 @@ ResolvedFrame resolve_frame(const LoggedFrame& frame, const VariantTable& table,
         if (!merged) {
             resolved.sample.passes.push_back({name, logged_pass.counts});
             resolved.primitives.push_back(logged_pass.primitives);
-            texels_per_fragment.push_back(cost ? -1.0 : 1.0);  // -1: from the level, below
+            texels_per_fragment.push_back(in_table ? -1.0 : 1.0);  // -1: from the level, below
         }
     }
     if (logged) resolved.configuration = *logged;
