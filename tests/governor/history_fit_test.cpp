@@ -219,3 +219,40 @@ TEST_CASE("the history fit stays exact for counts near 2^40 and windows of ident
         CHECK(predictor.predict(s->configuration) == Approx(s->sample.power_w).epsilon(1e-3));
     }
 }
+
+TEST_CASE("the run-time model takes broken frames and unknown configurations without harm", "[model][history][extremes]") {
+    const HiddenModel hidden = six_pass_hidden_model();
+    SceneGenerator scene(hidden, 0.05);
+    RunTimeModel model(synthetic_profile(), hidden.space);
+    const Configuration a{0, 0, 0, 0, 0, 0}, outside{3, 0, 0, 0, 0, 0};
+    std::vector<double> all;
+    model.predict_all(all);
+    REQUIRE(all.size() == hidden.space.size());
+    CHECK(std::isnan(all[0]));  // nothing fitted yet
+    for (int t = 0; t < 30; ++t) {
+        FrameSample s = scene.sample(t, a);
+        if (t % 7 == 3) s.power_w = std::nan("");              // the sensor gave nothing
+        if (t % 7 == 5) s.passes[2].counts.fragments = -1.0;   // a broken count
+        model.learn(s, a, model.predict_frame(s, a));
+    }
+    CHECK(!model.fitted());  // broken frames do not count towards the window
+    for (int t = 30; t < 40; ++t) {
+        const FrameSample s = scene.sample(t, a);
+        model.learn(s, a, model.predict_frame(s, a));
+    }
+    REQUIRE(model.fitted());
+    // A frame drawn in a configuration outside the space is predicted as the fitted one and
+    // kept out of the history; predictions for it are NaN.
+    const FrameSample s = scene.sample(41, a);
+    CHECK(std::isfinite(model.predict_frame(s, outside)));
+    CHECK(std::isnan(model.predict(outside)));
+    model.learn(s, outside, std::nan(""));
+    CHECK(!model.has_data_for(outside));
+    model.predict_frame(s, a);
+    model.predict_all(all);
+    for (double p : all) {
+        CHECK(std::isfinite(p));
+        CHECK(p >= synthetic_profile().p_min_w);
+        CHECK(p <= synthetic_profile().p_max_w);
+    }
+}
