@@ -5,11 +5,14 @@
 namespace glbudget::cli {
 
 int sensors_main(std::span<char* const> args);
+int replay_main(std::span<char* const> args);
 
 namespace {
 constexpr Command table[] = {
     {"sensors", "list the power sensors this machine offers and what they read now",
      sensors_main},
+    {"replay", "run a frame log through the power model and the baseline, print their errors",
+     replay_main},
 };
 }  // namespace
 

@@ -20,7 +20,7 @@ def main():
     logs = sys.argv[4] if len(sys.argv) > 4 else os.path.join(os.path.dirname(__file__), "../../tests/data/logs")
     base = os.path.join(logs, "demo_" + scene)
     with tempfile.NamedTemporaryFile(suffix=".csv") as frames_csv:
-        subprocess.run([os.path.join(build, "bench/model/model_replay_bench"), base + ".csv", "--profile",
+        subprocess.run([os.path.join(build, "cli/glbudget"), "replay", base + ".csv", "--profile",
                         os.path.join(logs, "demo_cpu.profile.json"), "--variants", base + ".variants.json",
                         "--frames-csv", frames_csv.name], check=True, capture_output=True)
         rows = list(csv.DictReader(open(frames_csv.name)))

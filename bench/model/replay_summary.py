@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Replays every recorded demo log (tests/data/logs/demo_<scene>.csv) through
-model_replay_bench, with the fit over several configurations and with the paper's path only
+`glbudget replay`, with the fit over several configurations and with the paper's path only
 (--paper), and prints one markdown table of the MAPE figures the README shows.
-Usage: replay_summary.py BUILD_DIR [LOG_DIR] [extra model_replay_bench flags...]
+Usage: replay_summary.py BUILD_DIR [LOG_DIR] [extra `glbudget replay` flags...]
 """
 import os
 import subprocess
@@ -17,9 +17,9 @@ ROWS = [("ours", "all", "30-frame"), ("vatjus-anttila", "all", "30-frame"), ("ou
 
 
 def replay(build, logs, scene, extra):
-    bench = os.path.join(build, "bench/model/model_replay_bench")
+    glbudget = os.path.join(build, "cli/glbudget")
     base = os.path.join(logs, "demo_" + scene)
-    out = subprocess.run([bench, base + ".csv", "--profile", os.path.join(logs, "demo_cpu.profile.json"),
+    out = subprocess.run([glbudget, "replay", base + ".csv", "--profile", os.path.join(logs, "demo_cpu.profile.json"),
                           "--variants", base + ".variants.json"] + extra,
                          check=True, capture_output=True, text=True).stdout
     figures = {}

@@ -73,7 +73,7 @@ TEST_CASE("replay without a variant table treats every program as its own pass",
 // (tests/data/logs/record_demo_logs.py). Real data: the goal is the paper's (<= 2 % MAPE), not
 // reached with this sensor (its frame-to-frame scatter alone is 1.8-3.7 %); what is asserted
 // is what these recordings show with a margin, so that a regression in the model, the reader
-// or the replay fails here. The figures are printed by model_replay_bench and
+// or the replay fails here. The figures are printed by `glbudget replay` and
 // bench/model/replay_summary.py.
 TEST_CASE("replay of the demo renderer's recorded logs: every scene predicted, better than the baseline", "[model][replay]") {
     for (const char* scene : {"hall", "sponza", "valley", "subway"}) {

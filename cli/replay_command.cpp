@@ -1,25 +1,26 @@
-// Replays a frame log (GLBUDGET_LOG with power columns) through the run-time power model and
+// glbudget replay: replays a frame log (GLBUDGET_LOG with power columns) through the run-time
+// power model and
 // the Vatjus-Anttila 2013 baseline, and prints both models' prediction errors on the same
 // frames: MAPE and mean/max error relative to P_M - P_m, for frames in the fitted
 // configuration, for frames predicted by reusing the coefficients, and for the next
 // configuration predicted before each switch; per frame and averaged over --average frames,
 // beside the noise floor of the recording (see replay.hpp).
 //
-//   model_replay_bench LOG.csv --profile PROFILE.json [--variants VARIANTS.json]
-//                      [--fit-window N] [--check-window N] [--threshold SHARE] [--average N]
-//                      [--paper]   (no fit over several configurations: the paper's path only)
-//                      [--drift-frames N]  (drift correction length; 0: off)
-//                      [--frames-csv PATH]  (every scored frame: measured and both predictions)
+// Usage in print_help().
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <span>
 #include <string>
 
+#include "command.hpp"
 #include "glbudget/model/replay.hpp"
 
-using namespace glbudget::model;
+namespace glbudget::cli {
 
 namespace {
+
+using namespace glbudget::model;
 
 void print_row(const char* model, const char* frames, const char* scope, const PredictionError& e) {
     std::printf("%-16s %-8s %-10s %7zu %9.2f %14.2f %13.2f\n", model, frames, scope, e.count(), e.mape_percent(),
@@ -44,30 +45,54 @@ T parse_or_keep(const char* flag, const char* text, T fallback) {
     return static_cast<T>(value);
 }
 
+constexpr const char* kUsage =
+    "usage: glbudget replay LOG.csv --profile PROFILE.json [--variants VARIANTS.json]\n"
+    "                       [--fit-window N] [--check-window N] [--threshold SHARE] [--average N]\n"
+    "                       [--paper] [--drift-frames N] [--frames-csv PATH]\n";
+
+void print_help() {
+    std::printf("%s\n", kUsage);
+    std::printf(
+        "Replays a frame log written by the shim (GLBUDGET_LOG, with a power sensor) through the\n"
+        "run-time power model as the governor would run it, and through the Vatjus-Anttila 2013\n"
+        "baseline, and prints both models' errors on the same frames (MAPE, and mean and max error\n"
+        "as a share of P_M - P_m): fitted and reused frames, all frames, switches between\n"
+        "configurations, per frame and over --average frames (30), beside the recording's noise\n"
+        "floor. The profile gives P_m, P_M and the saturation counts; the variant table which\n"
+        "programs are which level of which pass (tests/data/logs/README.md). Options:\n"
+        "  --fit-window N, --check-window N, --threshold SHARE   the online fitter's (30, 10, 0.1)\n"
+        "  --paper            the paper's path only: no fit over several configurations\n"
+        "  --drift-frames N   follow the last N frames' residual between fits (0: off)\n"
+        "  --frames-csv PATH  every scored frame: measured power and both predictions\n");
+}
+
 int usage() {
-    std::cerr << "usage: model_replay_bench LOG.csv --profile PROFILE.json [--variants VARIANTS.json]"
-                 " [--fit-window N] [--check-window N] [--threshold SHARE] [--average N] [--paper] [--drift-frames N] [--frames-csv PATH]\n";
+    std::fprintf(stderr, "%s", kUsage);
     return 2;
 }
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int replay_main(std::span<char* const> args) {
     std::string log_path, profile_path, variants_path, frames_csv;
     FitSettings settings;
     ReplayOptions options;
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        const bool has_value = i + 1 < argc;
-        if (arg == "--profile" && has_value) profile_path = argv[++i];
-        else if (arg == "--variants" && has_value) variants_path = argv[++i];
-        else if (arg == "--fit-window" && has_value) settings.fitting_window = parse_or_keep("--fit-window", argv[++i], settings.fitting_window);
-        else if (arg == "--check-window" && has_value) settings.check_window = parse_or_keep("--check-window", argv[++i], settings.check_window);
-        else if (arg == "--threshold" && has_value) settings.refit_threshold = parse_or_keep("--threshold", argv[++i], settings.refit_threshold);
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string arg = args[i];
+        const bool has_value = i + 1 < args.size();
+        if (arg == "--help" || arg == "-h") {
+            print_help();
+            return 0;
+        }
+        if (arg == "--profile" && has_value) profile_path = args[++i];
+        else if (arg == "--variants" && has_value) variants_path = args[++i];
+        else if (arg == "--fit-window" && has_value) settings.fitting_window = parse_or_keep("--fit-window", args[++i], settings.fitting_window);
+        else if (arg == "--check-window" && has_value) settings.check_window = parse_or_keep("--check-window", args[++i], settings.check_window);
+        else if (arg == "--threshold" && has_value) settings.refit_threshold = parse_or_keep("--threshold", args[++i], settings.refit_threshold);
         else if (arg == "--paper") options.history.enabled = false;
-        else if (arg == "--drift-frames" && has_value) options.history.drift_frames = static_cast<std::size_t>(std::atoi(argv[++i]));
-        else if (arg == "--frames-csv" && has_value) frames_csv = argv[++i];
-        else if (arg == "--average" && has_value) options.average_frames = parse_or_keep("--average", argv[++i], options.average_frames);
+        else if (arg == "--drift-frames" && has_value) options.history.drift_frames = static_cast<std::size_t>(std::atoi(args[++i]));
+        else if (arg == "--frames-csv" && has_value) frames_csv = args[++i];
+        else if (arg == "--average" && has_value) options.average_frames = parse_or_keep("--average", args[++i], options.average_frames);
         else if (log_path.empty() && arg.rfind("--", 0) != 0) log_path = arg;
         else return usage();
     }
@@ -128,3 +153,5 @@ int main(int argc, char** argv) {
     }
     return 0;
 }
+
+}  // namespace glbudget::cli
