@@ -129,6 +129,8 @@ TEST_CASE("a fragment scale of 0 and unknown frame configurations stay finite", 
     CHECK(predictor.predict({0, 0}) >= synthetic_profile().p_min_w);
     predictor.set_frame({{"scene", {10, 100, 1e6}}}, {7, 7});  // not a configuration: taken as fitted
     CHECK(predictor.predict({1, 0}) < predictor.predict({0, 0}));
+    CHECK(std::isnan(predictor.predict({7, 7})));
+    CHECK(std::isnan(predictor.predict({0})));
 }
 
 TEST_CASE("variant tables carry several programs per level, shared programs, scales and skipped levels", "[model][variants]") {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "glbudget/model/nonnegative_least_squares.hpp"
 #include "glbudget/model/power_curve.hpp"
@@ -237,6 +238,7 @@ void ConfigurationPredictor::set_frame(const std::vector<PassFrame>& frame,
 }
 
 double ConfigurationPredictor::predict(const Configuration& configuration) const {
+    if (!space_.contains(configuration)) return std::numeric_limits<double>::quiet_NaN();
     if (tables_.empty()) return fitted_.profile().p_min_w;  // no frame given yet
     const std::vector<std::vector<LevelTerm>>& table = tables_[outer_combination(configuration)];
     double alpha = alpha_outside_space_;

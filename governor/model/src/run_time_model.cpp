@@ -16,7 +16,8 @@ double RunTimeModel::predict_frame(const FrameSample& frame, const Configuration
     current_ = configuration;
     if (!predictor_) return std::numeric_limits<double>::quiet_NaN();
     predictor_->set_frame(frame.passes, configuration);
-    return predictor_->predict(configuration);
+    // A configuration outside the space: its counts were taken as the fitted configuration's.
+    return predictor_->predict(space_.contains(configuration) ? configuration : fitted_configuration_);
 }
 
 double RunTimeModel::predict(const Configuration& configuration) const {

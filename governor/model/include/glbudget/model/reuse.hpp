@@ -57,6 +57,7 @@ public:
     // The frame was drawn in the fitted configuration.
     void set_frame(const std::vector<PassFrame>& frame) { set_frame(frame, fitted_configuration_); }
 
+    // NaN for a configuration outside the space.
     double predict(const Configuration& configuration) const;
     // out[space.index_of(c)] = predicted power of c.
     void predict_all(std::vector<double>& out) const;
