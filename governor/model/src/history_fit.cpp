@@ -57,23 +57,34 @@ std::optional<HistoryFit> fit_history(std::span<const ConfiguredSample> samples,
     if (usable.empty()) return std::nullopt;
     const std::vector<std::vector<Excess>> excess = level_excess(space);
 
-    // Columns: (pass, term) for every pass that drew something, then chi and psi.
-    std::map<std::string, std::array<int, 3>> column_of;
+    // Columns: (pass, term) for every pass that drew something, then chi and psi. Each pass's
+    // place in the space is looked up once here, not per frame.
+    struct PassColumns {
+        std::array<int, 3> column{-1, -1, -1};
+        std::size_t space_index = 0;  // space.pass_count(): not in the space
+    };
+    std::map<std::string, PassColumns> column_of;
     for (const ConfiguredSample* s : usable) {
         for (const PassFrame& p : s->sample.passes) {
-            auto [it, inserted] = column_of.try_emplace(p.pass, std::array<int, 3>{-1, -1, -1});
+            auto [it, inserted] = column_of.try_emplace(p.pass);
+            if (inserted) it->second.space_index = index_in_space(space, p.pass);
             const double counts[3] = {p.counts.batches, p.counts.vertices, p.counts.fragments};
             for (int t = 0; t < 3; ++t) {
-                if (counts[t] > 0.0) it->second[t] = 0;
+                if (counts[t] > 0.0) it->second.column[t] = 0;
             }
         }
     }
-    std::vector<std::pair<std::string, int>> columns;
-    for (auto& [pass, indices] : column_of) {
+    struct Column {
+        const std::string* pass;
+        int term;
+        std::size_t space_index;
+    };
+    std::vector<Column> columns;
+    for (auto& [pass, entry] : column_of) {
         for (int t = 0; t < 3; ++t) {
-            if (indices[t] >= 0) {
-                indices[t] = static_cast<int>(columns.size());
-                columns.push_back({pass, t});
+            if (entry.column[t] >= 0) {
+                entry.column[t] = static_cast<int>(columns.size());
+                columns.push_back({&pass, t, entry.space_index});
             }
         }
     }
@@ -94,11 +105,11 @@ std::optional<HistoryFit> fit_history(std::span<const ConfiguredSample> samples,
             const double x[3] = {p.counts.batches / profile.saturation_batches,
                                  p.counts.vertices / profile.saturation_vertices,
                                  p.counts.fragments / profile.saturation_fragments};
-            const auto& indices = column_of.at(p.pass);
+            const PassColumns& entry = column_of.at(p.pass);
             for (int t = 0; t < 3; ++t) {
-                if (indices[t] >= 0) a(r, indices[t]) += target.weight * x[t];
+                if (entry.column[t] >= 0) a(r, entry.column[t]) += target.weight * x[t];
             }
-            const std::size_t i = index_in_space(space, p.pass);
+            const std::size_t i = entry.space_index;
             if (i == space.pass_count()) continue;
             const Excess& d = excess[i][static_cast<std::size_t>(s.configuration[i])];
             a(r, chi_column) += target.weight * (d.ins_v * x[1] + d.ins_f * x[2]);
@@ -110,10 +121,9 @@ std::optional<HistoryFit> fit_history(std::span<const ConfiguredSample> samples,
     const bool prior_levels = space.contains(prior_configuration);
     Eigen::VectorXd z_prior(cols);
     for (Eigen::Index c = 0; c < chi_column; ++c) {
-        const auto& [pass, term] = columns[static_cast<std::size_t>(c)];
-        const PassCoefficients* k = prior.find(pass);
+        const auto& [pass, term, i] = columns[static_cast<std::size_t>(c)];
+        const PassCoefficients* k = prior.find(*pass);
         double value = k ? (term == 0 ? k->k_b : term == 1 ? k->k_v : k->k_f) : 0.0;
-        const std::size_t i = index_in_space(space, pass);
         if (k && prior_levels && i < space.pass_count()) {
             const Excess& d = excess[i][static_cast<std::size_t>(prior_configuration[i])];
             if (term == 1) value -= prior_reuse.chi * d.ins_v;
@@ -146,18 +156,18 @@ std::optional<HistoryFit> fit_history(std::span<const ConfiguredSample> samples,
 
     HistoryFit fit{prior, express_at, {unknowns(chi_column), unknowns(psi_column)}, usable.size(),
                    configurations.size(), static_cast<std::size_t>(cols)};
-    for (const auto& [pass, indices] : column_of) {
+    for (const auto& [pass, entry] : column_of) {
         PassCoefficients k;
         if (const PassCoefficients* previous = prior.find(pass)) k = *previous;
         double* terms[3] = {&k.k_b, &k.k_v, &k.k_f};
-        const std::size_t i = index_in_space(space, pass);
+        const std::size_t i = entry.space_index;
         const Excess d = i < space.pass_count() ? excess[i][static_cast<std::size_t>(express_at[i])] : Excess{};
         for (int t = 0; t < 3; ++t) {
-            if (indices[t] < 0) continue;  // no data for this term: the prior's value stands
-            *terms[t] = unknowns(indices[t]);
+            if (entry.column[t] < 0) continue;  // no data for this term: the prior's value stands
+            *terms[t] = unknowns(entry.column[t]);
         }
-        if (indices[1] >= 0) k.k_v += fit.reuse.chi * d.ins_v;
-        if (indices[2] >= 0) k.k_f += fit.reuse.chi * d.ins_f + fit.reuse.psi * d.tex_f;
+        if (entry.column[1] >= 0) k.k_v += fit.reuse.chi * d.ins_v;
+        if (entry.column[2] >= 0) k.k_f += fit.reuse.chi * d.ins_f + fit.reuse.psi * d.tex_f;
         fit.model.set(pass, k);
     }
     fit.model.set_frame_alpha(unknowns(frame_column));

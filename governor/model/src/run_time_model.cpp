@@ -1,5 +1,6 @@
 #include "glbudget/model/run_time_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -41,7 +42,8 @@ void RunTimeModel::anchor_to_recent(PowerModel& model, const Configuration& conf
     const std::size_t window = fitter_.last_fit().samples_used;
     double residual = 0.0;
     std::size_t n = 0;
-    for (auto it = history_.rbegin(); it != history_.rend() && n < window; ++it) {
+    const std::span<const ConfiguredSample> recent = recent_history();
+    for (auto it = recent.rbegin(); it != recent.rend() && n < window; ++it) {
         if (it->configuration != configuration) break;
         residual += linearise_power(model.profile(), it->sample.power_w).alpha - model.alpha(it->sample.passes);
         ++n;
@@ -49,11 +51,18 @@ void RunTimeModel::anchor_to_recent(PowerModel& model, const Configuration& conf
     if (n > 0) model.set_frame_alpha(model.frame_alpha() + residual / static_cast<double>(n));
 }
 
+std::span<const ConfiguredSample> RunTimeModel::recent_history() const {
+    const std::size_t kept = std::min(history_.size(), history_settings_.frames);
+    return std::span<const ConfiguredSample>(history_).last(kept);
+}
+
 OnlineFitter::Event RunTimeModel::learn(const FrameSample& frame, const Configuration& configuration,
                                         double predicted_w) {
     if (is_usable(frame) && space_.contains(configuration)) {
         history_.push_back({frame, configuration});
-        while (history_.size() > history_settings_.frames) history_.pop_front();
+        if (history_.size() > 2 * history_settings_.frames) {
+            history_.erase(history_.begin(), history_.end() - static_cast<std::ptrdiff_t>(history_settings_.frames));
+        }
     }
     if (predictor_ && history_settings_.drift_frames > 0 && is_usable(frame) && std::isfinite(predicted_w)) {
         // The residual in load terms: what the frame measured beyond what was predicted.
@@ -76,9 +85,9 @@ OnlineFitter::Event RunTimeModel::learn(const FrameSample& frame, const Configur
     // Beyond it: with several configurations in the history, one fit over all of them.
     if (history_settings_.enabled) {
         std::set<Configuration> seen;
-        for (const ConfiguredSample& s : history_) seen.insert(s.configuration);
+        const std::span<const ConfiguredSample> samples = recent_history();
+        for (const ConfiguredSample& s : samples) seen.insert(s.configuration);
         if (seen.size() > 1) {
-            const std::vector<ConfiguredSample> samples(history_.begin(), history_.end());
             if (auto fit = fit_history(samples, space_, model, configuration, reuse_, configuration,
                                        history_settings_.fit)) {
                 model = fit->model;

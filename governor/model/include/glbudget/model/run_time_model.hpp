@@ -5,9 +5,9 @@
 // beyond the paper, refits over the recent frames of every configuration seen once there is
 // more than one (history_fit.hpp).
 #include <cstddef>
-#include <deque>
 #include <optional>
 #include <set>
+#include <span>
 #include <vector>
 
 #include "glbudget/model/configuration_space.hpp"
@@ -56,11 +56,15 @@ public:
 
 private:
     void anchor_to_recent(PowerModel& model, const Configuration& configuration) const;
+    // The last HistorySettings::frames usable frames, oldest first.
+    std::span<const ConfiguredSample> recent_history() const;
 
     ConfigurationSpace space_;
     HistorySettings history_settings_;
     OnlineFitter fitter_;
-    std::deque<ConfiguredSample> history_;
+    // Kept contiguous so a fit reads it in place; trimmed to `frames` only once it holds twice
+    // as many, so a frame costs no shift of the whole history.
+    std::vector<ConfiguredSample> history_;
     PowerModel model_;
     std::optional<ConfigurationPredictor> predictor_;
     Configuration current_;
