@@ -38,3 +38,35 @@ TEST_CASE("bad profile fields fall back to defaults", "[model][profile]") {
     CHECK(inverted.p_max_w == inverted.p_min_w);
     CHECK(!load_platform_profile("/nonexistent/glbudget/profile.json"));
 }
+
+TEST_CASE("a profile's calibrated costs round-trip and are all or nothing", "[model][profile][costs]") {
+    PlatformProfile written;
+    written.costs = PlatformCosts{0.5, 1.25, 2.0, 0.03, 0.7};
+    const PlatformProfile read = parse_platform_profile(platform_profile_to_json(written), "test");
+    REQUIRE(read.costs);
+    CHECK(read.costs->batch == 0.5);
+    CHECK(read.costs->vertex == 1.25);
+    CHECK(read.costs->fragment == 2.0);
+    CHECK(read.costs->instruction == 0.03);
+    CHECK(read.costs->texel == 0.7);
+    // Without costs none are written, and none are read.
+    CHECK(platform_profile_to_json(PlatformProfile{}).find("costs") == std::string::npos);
+    CHECK(!parse_platform_profile(platform_profile_to_json(PlatformProfile{}), "test").costs);
+
+    const char* broken[] = {
+        // a negative cost, a missing one, a string, not an object
+        R"({"p_min_w": 1, "p_max_w": 2, "saturation": {"batches": 1, "vertices": 1, "fragments": 1},
+            "costs": {"batch": -1, "vertex": 0, "fragment": 0, "instruction": 0, "texel": 0}})",
+        R"({"p_min_w": 1, "p_max_w": 2, "saturation": {"batches": 1, "vertices": 1, "fragments": 1},
+            "costs": {"batch": 1, "vertex": 0, "fragment": 0, "instruction": 0}})",
+        R"({"p_min_w": 1, "p_max_w": 2, "saturation": {"batches": 1, "vertices": 1, "fragments": 1},
+            "costs": {"batch": "1", "vertex": 0, "fragment": 0, "instruction": 0, "texel": 0}})",
+        R"({"p_min_w": 1, "p_max_w": 2, "saturation": {"batches": 1, "vertices": 1, "fragments": 1},
+            "costs": [1, 2, 3, 4, 5]})",
+    };
+    for (const char* text : broken) {
+        const PlatformProfile parsed = parse_platform_profile(text, "test");
+        CHECK(!parsed.costs);
+        CHECK(parsed.p_max_w == 2.0);  // the rest of the profile still stands
+    }
+}

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -28,6 +29,33 @@ void read_number(const json& object, const char* key, double& out, const std::st
         return;
     }
     out = it->get<double>();
+}
+
+// The optional "costs" object: all or nothing, since a prior with one cost silently at 0
+// would make every pass look free of it.
+void read_costs(const json& document, PlatformProfile& profile, const std::string& source) {
+    const auto costs = document.find("costs");
+    if (costs == document.end()) return;
+    if (!costs->is_object()) {
+        std::cerr << "glbudget: " << source << ": \"costs\" must be an object, ignoring it\n";
+        return;
+    }
+    PlatformCosts parsed;
+    const std::pair<const char*, double*> fields[] = {{"batch", &parsed.batch},
+                                                      {"vertex", &parsed.vertex},
+                                                      {"fragment", &parsed.fragment},
+                                                      {"instruction", &parsed.instruction},
+                                                      {"texel", &parsed.texel}};
+    for (const auto& [key, out] : fields) {
+        const auto it = costs->find(key);
+        if (it == costs->end() || !it->is_number() || !std::isfinite(it->get<double>()) || it->get<double>() < 0.0) {
+            std::cerr << "glbudget: " << source << ": \"costs\" needs \"" << key
+                      << "\" as a number >= 0, ignoring the costs\n";
+            return;
+        }
+        *out = it->get<double>();
+    }
+    profile.costs = parsed;
 }
 
 }  // namespace
@@ -57,6 +85,7 @@ PlatformProfile parse_platform_profile(const std::string& json_text, const std::
     read_number(*saturation, "vertices", profile.saturation_vertices, source, positive, "a number > 0");
     read_number(*saturation, "fragments", profile.saturation_fragments, source, positive,
                 "a number > 0");
+    read_costs(document, profile, source);
     return profile;
 }
 
@@ -76,7 +105,7 @@ std::optional<PlatformProfile> load_platform_profile(const std::string& path) {
 }
 
 std::string platform_profile_to_json(const PlatformProfile& profile) {
-    const json document = {
+    json document = {
         {"p_min_w", profile.p_min_w},
         {"p_max_w", profile.p_max_w},
         {"saturation",
@@ -84,6 +113,13 @@ std::string platform_profile_to_json(const PlatformProfile& profile) {
           {"vertices", profile.saturation_vertices},
           {"fragments", profile.saturation_fragments}}},
     };
+    if (profile.costs) {
+        document["costs"] = {{"batch", profile.costs->batch},
+                             {"vertex", profile.costs->vertex},
+                             {"fragment", profile.costs->fragment},
+                             {"instruction", profile.costs->instruction},
+                             {"texel", profile.costs->texel}};
+    }
     return document.dump(2);
 }
 
