@@ -6,6 +6,7 @@ namespace glbudget::cli {
 
 int sensors_main(std::span<char* const> args);
 int replay_main(std::span<char* const> args);
+int costs_main(std::span<char* const> args);
 
 namespace {
 constexpr Command table[] = {
@@ -13,6 +14,8 @@ constexpr Command table[] = {
      sensors_main},
     {"replay", "run a frame log through the power model and the baseline, print their errors",
      replay_main},
+    {"costs", "fit this machine's per-batch, vertex, fragment, instruction and texel costs from frame logs",
+     costs_main},
 };
 }  // namespace
 
