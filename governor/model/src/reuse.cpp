@@ -84,7 +84,7 @@ ConfigurationPredictor::ConfigurationPredictor(const ConfigurationSpace& space,
                                                const PowerModel& fitted,
                                                const Configuration& fitted_configuration,
                                                ReuseCoefficients reuse)
-    : space_(space), fitted_(fitted) {
+    : space_(space), fitted_(fitted), scales_(space) {
     const std::size_t passes = space.pass_count();
     scalers_of_.resize(passes);
     for (std::size_t p = 0; p < passes; ++p) {
@@ -151,7 +151,7 @@ PassCoefficients ConfigurationPredictor::coefficients(std::size_t pass, int leve
 double ConfigurationPredictor::fragment_scale(std::size_t pass, const Configuration& configuration) const {
     double scale = 1.0;
     for (std::size_t p : scalers_of_[pass]) {
-        scale *= space_.passes()[p].levels[static_cast<std::size_t>(configuration[p])].fragment_scale;
+        scale *= scales_.at(pass, p, configuration[p]);
     }
     return scale;
 }

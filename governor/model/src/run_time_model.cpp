@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "glbudget/model/fragment_scales.hpp"
 #include "glbudget/model/platform_costs.hpp"
 #include "glbudget/model/power_curve.hpp"
 
@@ -27,25 +28,8 @@ void RunTimeModel::seed_prior(const FrameSample& frame, const Configuration& con
     fitter_.adopt(prior);
 }
 
-// The next fitting window regresses the new configuration's frames: its prior must be the
-// coefficients at the new levels (the paper's window would start from the old levels').
-void RunTimeModel::express_prior_at(const Configuration& configuration) {
-    if (!predictor_ || !space_.contains(configuration)) return;
-    PowerModel prior = fitter_.model();
-    for (std::size_t i = 0; i < space_.pass_count(); ++i) {
-        const std::string& pass = space_.passes()[i].pass;
-        if (prior.find(pass) == nullptr) continue;
-        if (!space_.passes()[i].levels[static_cast<std::size_t>(configuration[i])].draws) continue;
-        prior.set(pass, predictor_->coefficients(i, configuration[i]));
-    }
-    fitter_.adopt(prior);
-}
-
 double RunTimeModel::predict_frame(const FrameSample& frame, const Configuration& configuration) {
-    if (!current_.empty() && configuration != current_) {
-        fitter_.configuration_changed();
-        express_prior_at(configuration);
-    }
+    if (!current_.empty() && configuration != current_) fitter_.configuration_changed();
     current_ = configuration;
     if (!predictor_) return std::numeric_limits<double>::quiet_NaN();
     predictor_->set_frame(frame.passes, configuration);
@@ -142,6 +126,9 @@ OnlineFitter::Event RunTimeModel::learn(const FrameSample& frame, const Configur
     model_ = model;
     if (predictor_) predictor_->refit(model, fitted_at, reuse_);
     else predictor_.emplace(space_, model, fitted_at, reuse_);
+    // Beyond the paper, with the history: fragments at every render-scale or shadow-map level
+    // seen in it as measured, not as the table's declared areas (fragment_scales.hpp).
+    if (history_settings_.enabled) predictor_->set_fragment_scales(measure_fragment_scales(recent_history(), space_));
     predictor_->set_load_offset(0.0);
     return event;
 }

@@ -20,15 +20,11 @@
 #include <vector>
 
 #include "glbudget/model/configuration_space.hpp"
+#include "glbudget/model/configured_sample.hpp"
 #include "glbudget/model/power_model.hpp"
 #include "glbudget/model/reuse.hpp"
 
 namespace glbudget::model {
-
-struct ConfiguredSample {
-    FrameSample sample;
-    Configuration configuration;
-};
 
 struct HistoryFitSettings {
     // Ridge strength relative to the scaled columns (see window_fit.hpp).

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "glbudget/model/configuration_space.hpp"
+#include "glbudget/model/fragment_scales.hpp"
 #include "glbudget/model/power_model.hpp"
 
 namespace glbudget::model {
@@ -47,6 +48,10 @@ public:
     void refit(const PowerModel& fitted, const Configuration& fitted_configuration, ReuseCoefficients reuse);
 
     PassCoefficients coefficients(std::size_t pass, int level) const;
+
+    // Measured fragment scales in place of the table's declared ones, from the next
+    // set_frame() on (fragment_scales.hpp).
+    void set_fragment_scales(FragmentScales scales) { scales_ = std::move(scales); }
 
     // A load added to every configuration from the next set_frame() on (a drift correction).
     void set_load_offset(double alpha) { load_offset_ = alpha; }
@@ -92,6 +97,7 @@ private:
     Configuration fitted_configuration_;
     std::vector<std::vector<PassCoefficients>> coefficients_;  // [pass][level]
     std::vector<std::vector<std::size_t>> scalers_of_;         // [pass]: passes scaling its fragments
+    FragmentScales scales_;
     std::vector<std::size_t> outer_;       // passes that scale other passes' fragments
     std::vector<bool> scaled_by_outer_;    // [pass]: one of them scales its fragments
     bool outer_is_prefix_ = true;          // they are the first passes of the space

@@ -56,7 +56,6 @@ public:
 
 private:
     void seed_prior(const FrameSample& frame, const Configuration& configuration);
-    void express_prior_at(const Configuration& configuration);
     void anchor_to_recent(PowerModel& model, const Configuration& configuration) const;
     // The last HistorySettings::frames usable frames, oldest first.
     std::span<const ConfiguredSample> recent_history() const;
