@@ -151,6 +151,11 @@ int replay_main(std::span<char* const> args) {
         std::printf("  %-14s %4zu %8.2f %8.2f %8.2f%s\n", configuration.c_str(), run.scored_frames, run.measured_w,
                     run.ours_w, run.baseline_w, run.fitted_here ? "  (fitted)" : "");
     }
+    std::printf("\nper switch, into run: measured, ours, baseline, no change (W)\n");
+    for (const ReplaySwitch& change : report.switches) {
+        std::printf("  %-14zu %8.2f %8.2f %8.2f %8.2f\n", change.to_run + 1, change.measured_w, change.ours_w,
+                    change.baseline_w, change.unchanged_w);
+    }
     return 0;
 }
 

@@ -174,9 +174,12 @@ ReplayReport replay_frames(const std::vector<LoggedFrame>& frames, const Platfor
         }
         if (measured == 0) continue;
         const double count = static_cast<double>(switch_count[r]);
-        report.ours_switch.add(switch_ours[r] / count, measured_sum / static_cast<double>(measured));
-        report.baseline_switch.add(switch_baseline[r] / count, measured_sum / static_cast<double>(measured));
-        report.unchanged_switch.add(switch_measured[r] / count, measured_sum / static_cast<double>(measured));
+        const ReplaySwitch change{r + 1, switch_ours[r] / count, switch_baseline[r] / count, switch_measured[r] / count,
+                                  measured_sum / static_cast<double>(measured)};
+        report.ours_switch.add(change.ours_w, change.measured_w);
+        report.baseline_switch.add(change.baseline_w, change.measured_w);
+        report.unchanged_switch.add(change.unchanged_w, change.measured_w);
+        report.switches.push_back(change);
     }
     report.scored = std::move(scored);
     return report;

@@ -54,6 +54,13 @@ struct ReplayRun {
     double measured_w = 0.0, ours_w = 0.0, baseline_w = 0.0;
 };
 
+// One configuration change: the next run's power as predicted in the last frames before it, and
+// as it then measured.
+struct ReplaySwitch {
+    std::size_t to_run = 0;
+    double ours_w = 0.0, baseline_w = 0.0, unchanged_w = 0.0, measured_w = 0.0;
+};
+
 struct ReplayReport {
     ReplayErrors ours_fitted, ours_reused, baseline_fitted, baseline_reused;
     // Every scored frame, as the system runs (fitting, reusing, refitting): with 30-frame
@@ -65,6 +72,7 @@ struct ReplayReport {
     PredictionError unchanged_switch;
     ReplayErrors floor;                            // configuration-run means, all scored frames
     std::vector<ReplayRun> runs;
+    std::vector<ReplaySwitch> switches;
     std::vector<ReplayFrame> scored;
     std::size_t frames = 0;
     std::size_t frames_unusable = 0;  // no power or unmeasured counts
