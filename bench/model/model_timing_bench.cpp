@@ -13,6 +13,7 @@
 #include <tuple>
 #include <vector>
 
+#include "glbudget/model/fragment_scales.hpp"
 #include "glbudget/model/history_fit.hpp"
 #include "glbudget/model/power_curve.hpp"
 #include "glbudget/model/reuse.hpp"
@@ -263,6 +264,11 @@ int main() {
         },
         5000);
     const double scaled_enumerate_us = median_us([&] { scaled.predict_all(power); g_sink = power[7]; }, 5000);
+    // After every fit with a render-scale pass: the measured fragment scales over the history.
+    std::vector<ConfiguredSample> scaled_history = history;
+    for (std::size_t n = 0; n < scaled_history.size(); ++n) scaled_history[n].configuration[0] = static_cast<int>(n / 100);
+    const double scales_us = median_us(
+        [&] { g_sink = measure_fragment_scales(scaled_history, scaled_space).at(1, 0, 2); }, 500);
 
     std::printf("glbudget power model, 6 passes x 3 levels = %zu configurations, 30-frame window\n", scene.space.size());
     report("fit one window (18 unknowns)", fit_us, "plain QR least squares", qr_us, "goal <= 100 us, paper 2600 us");
@@ -273,6 +279,7 @@ int main() {
     report("  with a render-scale pass", scaled_us, "decode + evaluate each", naive_us, "one table per render scale");
     report("    of which enumeration only", scaled_enumerate_us, "decode + evaluate each", naive_us, "");
     report("fit over several configurations", history_us, "fit one window", fit_us, "300 frames, 20 unknowns");
+    report("measure fragment scales", scales_us, "fit one window", fit_us, "300 frames, after each fit");
     report("select under a 40% budget", select_us, "sort by error, scan", sort_us, "paper 30 us");
     // What the timed fits computed, so a degenerate case (nothing fitted, all held) shows.
     for (const auto& [name, fits, offset] : {std::tuple{"first fit", &first, 0}, std::tuple{"refit", &refit, 1}}) {

@@ -1,12 +1,15 @@
 #!/usr/bin/env python3
 """Replays every recorded demo log (tests/data/logs/demo_<scene>.csv) through
-`glbudget replay`, with the fit over several configurations and with the paper's path only
-(--paper), and prints one markdown table of the MAPE figures the README shows.
+`glbudget replay`: with the fit over several configurations, with it and the platform costs
+calibrated by `glbudget costs` on the *other* three scenes' logs (never the replayed one), and
+with the paper's path only (--paper); prints one markdown table of the MAPE figures the README
+shows.
 Usage: replay_summary.py BUILD_DIR [LOG_DIR] [extra `glbudget replay` flags...]
 """
 import os
 import subprocess
 import sys
+import tempfile
 
 SCENES = ["hall", "sponza", "valley", "subway"]
 ROWS = [("ours", "all", "30-frame"), ("vatjus-anttila", "all", "30-frame"), ("ours", "fitted", "per frame"), ("ours", "reused", "per frame"), ("ours", "reused", "30-frame"),
@@ -16,10 +19,22 @@ ROWS = [("ours", "all", "30-frame"), ("vatjus-anttila", "all", "30-frame"), ("ou
         ("noise floor", "all", "30-frame")]
 
 
-def replay(build, logs, scene, extra):
+def calibrate_without(build, logs, scene, out_profile):
+    """The profile with costs fitted on every scene's log but `scene`'s."""
+    args = [os.path.join(build, "cli/glbudget"), "costs", "--profile", os.path.join(logs, "demo_cpu.profile.json"),
+            "--output", out_profile]
+    for other in SCENES:
+        if other != scene:
+            base = os.path.join(logs, "demo_" + other)
+            args += ["--log", base + ".csv", "--variants", base + ".variants.json"]
+    subprocess.run(args, check=True, capture_output=True)
+
+
+def replay(build, logs, scene, extra, profile=None):
     glbudget = os.path.join(build, "cli/glbudget")
     base = os.path.join(logs, "demo_" + scene)
-    out = subprocess.run([glbudget, "replay", base + ".csv", "--profile", os.path.join(logs, "demo_cpu.profile.json"),
+    profile = profile or os.path.join(logs, "demo_cpu.profile.json")
+    out = subprocess.run([glbudget, "replay", base + ".csv", "--profile", profile,
                           "--variants", base + ".variants.json"] + extra,
                          check=True, capture_output=True, text=True).stdout
     figures = {}
@@ -38,9 +53,14 @@ def main():
     extra = sys.argv[3:]
     print("| scene | fit | " + " | ".join("%s %s (%s)" % row for row in ROWS) + " |")
     print("|---|---|" + "---:|" * len(ROWS))
+    calibrated = tempfile.mkdtemp()
     for scene in SCENES:
-        for label, flags in (("several configurations", []), ("paper (one window)", ["--paper"])):
-            figures = replay(build, logs, scene, extra + flags)
+        profile = os.path.join(calibrated, scene + ".profile.json")
+        calibrate_without(build, logs, scene, profile)
+        for label, flags, costs in (("several configurations, costs of the other scenes", [], profile),
+                                    ("several configurations, no costs", [], None),
+                                    ("paper (one window)", ["--paper"], None)):
+            figures = replay(build, logs, scene, extra + flags, costs)
             cells = ["%.2f %%" % figures[row][1] if row in figures and figures[row][0] > 0 else "–" for row in ROWS]
             print("| %s | %s | %s |" % (scene.capitalize(), label, " | ".join(cells)))
 
