@@ -142,7 +142,8 @@ std::optional<HistoryFit> fit_history(std::span<const ConfiguredSample> samples,
     }
     // The per-frame load is not pulled towards its prior: what no count explains is the
     // frame's own cost first, rather than the cost of a pass that happens to draw every frame.
-    const double lambda = settings.ridge * settings.ridge * static_cast<double>(cols);
+    const double strength = profile.costs ? settings.calibrated_ridge : settings.ridge;
+    const double lambda = strength * strength * static_cast<double>(cols);
     Eigen::VectorXd ridge = Eigen::VectorXd::Constant(cols, lambda);
     ridge(frame_column) = settings.frame_ridge * settings.frame_ridge * static_cast<double>(cols);
     Eigen::MatrixXd gram = a.transpose() * a;
