@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Plots a replay of a recorded demo log like the paper's Figure 3: measured power per frame,
 our model's prediction and the Vatjus-Anttila baseline's, with the configuration runs marked.
-Usage: plot_replay.py BUILD_DIR SCENE OUT.png [LOG_DIR]   (needs python3-matplotlib)
+Our model runs with the platform costs calibrated on the other three scenes' logs, as in the
+README's first rows (replay_summary.py); --no-costs plots it without them.
+Usage: plot_replay.py BUILD_DIR SCENE OUT.png [LOG_DIR] [--no-costs]   (needs python3-matplotlib)
 """
 import csv
 import os
@@ -11,18 +13,27 @@ import tempfile
 
 import matplotlib
 
+from replay_summary import calibrate_without
+
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
 def main():
-    build, scene, out = sys.argv[1:4]
-    logs = sys.argv[4] if len(sys.argv) > 4 else os.path.join(os.path.dirname(__file__), "../../tests/data/logs")
+    args = [a for a in sys.argv[1:] if a != "--no-costs"]
+    costs = "--no-costs" not in sys.argv
+    build, scene, out = args[:3]
+    logs = args[3] if len(args) > 3 else os.path.join(os.path.dirname(__file__), "../../tests/data/logs")
     base = os.path.join(logs, "demo_" + scene)
-    with tempfile.NamedTemporaryFile(suffix=".csv") as frames_csv:
-        subprocess.run([os.path.join(build, "cli/glbudget"), "replay", base + ".csv", "--profile",
-                        os.path.join(logs, "demo_cpu.profile.json"), "--variants", base + ".variants.json",
-                        "--frames-csv", frames_csv.name], check=True, capture_output=True)
+    with tempfile.NamedTemporaryFile(suffix=".csv") as frames_csv, \
+            tempfile.NamedTemporaryFile(suffix=".json") as calibrated:
+        profile = os.path.join(logs, "demo_cpu.profile.json")
+        if costs:
+            calibrate_without(build, logs, scene, calibrated.name)
+            profile = calibrated.name
+        subprocess.run([os.path.join(build, "cli/glbudget"), "replay", base + ".csv", "--profile", profile,
+                        "--variants", base + ".variants.json", "--frames-csv", frames_csv.name],
+                       check=True, capture_output=True)
         rows = list(csv.DictReader(open(frames_csv.name)))
     configurations = {}
     with open(base + ".csv") as log:
@@ -42,7 +53,8 @@ def main():
             previous = configurations[f]
     ax.set_xlabel("frame")
     ax.set_ylabel("power (W)")
-    ax.set_title("%s: replay of the recorded log (configurations marked)" % scene.capitalize())
+    ax.set_title("%s: replay of the recorded log (configurations marked)%s" %
+                 (scene.capitalize(), ", ours with costs calibrated on the other scenes" if costs else ""))
     ax.legend(loc="lower left", fontsize=8)
     fig.tight_layout()
     fig.savefig(out, dpi=110)
