@@ -13,7 +13,7 @@ import tempfile
 
 import matplotlib
 
-from replay_summary import calibrate_without
+from replay_summary import calibrate_without, recording_profile, sensor_of
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -27,9 +27,8 @@ def main():
     base = os.path.join(logs, "demo_" + scene)
     with tempfile.NamedTemporaryFile(suffix=".csv") as frames_csv, \
             tempfile.NamedTemporaryFile(suffix=".json") as calibrated:
-        profile = os.path.join(logs, "demo_cpu.profile.json")
-        if costs:
-            calibrate_without(build, logs, scene, calibrated.name)
+        profile = recording_profile(logs)
+        if costs and calibrate_without(build, logs, scene, calibrated.name):
             profile = calibrated.name
         subprocess.run([os.path.join(build, "cli/glbudget"), "replay", base + ".csv", "--profile", profile,
                         "--variants", base + ".variants.json", "--frames-csv", frames_csv.name],
@@ -41,7 +40,7 @@ def main():
             configurations.setdefault(int(row["frame"]), row.get("configuration", ""))
     frame = [int(r["frame"]) for r in rows]
     fig, ax = plt.subplots(figsize=(10, 3.6))
-    ax.plot(frame, [float(r["measured_w"]) for r in rows], color="0.55", lw=1, label="measured (cpu sensor)")
+    ax.plot(frame, [float(r["measured_w"]) for r in rows], color="0.55", lw=1, label="measured (%s sensor)" % sensor_of(logs))
     ax.plot(frame, [float(r["ours_w"]) for r in rows], color="tab:blue", lw=1.4, label="ours")
     ax.plot(frame, [float(r["baseline_w"]) for r in rows], color="tab:orange", lw=1.2, ls="--",
             label="Vatjus-Anttila 2013")

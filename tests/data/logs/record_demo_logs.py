@@ -10,8 +10,13 @@ are joined into one (frames renumbered in order, a
 `configuration` column saying which configuration drew each frame, as the governor logs
 what it applied) so that the replay sees configuration changes as a running app would.
 Writes, per scene, into OUTDIR: demo_<scene>.csv, demo_<scene>.variants.json, and one
-demo_cpu.profile.json.
+demo_<sensor>.profile.json (P_m, P_M of the sensor's range, and the saturation counts).
+The committed logs use the cpu estimate, the only source on a machine without a GPU. On a
+machine with a real sensor, record with it to check the model against real power, e.g.
+`--sensor rapl:domain=uncore --p-min 1.5 --p-max 15` (the range from the GPU's idle and
+maximum power, until `glbudget calibrate` measures it).
 Usage: record_demo_logs.py BUILD_DIR OUTDIR [--scenes hall,subway] [--frames 40] [--fps 2]
+                           [--sensor cpu] [--p-min W --p-max W]
 """
 import argparse
 import csv
@@ -117,7 +122,7 @@ def variant_table(build, scene):
     return {"passes": passes}
 
 
-def record(build, scene, frames, fps, table, out_csv):
+def record(build, scene, frames, fps, sensor, table, out_csv):
     rows, header, next_frame = [], None, 1
     names = [p["name"] for p in table["passes"]]
     for config in CONFIGS:
@@ -127,7 +132,7 @@ def record(build, scene, frames, fps, table, out_csv):
             # Each run continues the camera path where the previous one stopped, so the joined
             # log is one walk through the scene whose configuration changes along the way.
             run_demo(build, scene, config, frames,
-                     {"GLBUDGET_LOG": log.name, "GLBUDGET_SENSOR": "cpu", "GLBUDGET_FPS": str(fps)},
+                     {"GLBUDGET_LOG": log.name, "GLBUDGET_SENSOR": sensor, "GLBUDGET_FPS": str(fps)},
                      start_frame=next_frame - 1)
             with open(log.name) as f:
                 reader = csv.reader(f)
@@ -150,17 +155,29 @@ def main():
     ap.add_argument("--scenes", default="hall,sponza,valley,subway")
     ap.add_argument("--frames", type=int, default=40)
     ap.add_argument("--fps", type=float, default=2)
+    ap.add_argument("--sensor", default="cpu", help="GLBUDGET_SENSOR for the recording (default: cpu)")
+    ap.add_argument("--p-min", type=float, help="P_m of the profile, W (cpu: its idle default, 10)")
+    ap.add_argument("--p-max", type=float, help="P_M of the profile, W (cpu: its max default, 45)")
     a = ap.parse_args()
+    source = a.sensor.split(":")[0]
+    if source == "cpu":
+        p_min, p_max = (10.0 if a.p_min is None else a.p_min), (45.0 if a.p_max is None else a.p_max)
+    elif a.p_min is None or a.p_max is None:
+        ap.error("--sensor %s needs the sensor's range: --p-min W --p-max W" % a.sensor)
+    else:
+        p_min, p_max = a.p_min, a.p_max
+    if not p_max > p_min:
+        ap.error("--p-max must be above --p-min")
     os.makedirs(a.outdir, exist_ok=True)
-    # The cpu sensor's range (its defaults) and counts that saturate this machine's llvmpipe
-    # at the paced rate: they only scale the fitted coefficients.
-    profile = {"p_min_w": 10.0, "p_max_w": 45.0,
+    # The sensor's range and counts that saturate this machine's llvmpipe at the paced rate:
+    # the counts only scale the fitted coefficients.
+    profile = {"p_min_w": p_min, "p_max_w": p_max,
                "saturation": {"batches": 5000.0, "vertices": 5.0e6, "fragments": 2.0e8}}
-    json.dump(profile, open(os.path.join(a.outdir, "demo_cpu.profile.json"), "w"), indent=1)
+    json.dump(profile, open(os.path.join(a.outdir, "demo_%s.profile.json" % source), "w"), indent=1)
     for scene in a.scenes.split(","):
         table = variant_table(a.build, scene)
         json.dump(table, open(os.path.join(a.outdir, "demo_%s.variants.json" % scene), "w"), indent=1)
-        record(a.build, scene, a.frames, a.fps, table, os.path.join(a.outdir, "demo_%s.csv" % scene))
+        record(a.build, scene, a.frames, a.fps, a.sensor, table, os.path.join(a.outdir, "demo_%s.csv" % scene))
         print("recorded", scene, flush=True)
 
 
