@@ -12,6 +12,8 @@ struct ProcessResult {
 ProcessResult run_process(const std::vector<std::string>& argv, const std::map<std::string, std::string>& env);
 
 std::string read_file(const std::string& path);
+// How many lines of text contain needle.
+size_t count_lines_with(const std::string& text, const std::string& needle);
 bool file_exists(const std::string& path);
 
 // A CSV file as rows of fields; the header is row 0.

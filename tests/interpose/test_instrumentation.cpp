@@ -59,12 +59,6 @@ Dump read_dump(const fs::path& dir) {
   return dump;
 }
 
-size_t count_lines_with(const std::string& text, const std::string& what) {
-  size_t n = 0;
-  for (size_t pos = 0; (pos = text.find(what, pos)) != std::string::npos; pos += what.size()) ++n;
-  return n;
-}
-
 struct DumpRun {
   ProcessResult plain, shim;
   fs::path dir;

@@ -16,13 +16,6 @@ size_t data_rows(const std::string& log) {
   return rows.empty() ? 0 : rows.size() - 1;
 }
 
-size_t count_lines_with(const std::string& text, const std::string& needle) {
-  std::istringstream in(text);
-  std::string line;
-  size_t n = 0;
-  while (std::getline(in, line)) n += line.find(needle) != std::string::npos;
-  return n;
-}
 }  // namespace
 
 TEST_CASE("processes that never make a context current run exactly as without the shim", "[integration]") {
