@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "glbudget/sensors/energy_integrator.hpp"
+#include "glbudget/sensors/energy_timeline.hpp"
 
 using namespace glbudget::sensors;
 
@@ -96,10 +97,12 @@ TEST_CASE("an unchanged counter waits, then stalls after the timeout", "[integra
   same = integrator.accept(100 * ms, energy(7.0));
   CHECK(same.fault == Fault::stalled);
   CHECK(integrator.faults().stalled == 1);
+  REQUIRE(same.point);
+  CHECK(same.point->segment == 1);  // the stall's marker, a segment of its own
   // When it moves again the energy accumulated during the stall is not charged to anyone.
   const auto resumed = integrator.accept(150 * ms, energy(9.0));
   REQUIRE(resumed.point);
-  CHECK(resumed.point->segment == 1);
+  CHECK(resumed.point->segment == 2);
   CHECK(resumed.point->energy_j == 0.0);
 }
 
@@ -123,10 +126,11 @@ TEST_CASE("a silent source stalls; read errors and garbage reads are counted",
   CHECK(f.read_error == 1);
   CHECK(f.garbage == 1);
   CHECK(f.total() == 3);
-  // After a vanished source comes back, integration restarts in a new segment.
+  // After a vanished source comes back, integration restarts in a new segment, not the
+  // marker's (marker and first point would make a flat stretch: zero watts over the outage).
   const auto back = integrator.accept(150 * ms, power(5.0));
   REQUIRE(back.point);
-  CHECK(back.point->segment == 1);
+  CHECK(back.point->segment == 2);
 }
 
 TEST_CASE("samples a source discarded itself are counted with the reading", "[integrator][faults]") {
@@ -169,7 +173,7 @@ TEST_CASE("a read error closes the segment at once", "[integrator][faults]") {
   CHECK(error.point->energy_j == Approx(1.0));
   const auto back = integrator.accept(30 * ms, energy(3.0));
   REQUIRE(back.point);
-  CHECK(back.point->segment == 1);  // the marker's segment, now with its first real point
+  CHECK(back.point->segment == 2);  // a segment of its own: the marker is a lone point
   CHECK(back.point->energy_j == Approx(1.0));
   const auto next = integrator.accept(40 * ms, energy(3.5));
   REQUIRE(next.point);
@@ -184,4 +188,36 @@ TEST_CASE("a source failing from its first read publishes nothing", "[integrator
   REQUIRE(first.point);
   CHECK(first.point->segment == 0);
   CHECK(first.point->energy_j == 0.0);
+}
+
+TEST_CASE("no frame is charged across an outage, however the swaps fall around it",
+          "[integrator][timeline][faults]") {
+  // A counter rising at 5 W that vanishes from 20 to 60 ms. A swap during the outage, or just
+  // after the source returns (one good sample: no rate yet), has no energy; from the second
+  // good sample on, the curve is exact again. Before the fix, the marker and the first good
+  // sample shared a segment and made a zero-watt stretch: a frame from 65 to 68 ms read
+  // 0 W and the next one far too much (seen as 8.3 W for 5 W under load).
+  EnergyIntegrator integrator;
+  EnergyTimeline timeline;
+  auto feed = [&](std::int64_t t_ns, const Reading& r) {
+    if (const auto outcome = integrator.accept(t_ns, r); outcome.point) timeline.publish(*outcome.point);
+  };
+  auto counter = [](std::int64_t t_ns) { return energy(5.0 * static_cast<double>(t_ns) * 1e-9); };
+  for (std::int64_t t = 0; t <= 20 * ms; t += 10 * ms) feed(t, counter(t));
+  feed(25 * ms, status(ReadStatus::read_error));
+  const std::int64_t extrapolate = 100 * ms;
+  CHECK_FALSE(timeline.energy_at(30 * ms, extrapolate));  // past the marker: no old slope
+  CHECK_FALSE(timeline.energy_at(22 * ms, extrapolate));  // between last sample and marker
+  feed(60 * ms, counter(60 * ms));
+  CHECK_FALSE(timeline.energy_at(65 * ms, extrapolate));  // one good sample: no rate yet
+  CHECK_FALSE(timeline.energy_at(40 * ms, extrapolate));  // inside the outage
+  feed(70 * ms, counter(70 * ms));
+  const auto a = timeline.energy_at(65 * ms, extrapolate), b = timeline.energy_at(78 * ms, extrapolate);
+  REQUIRE(a);
+  REQUIRE(b);
+  CHECK(a->segment == b->segment);
+  CHECK((b->energy_j - a->energy_j) / 13e-3 == Approx(5.0).epsilon(1e-9));
+  const auto before = timeline.energy_at(10 * ms, extrapolate);
+  REQUIRE(before);
+  CHECK(before->segment != a->segment);  // never differenced across the outage
 }

@@ -53,9 +53,10 @@ TEST_CASE("no slope is taken across a segment boundary", "[timeline]") {
   REQUIRE(e);
   CHECK(e->energy_j == 5.0);
   CHECK(e->segment == 1);
-  e = timeline.energy_at(5 * ms, 10 * ms);  // inside the break: the new segment's start
+  CHECK_FALSE(timeline.energy_at(5 * ms, 10 * ms));  // inside the break: unknown
+  e = timeline.energy_at(0, 10 * ms);  // the old segment's last point is still known
   REQUIRE(e);
-  CHECK(e->segment == 1);
+  CHECK(e->segment == 0);
   timeline.publish({20 * ms, 6.0, 1});
   e = timeline.energy_at(25 * ms, 10 * ms);
   REQUIRE(e);

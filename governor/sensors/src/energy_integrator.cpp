@@ -25,8 +25,8 @@ EnergyIntegrator::Outcome EnergyIntegrator::drop(Fault fault, std::string detail
 }
 
 // Closes the current segment at once, so that frames stop being charged from a curve that can
-// no longer be trusted. The returned marker opens the next segment, which stays without a
-// rate (and frames invalid) until good samples resume.
+// no longer be trusted. The returned marker is a segment of its own, a single point and so
+// without a rate: no time past it has an energy until good samples resume in a new segment.
 std::optional<EnergyPoint> EnergyIntegrator::break_continuity(std::int64_t t_ns) {
   const bool first_break = have_previous_ && !continuity_lost_;
   continuity_lost_ = true;
@@ -44,9 +44,11 @@ EnergyIntegrator::Outcome EnergyIntegrator::drop_stalled(std::int64_t t_ns, cons
 }
 
 // The reading becomes the new reference; the energy curve carries on at the same level in a
-// new segment, so no frame is ever charged with energy of unknown origin.
+// new segment, so no frame is ever charged with energy of unknown origin. After a break the
+// new segment is not the marker's: sharing it, marker and first point would make a flat
+// stretch, a rate of zero over the outage, and frames across it would be charged nothing.
 EnergyIntegrator::Outcome EnergyIntegrator::start_segment(std::int64_t t_ns, double value) {
-  if (have_previous_ && !continuity_lost_) ++segment_;  // else break_continuity already did
+  if (have_previous_) ++segment_;
   have_previous_ = true;
   continuity_lost_ = false;
   previous_t_ns_ = t_ns;

@@ -56,9 +56,10 @@ std::optional<EnergyPoint> EnergyTimeline::energy_at(std::int64_t t_ns,
                              static_cast<double>(later.t_ns - earlier.t_ns);
             result = EnergyPoint{t_ns, earlier.energy_j + f * (later.energy_j - earlier.energy_j),
                                  later.segment};
-          } else {
-            result = EnergyPoint{t_ns, later.energy_j, later.segment};  // at a segment's start
+          } else if (earlier.t_ns == t_ns) {
+            result = earlier;  // the last point of a segment
           }
+          // Else t falls between two segments, where the curve is broken: its energy is unknown.
           break;
         }
         later = earlier;

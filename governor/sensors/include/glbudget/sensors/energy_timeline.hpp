@@ -19,7 +19,8 @@ class EnergyTimeline {
   // Energy of the curve at time t: interpolated between the points around t, or extrapolated
   // at the latest slope when t is past the newest point by no more than max_extrapolation_ns.
   // Empty when no point is recent enough (a stale sensor), when the newest segment has a
-  // single point (no rate known yet), or when t is older than the last few points.
+  // single point (no rate known yet), when t falls between two segments (a break in the
+  // curve), or when t is older than the last few points.
   // Reader thread only.
   std::optional<EnergyPoint> energy_at(std::int64_t t_ns, std::int64_t max_extrapolation_ns) const;
 
