@@ -85,3 +85,14 @@ std::vector<std::vector<std::string>> read_csv(const std::string& path) {
   }
   return rows;
 }
+
+std::vector<std::map<std::string, std::string>> read_csv_rows_by_name(const std::string& path) {
+  auto csv = read_csv(path);
+  std::vector<std::map<std::string, std::string>> rows;
+  for (size_t i = 1; i < csv.size(); ++i) {
+    std::map<std::string, std::string> row;
+    for (size_t c = 0; c < csv[0].size() && c < csv[i].size(); ++c) row[csv[0][c]] = csv[i][c];
+    rows.push_back(row);
+  }
+  return rows;
+}

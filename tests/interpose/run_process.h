@@ -18,3 +18,5 @@ bool file_exists(const std::string& path);
 
 // A CSV file as rows of fields; the header is row 0.
 std::vector<std::vector<std::string>> read_csv(const std::string& path);
+// The data rows of a CSV file, each field by its header's name; a short row has fewer fields.
+std::vector<std::map<std::string, std::string>> read_csv_rows_by_name(const std::string& path);

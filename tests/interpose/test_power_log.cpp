@@ -29,22 +29,19 @@ PowerRun run_demo(const std::string& config, const std::string& fps) {
                         {"GLBUDGET_FPS", fps}});
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
-  auto rows = read_csv(log);
-  REQUIRE(rows.size() > 1);
-  std::map<std::string, int> col;
-  for (size_t i = 0; i < rows[0].size(); ++i) col[rows[0][i]] = int(i);
-  REQUIRE(col.count("power_w"));
-  REQUIRE(col.count("energy_j"));
-  REQUIRE(col.count("sensor"));
+  auto rows = read_csv_rows_by_name(log);
+  REQUIRE(rows.size() > 0);
   std::map<long, double> power_by_frame;
   PowerRun run;
-  for (size_t i = 1; i < rows.size(); ++i) {
-    const auto& row = rows[i];
-    run.sensor = row[col["sensor"]];
-    if (row[col["power_w"]].empty()) continue;
-    long frame = std::stol(row[0]);
-    double p = std::stod(row[col["power_w"]]);
-    CHECK(std::stod(row[col["energy_j"]]) > 0);
+  for (const auto& row : rows) {
+    REQUIRE(row.count("power_w"));
+    REQUIRE(row.count("energy_j"));
+    REQUIRE(row.count("sensor"));
+    run.sensor = row.at("sensor");
+    if (row.at("power_w").empty()) continue;
+    long frame = std::stol(row.at("frame"));
+    double p = std::stod(row.at("power_w"));
+    CHECK(std::stod(row.at("energy_j")) > 0);
     if (power_by_frame.count(frame)) CHECK(power_by_frame[frame] == p);  // one value per frame, on every pass row
     power_by_frame[frame] = p;
   }

@@ -24,17 +24,6 @@ struct AppLog {
   std::vector<std::map<std::string, std::string>> rows;  // data rows by column name
 };
 
-std::vector<std::map<std::string, std::string>> rows_by_name(const std::string& log) {
-  auto csv = read_csv(log);
-  std::vector<std::map<std::string, std::string>> rows;
-  for (size_t i = 1; i < csv.size(); ++i) {
-    std::map<std::string, std::string> row;
-    for (size_t c = 0; c < csv[0].size() && c < csv[i].size(); ++c) row[csv[0][c]] = csv[i][c];
-    rows.push_back(row);
-  }
-  return rows;
-}
-
 // Runs command under a private X server, after the wrapper command if any, with the shim
 // preloaded into the command alone (not into the X server or the wrappers) and the GLBUDGET_
 // variables given set for it.
@@ -57,7 +46,7 @@ AppLog run_app(const std::string& app) {
   unlink(log.c_str());
   AppLog out;
   out.process = run_under_xvfb({"timeout", "-s", "INT", "3"}, {app}, {{"GLBUDGET_LOG", log}});
-  out.rows = rows_by_name(log);
+  out.rows = read_csv_rows_by_name(log);
   unlink(log.c_str());
   return out;
 }
@@ -148,7 +137,7 @@ TEST_CASE("glmark2 under the shim: 33 scenes, each frame counted per pass, every
   std::map<std::string, std::set<long>> frames;
   std::map<std::string, std::map<long, size_t>> passes;  // rows (passes) per frame
   size_t unmeasured = 0;
-  for (const auto& row : rows_by_name(log)) {
+  for (const auto& row : read_csv_rows_by_name(log)) {
     CHECK(row.size() == kLogColumns);
     const std::string& c = row.at("context");
     if (!frames.count(c)) contexts.push_back(c);
