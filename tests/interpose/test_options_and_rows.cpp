@@ -51,11 +51,14 @@ TEST_CASE("frame-log rows: empty fields for what was not measured", "[unit]") {
   r.primitives = 20000;
   r.gpu_ns = -1;
   format_row(r, line, sizeof line);
-  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0");
+  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,");
+  r.configuration = "2:0:1";  // the levels that drew the frame, last
+  format_row(r, line, sizeof line);
+  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1");
   FrameRow ff;
   ff.pass = kFixedFunctionPass;
   format_row(ff, line, sizeof line);
-  CHECK(std::string(line) == "0,0,0,fixed-function,0,,,,,,,,0");
+  CHECK(std::string(line) == "0,0,0,fixed-function,0,,,,,,,,0,");
   // With a sensor: power, energy, the sensor's name (estimates labelled), dropped samples.
   FrameRow powered;
   powered.energy.valid = true;

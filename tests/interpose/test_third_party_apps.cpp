@@ -16,8 +16,8 @@
 
 namespace {
 
-// frame,time_ns,context,pass,batches,vertices,fragments,primitives,gpu_ns,power_w,energy_j,sensor,sensor_dropped
-constexpr size_t kLogColumns = 13;
+// frame,time_ns,context,pass,batches,vertices,fragments,primitives,gpu_ns,power_w,energy_j,sensor,sensor_dropped,configuration
+constexpr size_t kLogColumns = 14;
 
 struct AppLog {
   ProcessResult process;

@@ -136,11 +136,18 @@ def record(build, scene, frames, fps, sensor, table, out_csv):
                      start_frame=next_frame - 1)
             with open(log.name) as f:
                 reader = csv.reader(f)
-                header = next(reader) + ["configuration"]
+                header = next(reader)
+                # The shim logs the levels of its own manifest (the render scale alone when it
+                # has none); the demo's own --config is what drew these frames.
+                if "configuration" not in header:
+                    header.append("configuration")
+                column = header.index("configuration")
                 numbered = {}
                 for row in reader:
                     frame = numbered.setdefault(row[0], next_frame + len(numbered))
-                    rows.append([str(frame)] + row[1:] + [configuration])
+                    row = ([str(frame)] + row[1:] + [""])[:len(header)]
+                    row[column] = configuration
+                    rows.append(row)
                 next_frame += len(numbered)
     with open(out_csv, "w", newline="") as f:
         writer = csv.writer(f)

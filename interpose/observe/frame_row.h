@@ -1,6 +1,7 @@
 // One row of the frame log: one frame of one context, one pass.
 #pragma once
 #include <cstdint>
+#include <string>
 
 #include "glbudget/sensors/sensor.hpp"
 
@@ -24,6 +25,8 @@ struct FrameRow {
   // The process's energy over the interval since the previous swap (of any context): power
   // is a whole-process (whole-GPU) quantity. Invalid (empty fields) without a sensor.
   sensors::FrameEnergy energy;
+  // The levels that drew the frame ("0:2:1"), when a manifest or GLBUDGET_FORCE is in force.
+  std::string configuration;
 };
 
 }  // namespace glbudget

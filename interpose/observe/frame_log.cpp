@@ -25,8 +25,9 @@ int format_row(const FrameRow& r, char* out, int size) {
   }
   char power[128];
   sensors::format_power_fields(r.energy, power, sizeof power);
-  return snprintf(out, size, "%" PRIu64 ",%" PRId64 ",%d,%s,%" PRIu64 ",%s,%s,%s,%s,%s,%" PRIu64, r.frame, r.time_ns,
-                  r.context, pass, r.batches, stat[0], stat[1], stat[2], stat[3], power, r.energy.dropped_samples);
+  return snprintf(out, size, "%" PRIu64 ",%" PRId64 ",%d,%s,%" PRIu64 ",%s,%s,%s,%s,%s,%" PRIu64 ",%s", r.frame,
+                  r.time_ns, r.context, pass, r.batches, stat[0], stat[1], stat[2], stat[3], power,
+                  r.energy.dropped_samples, r.configuration.c_str());
 }
 
 struct FrameLog::Impl {

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "draw_count.h"
@@ -32,7 +33,16 @@ class PassCounter : public DrawCounter {
 
   void set_pass(PassId pass);   // the pass later draws belong to (program change)
   void set_counting(bool on);   // off while a display list is being compiled
-  void draw_slow(uint64_t n);
+  void set_skipping(bool on);   // the configuration skips the current pass: draws are dropped
+  // The next draw takes the slow path (the draw framebuffer changed): `hook` runs there first.
+  void invalidate() { ready = false; }
+  void set_draw_hook(void (*hook)(void*), void* arg) {
+    draw_hook_ = hook;
+    draw_hook_arg_ = arg;
+  }
+  bool draw_slow(uint64_t n);
+  // The configuration drawing this frame (the log's configuration column).
+  void set_configuration(const char* text) { configuration_ = text; }
 
   // The app begins/ends one of its own queries. Ours on that target is closed first, and
   // segments stay unmeasured for it while the app holds it. Returns true if the target is ours.
@@ -73,6 +83,7 @@ class PassCounter : public DrawCounter {
     int64_t time_ns = 0;
     int context = 0;
     sensors::FrameEnergy energy;
+    std::string configuration;
     std::vector<Segment> segments;
   };
 
@@ -88,6 +99,10 @@ class PassCounter : public DrawCounter {
   GlCaps caps_;
   PassId pass_ = kFixedFunctionPass;
   bool counting_ = true;
+  bool skipping_ = false;
+  void (*draw_hook_)(void*) = nullptr;
+  void* draw_hook_arg_ = nullptr;
+  std::string configuration_;
   bool open_ = false;
   Segment seg_;
   unsigned app_held_ = 0;   // bit per Stat the app holds

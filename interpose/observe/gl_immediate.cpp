@@ -5,9 +5,10 @@
 namespace glbudget {
 
 // Between glBegin and glEnd almost no GL command is legal, ours included: the pass switch
-// and the batch are accounted before the real glBegin.
+// and the batch are accounted before the real glBegin. Immediate mode is never skipped (the
+// vertex calls up to glEnd would then reach the driver outside glBegin/glEnd).
 void handle_glBegin(pfn_glBegin real, GLenum mode) {
-  count_draw(1);
+  (void)count_draw(1);
   real(mode);
 }
 
@@ -32,12 +33,11 @@ void handle_glEndList(pfn_glEndList real) {
 
 // A called list counts as one batch (its contents are not inspected).
 void handle_glCallList(pfn_glCallList real, GLuint list) {
-  count_draw(1);
-  real(list);
+  if (count_draw(1)) real(list);
 }
 
 void handle_glCallLists(pfn_glCallLists real, GLsizei n, GLenum type, const void* lists) {
-  if (n > 0) count_draw(static_cast<uint64_t>(n));
+  if (n > 0 && !count_draw(static_cast<uint64_t>(n))) return;
   real(n, type, lists);
 }
 

@@ -8,21 +8,22 @@ namespace glbudget {
 struct DrawCounter {
   bool ready = false;          // a segment is open for the current pass: just count
   uint64_t open_batches = 0;   // batches of the open segment
-  void slow_draw(uint64_t n);  // opens/switches segments (defined in pass_counter.cpp)
+  bool slow_draw(uint64_t n);  // opens/switches segments; false: skip the draw (pass_counter.cpp)
 };
 
 // The DrawCounter of the context current on this thread (null: no context, nothing to count).
 // initial-exec: the shim is preloaded, so its TLS is static and needs no __tls_get_addr call.
 extern thread_local DrawCounter* t_draw __attribute__((tls_model("initial-exec")));
 
-inline void count_draw(uint64_t n) {
+// False when the draw must not reach the driver: the configuration skips the current pass.
+inline bool count_draw(uint64_t n) {
   DrawCounter* d = t_draw;
-  if (!d) return;
+  if (!d) return true;
   if (d->ready) [[likely]] {
     d->open_batches += n;
-    return;
+    return true;
   }
-  d->slow_draw(n);
+  return d->slow_draw(n);
 }
 
 }  // namespace glbudget

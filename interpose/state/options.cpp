@@ -18,7 +18,8 @@ namespace {
 constexpr const char* kKnownVariables[] = {
     "GLBUDGET_POWER", "GLBUDGET_ERROR", "GLBUDGET_CONFIG", "GLBUDGET_SENSOR", "GLBUDGET_FPS",
     "GLBUDGET_LOG", "GLBUDGET_DUMP", "GLBUDGET_PROFILE", "GLBUDGET_SENSOR_PERIOD_MS", "GLBUDGET_SYSFS_ROOT",
-    "GLBUDGET_NVML_LIBRARY", "GLBUDGET_INSTRUMENT",
+    "GLBUDGET_NVML_LIBRARY", "GLBUDGET_INSTRUMENT", "GLBUDGET_FORCE", "GLBUDGET_FORCE_EVERY",
+    "GLBUDGET_PROBE_PERIOD", "GLBUDGET_SELECT_FRAMES", "GLBUDGET_TRANSITION_S",
 };
 
 void warn(std::string* out, const std::string& text) { *out += "glbudget: " + text + "\n"; }
@@ -47,6 +48,18 @@ Options parse_options(char** env, std::string* warnings) {
       if (value == "1" || value == "on") instrument_switch = 1;
       else if (value == "0" || value == "off" || value.empty()) instrument_switch = 0;
       else warn(warnings, "GLBUDGET_INSTRUMENT='" + value + "' is not 0/1/on/off; ignored");
+    } else if (name == "GLBUDGET_CONFIG") {
+      o.config_path = value;
+    } else if (name == "GLBUDGET_FORCE") {
+      o.force = value;  // checked against the manifest when it is loaded
+    } else if (name == "GLBUDGET_FORCE_EVERY") {
+      errno = 0;
+      char* end = nullptr;
+      const unsigned long long n = std::strtoull(value.c_str(), &end, 10);
+      if (errno || end == value.c_str() || *end != '\0' || n == 0 || value[0] == '-')
+        warn(warnings, "GLBUDGET_FORCE_EVERY='" + value + "' is not a number of frames >= 1; ignored");
+      else
+        o.force_every = n;
     } else if (name == "GLBUDGET_FPS") {
       if (value.empty() || value == "off" || value == "0") continue;
       errno = 0;

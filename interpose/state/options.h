@@ -2,6 +2,7 @@
 // make-current (never in processes that do not use GL). Bad values: one `glbudget:` line
 // on stderr and the default.
 #pragma once
+#include <cstdint>
 #include <string>
 
 namespace glbudget {
@@ -13,6 +14,9 @@ struct Options {
   // GLBUDGET_INSTRUMENT=1: count executed instructions and texel accesses per program. A
   // measurement mode (it perturbs timing): off unless asked for, or implied by GLBUDGET_DUMP.
   bool instrument = false;
+  std::string config_path;  // GLBUDGET_CONFIG: the variant manifest
+  std::string force;        // GLBUDGET_FORCE: levels per pass ("1,0,2"), or several separated by ';'
+  uint64_t force_every = 0; // GLBUDGET_FORCE_EVERY: frames per configuration of a GLBUDGET_FORCE list
 };
 
 const Options& options();

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <mutex>
 
+#include "configuration.h"
 #include "context_state.h"
 #include "frame_log.h"
 #include "options.h"
@@ -134,6 +135,8 @@ void swap_end() {
   if (!c) return;
   flush_pending_frames(*c, FlushMode::kCollect);
   instrumentation_swap(*c);
+  // A new configuration starts with a frame, never in the middle of one.
+  apply_configuration(*c, configuration_for_frame(c->frame + 1));
 }
 
 void final_flush() {
@@ -151,6 +154,7 @@ void final_flush() {
     if (&c != current_context() && !c.bound) flush_pending_frames(c, FlushMode::kCpuOnly);
   });
   FrameLog::get().drain();
+  report_unmatched_passes();
 }
 
 }  // namespace glbudget

@@ -4,6 +4,8 @@
 #include "context_state.h"
 #include "hooks_generated.h"
 #include "pass_names.h"
+#include "apply_gl.h"
+#include "gl_calls.h"
 #include "shader_instrumentation.h"
 
 namespace glbudget {
@@ -24,7 +26,51 @@ void refresh_if_bound(ContextState* c) {
   update_pass(*c);
   bind_counters(*c);
 }
+
+bool link_succeeded(GLuint program) {
+  GLint ok = GL_FALSE;
+  if (gl().GetProgramiv) gl().GetProgramiv(program, GL_LINK_STATUS, &ok);
+  return ok == GL_TRUE;
+}
+
+// After the app's link: the manifest pass that claims the program, and its variants. Caller
+// holds the share group's lock.
+void shadow_program(ContextState& c, ShareGroup& g, GLuint program, ProgramInfo& p) {
+  if (p.variants) {
+    delete_variants(*p.variants);  // a relink replaces them: they were built from the old sources
+    p.variants.reset();
+  }
+  p.manifest_pass = -1;
+  if (!manifest_has_programs()) return;
+  std::vector<ShaderSource> sources;
+  for (GLuint s : p.shaders) {
+    auto it = g.shaders.find(s);
+    if (it != g.shaders.end()) sources.push_back({it->second.stage, it->second.source});
+  }
+  p.manifest_pass = match_pass(p.pass, sources);
+  if (p.manifest_pass < 0) return;
+  note_pass_matched(p.manifest_pass);
+  if (!link_succeeded(program)) return;  // the app's own failure: nothing to shadow
+  p.variants = build_variants(program, p.pass, p.manifest_pass, sources, c.caps);
+  if (p.variants) g.has_variants = true;
+}
 }  // namespace
+
+void bind_program(ContextState& c) {
+  std::shared_ptr<const VariantSet> variants;
+  int pass = -1;
+  if (c.program && manifest_has_programs()) {
+    std::lock_guard lock(c.group->mu);
+    auto it = c.group->programs.find(c.program);
+    if (it != c.group->programs.end()) {
+      variants = it->second.variants;
+      pass = it->second.manifest_pass;
+    }
+  }
+  c.bound_variants = std::move(variants);
+  c.manifest_pass = pass;
+  if (c.bound_variants) agl().UseProgram(c.bound_variants->program_for(c.config));
+}
 
 GLuint handle_glCreateShader(pfn_glCreateShader real, GLenum type) {
   GLuint shader = real(type);
@@ -97,7 +143,9 @@ void handle_glLinkProgram(pfn_glLinkProgram real, GLuint program) {
     p.pass = program_hash(std::move(hashes));
     p.linked = true;
     after_link(*c, *c->group, program, p, real);
+    shadow_program(*c, *c->group, program, p);
   }
+  if (c->program == program) bind_program(*c);
   refresh_if_bound(c);
 }
 
@@ -121,7 +169,10 @@ void handle_glDeleteProgram(pfn_glDeleteProgram real, GLuint program) {
   // GL keeps a program in use alive until it is unbound; so do we.
   if (c->program == program) return;
   std::lock_guard lock(c->group->mu);
-  c->group->programs.erase(program);
+  auto it = c->group->programs.find(program);
+  if (it == c->group->programs.end()) return;
+  if (it->second.variants) delete_variants(*it->second.variants);
+  c->group->programs.erase(it);
 }
 
 void handle_glUseProgram(pfn_glUseProgram real, GLuint program) {
@@ -129,8 +180,28 @@ void handle_glUseProgram(pfn_glUseProgram real, GLuint program) {
   ContextState* c = current_context();
   if (!c) return;
   c->program = program;
+  bind_program(*c);  // a variant in the app's program's place, when the configuration says so
   update_pass(*c);
   bind_counters(*c);
+}
+
+void handle_glUniformBlockBinding(pfn_glUniformBlockBinding real, GLuint program, GLuint index, GLuint binding) {
+  real(program, index, binding);
+  ContextState* c = current_context();
+  if (!c || !c->group->has_variants) return;
+  std::lock_guard lock(c->group->mu);
+  auto it = c->group->programs.find(program);
+  if (it != c->group->programs.end() && it->second.variants) forward_block_binding(*it->second.variants, index, binding, false);
+}
+
+void handle_glShaderStorageBlockBinding(pfn_glShaderStorageBlockBinding real, GLuint program, GLuint index,
+                                        GLuint binding) {
+  real(program, index, binding);
+  ContextState* c = current_context();
+  if (!c || !c->group->has_variants) return;
+  std::lock_guard lock(c->group->mu);
+  auto it = c->group->programs.find(program);
+  if (it != c->group->programs.end() && it->second.variants) forward_block_binding(*it->second.variants, index, binding, true);
 }
 
 void handle_glBindProgramPipeline(pfn_glBindProgramPipeline real, GLuint pipeline) {

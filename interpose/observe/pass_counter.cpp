@@ -9,7 +9,7 @@ namespace glbudget {
 
 thread_local DrawCounter* t_draw = nullptr;
 
-void DrawCounter::slow_draw(uint64_t n) { static_cast<PassCounter*>(this)->draw_slow(n); }
+bool DrawCounter::slow_draw(uint64_t n) { return static_cast<PassCounter*>(this)->draw_slow(n); }
 
 const GLenum PassCounter::kStatTargets[kStatCount] = {
     GL_VERTEX_SHADER_INVOCATIONS_ARB, GL_FRAGMENT_SHADER_INVOCATIONS_ARB, GL_PRIMITIVES_SUBMITTED_ARB};
@@ -68,20 +68,28 @@ GlCaps detect_caps() {
 
 void PassCounter::set_pass(PassId pass) {
   pass_ = pass;
-  ready = counting_ && open_ && seg_.pass == pass_;
+  ready = counting_ && !skipping_ && open_ && seg_.pass == pass_;
 }
 
 void PassCounter::set_counting(bool on) {
   counting_ = on;
-  ready = counting_ && open_ && seg_.pass == pass_;
+  ready = counting_ && !skipping_ && open_ && seg_.pass == pass_;
 }
 
-void PassCounter::draw_slow(uint64_t n) {
-  if (!counting_) return;  // compiling a display list: nothing is drawn now
+void PassCounter::set_skipping(bool on) {
+  skipping_ = on;
+  ready = counting_ && !skipping_ && open_ && seg_.pass == pass_;
+}
+
+bool PassCounter::draw_slow(uint64_t n) {
+  if (!counting_) return true;  // compiling a display list: nothing is drawn now
+  if (skipping_) return false;
+  if (draw_hook_) draw_hook_(draw_hook_arg_);
   if (open_ && seg_.pass != pass_) close_segment();
   if (!open_) open_segment();
   open_batches += n;
   ready = true;
+  return true;
 }
 
 GLuint PassCounter::take_query(int pool) {
@@ -169,6 +177,7 @@ void PassCounter::end_frame(uint64_t frame, int64_t time_ns, int context_index,
   building_.time_ns = time_ns;
   building_.context = context_index;
   building_.energy = energy;
+  building_.configuration = configuration_;
   pending_.push_back(std::move(building_));
   building_ = Frame{};
   // Swapping a window flushes anyway; swapping a pbuffer (or nothing) may not, and unflushed
@@ -217,6 +226,7 @@ void PassCounter::emit_frame(Frame& f, bool read_gpu, const std::function<void(c
       acc->row.context = f.context;
       acc->row.pass = s.pass;
       acc->row.energy = f.energy;
+      acc->row.configuration = f.configuration;
       acc->row.vertices = acc->row.fragments = acc->row.primitives = acc->row.gpu_ns = 0;
     }
     acc->row.batches += s.batches;

@@ -6,6 +6,7 @@
 #include "frame_output.h"
 #include "gl_calls.h"
 #include "options.h"
+#include "render_targets.h"
 #include "shader_instrumentation.h"
 
 namespace glbudget {
@@ -45,6 +46,14 @@ void initialise(ContextState& c, Registry& r) {
   c.index = r.next_index++;
   c.caps = detect_caps();
   c.counter = std::make_unique<PassCounter>(c.caps);
+  if (manifest_scales_targets()) {
+    c.targets = std::make_unique<TargetScaler>();
+    c.counter->set_draw_hook([](void* ctx) {
+      auto* cs = static_cast<ContextState*>(ctx);
+      cs->targets->on_draw(cs->manifest_pass);
+    }, &c);
+  }
+  apply_configuration(c, configuration_for_frame(1));
   update_pass(c);
   frame_output_started();
 }
@@ -136,10 +145,24 @@ PassId pass_of_program(ShareGroup& g, GLuint program) {
   return fnv1a_u64(program, fnv1a("unlinked-program"));
 }
 
+void apply_configuration(ContextState& c, const Levels& config) {
+  if (c.config == config && c.config.count > 0) return;
+  c.config = config;
+  if (c.counter) c.counter->set_configuration(format_levels(config).c_str());
+  if (c.bound_variants) bind_program(c);
+  if (c.targets) c.targets->set_configuration(config);
+  update_pass(c);
+}
+
 void update_pass(ContextState& c) {
   if (!c.counter) return;
   PassId pass = kFixedFunctionPass;
-  if (c.program) {
+  bool skip = false;
+  if (c.bound_variants) {
+    const Variant& v = c.bound_variants->at(c.config);
+    pass = v.pass_hash;
+    skip = !v.draws;
+  } else if (c.program) {
     std::lock_guard lock(c.group->mu);
     pass = pass_of_program(*c.group, c.program);
   } else if (c.pipeline) {
@@ -152,6 +175,7 @@ void update_pass(ContextState& c) {
     }
   }
   c.counter->set_pass(pass);
+  c.counter->set_skipping(skip);
 }
 
 }  // namespace glbudget

@@ -2,6 +2,7 @@
 // of a share group; query objects and program pipelines are not, so they live per context.
 #pragma once
 #include <array>
+#include <atomic>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -9,8 +10,10 @@
 #include <unordered_map>
 #include <vector>
 
+#include "configuration.h"
 #include "frame_row.h"
 #include "glbudget/instrument/instrument.hpp"
+#include "variants.h"
 #include "pass_counter.h"
 #include "stable_hash.h"
 
@@ -35,12 +38,17 @@ struct ProgramInfo {
   PassId pass = 0;              // from the sources at the last link
   bool linked = false;
   bool instrumented = false;  // linked from instrumented shaders: its draws need the counters
+  int manifest_pass = -1;     // the manifest pass that matched it at the last link
+  std::shared_ptr<VariantSet> variants;  // its variant programs (apply/variants.h), if any
 };
+
+class TargetScaler;
 
 struct ShareGroup {
   std::mutex mu;
   std::unordered_map<GLuint, ShaderInfo> shaders;
   std::unordered_map<GLuint, ProgramInfo> programs;
+  std::atomic<bool> has_variants{false};  // any program of the group has variants
 };
 
 struct ContextState {
@@ -55,8 +63,12 @@ struct ContextState {
   std::unique_ptr<Instrumentation> instrumentation;  // GLBUDGET_INSTRUMENT, made on first use
   bool instrumentation_probed = false;
 
-  GLuint program = 0;
+  GLuint program = 0;   // the app's program (the driver may have a variant of it bound)
   GLuint pipeline = 0;
+  std::shared_ptr<const VariantSet> bound_variants;  // of `program`, when it has variants
+  int manifest_pass = -1;  // the manifest pass of `program`
+  Levels config;        // the configuration this context draws (changes only at its swap)
+  std::unique_ptr<TargetScaler> targets;  // render-target scaling (apply/render_targets.h)
   std::unordered_map<GLuint, std::array<GLuint, 6>> pipeline_stages;  // per context, not shared
   bool list_compile_only = false;
 
@@ -74,6 +86,13 @@ void context_will_change(void* handle);                  // before the real make
 void context_made_current(void* handle, void* display);  // handle null: released
 void context_destroyed(void* handle);
 void display_terminated(void* display);
+
+// Takes the configuration for the context's next frame (at its swap, and when it starts).
+void apply_configuration(ContextState& c, const Levels& config);
+
+// Binds, in the driver, the variant of the app's current program that the context's
+// configuration draws with (or the app's own program).
+void bind_program(ContextState& c);
 
 // Re-derives the pass of the current binding (program, pipeline or fixed function).
 void update_pass(ContextState& c);

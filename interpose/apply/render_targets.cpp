@@ -1,0 +1,403 @@
+#include "render_targets.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <set>
+#include <string>
+
+#include "apply_gl.h"
+
+namespace glbudget {
+
+namespace {
+
+void say_once(const std::string& key, const std::string& text) {
+  static std::mutex mu;
+  static std::set<std::string> said;
+  std::lock_guard lock(mu);
+  if (!said.insert(key).second) return;
+  const std::string line = "glbudget: " + text + "\n";
+  (void)!write(STDERR_FILENO, line.data(), line.size());
+}
+
+GLsizei scaled(GLsizei size, double scale) {
+  return std::max<GLsizei>(1, static_cast<GLsizei>(std::lround(size * scale)));
+}
+
+bool is_depth(GLint f) {
+  return f == GL_DEPTH_COMPONENT || f == GL_DEPTH_COMPONENT16 || f == GL_DEPTH_COMPONENT24 ||
+         f == GL_DEPTH_COMPONENT32 || f == GL_DEPTH_COMPONENT32F;
+}
+bool is_depth_stencil(GLint f) {
+  return f == GL_DEPTH_STENCIL || f == GL_DEPTH24_STENCIL8 || f == GL_DEPTH32F_STENCIL8;
+}
+bool is_integer_format(GLenum format) {
+  return format == GL_RED_INTEGER || format == GL_RG_INTEGER || format == GL_RGB_INTEGER ||
+         format == GL_RGBA_INTEGER || format == GL_BGRA_INTEGER;
+}
+
+// The real bindings a rescale touches, restored when it ends.
+struct SavedBindings {
+  GLint draw = 0, read = 0, texture = 0, renderbuffer = 0, unpack = 0;
+  bool scissor = false;
+  SavedBindings() {
+    const ApplyGl& g = agl();
+    g.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+    g.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read);
+    g.GetIntegerv(GL_TEXTURE_BINDING_2D, &texture);
+    g.GetIntegerv(GL_RENDERBUFFER_BINDING, &renderbuffer);
+    g.GetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &unpack);
+    scissor = g.IsEnabled(GL_SCISSOR_TEST);
+    if (unpack) reinterpret_cast<PFNGLBINDBUFFERPROC>(bind_buffer())(GL_PIXEL_UNPACK_BUFFER, 0);
+    if (scissor) g.Disable(GL_SCISSOR_TEST);  // a blit is clipped by the scissor box
+  }
+  ~SavedBindings() {
+    const ApplyGl& g = agl();
+    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
+    g.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read));
+    g.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(texture));
+    g.BindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(renderbuffer));
+    if (unpack) reinterpret_cast<PFNGLBINDBUFFERPROC>(bind_buffer())(GL_PIXEL_UNPACK_BUFFER, static_cast<GLuint>(unpack));
+    if (scissor) g.Enable(GL_SCISSOR_TEST);
+  }
+  static void* bind_buffer();
+};
+
+}  // namespace
+
+}  // namespace glbudget
+
+#include "hook_table.h"
+
+namespace glbudget {
+
+void* SavedBindings::bind_buffer() {
+  static void* fn = resolve_gl("glBindBuffer");
+  return fn;
+}
+
+GLsizei TargetScaler::Image::stored_width() const { return app_size.empty() ? 0 : scaled(app_size[0][0], scale); }
+GLsizei TargetScaler::Image::stored_height() const { return app_size.empty() ? 0 : scaled(app_size[0][1], scale); }
+
+TargetScaler::TargetScaler() {
+  const ApplyGl& g = agl();
+  g.GetIntegerv(GL_VIEWPORT, viewport_.data());
+  g.GetIntegerv(GL_SCISSOR_BOX, scissor_.data());
+  GLint fbo = 0;
+  g.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
+  draw_fbo_ = static_cast<GLuint>(fbo);
+  g.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &fbo);
+  read_fbo_ = static_cast<GLuint>(fbo);
+}
+
+void TargetScaler::set_configuration(const Levels& config) {
+  if (config == config_) return;
+  config_ = config;
+  for (auto& [name, f] : framebuffers_) ensure_scale(name, f);
+  apply_viewport();
+}
+
+double TargetScaler::wanted_scale(GLuint name, const Framebuffer& f) const {
+  const manifest::Manifest& m = active_manifest();
+  double s = 1.0;
+  for (size_t q = 0; q < m.passes.size(); ++q) {
+    const manifest::Pass& pass = m.passes[q];
+    const int l = config_[static_cast<int>(q)];
+    if (l < 0 || static_cast<size_t>(l) >= pass.levels.size()) continue;
+    const manifest::Level& level = pass.levels[static_cast<size_t>(l)];
+    if (level.scale == 1.0) continue;
+    for (const manifest::Target& t : level.targets) {
+      bool hit = false;
+      switch (t.kind) {
+        case manifest::Target::Kind::self: hit = (f.passes >> q) & 1; break;
+        case manifest::Target::Kind::pass: {
+          const int other = m.find(t.name);
+          hit = other >= 0 && other < 64 && ((f.passes >> other) & 1);
+          break;
+        }
+        case manifest::Target::Kind::framebuffer: hit = t.id == name; break;
+        case manifest::Target::Kind::texture:
+          for (const Attachment& a : f.attachments) hit |= !a.renderbuffer && a.name == t.id;
+          break;
+        case manifest::Target::Kind::default_framebuffer: break;
+      }
+      if (hit) s = std::min(s, level.scale);
+    }
+  }
+  return s;
+}
+
+void TargetScaler::learn_attachments(Framebuffer& f) {
+  // Asked of the framebuffer bound for drawing, which is this one when a draw reaches it.
+  const ApplyGl& g = agl();
+  f.attachments.clear();
+  GLint colors = 8;
+  g.GetIntegerv(GL_MAX_COLOR_ATTACHMENTS, &colors);
+  std::vector<GLenum> points;
+  for (GLint i = 0; i < colors; ++i) points.push_back(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i));
+  points.push_back(GL_DEPTH_ATTACHMENT);
+  points.push_back(GL_STENCIL_ATTACHMENT);
+  for (GLenum point : points) {
+    GLint type = GL_NONE, name = 0;
+    g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+    if (type != GL_TEXTURE && type != GL_RENDERBUFFER) continue;
+    g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &name);
+    const bool rb = type == GL_RENDERBUFFER;
+    bool seen = false;  // a depth-stencil image answers for both points
+    for (const Attachment& a : f.attachments) seen |= a.renderbuffer == rb && a.name == static_cast<GLuint>(name);
+    if (!seen) f.attachments.push_back({point, rb, static_cast<GLuint>(name)});
+  }
+  f.attachments_known = true;
+}
+
+void TargetScaler::on_draw(int pass) {
+  if (draw_fbo_ == 0) return;
+  Framebuffer& f = framebuffers_[draw_fbo_];
+  const bool new_pass = pass >= 0 && pass < 64 && !((f.passes >> pass) & 1);
+  if (!new_pass && f.attachments_known) return;
+  if (new_pass) f.passes |= uint64_t{1} << pass;
+  if (!f.attachments_known) learn_attachments(f);
+  const double before = f.scale;
+  ensure_scale(draw_fbo_, f);
+  if (f.scale != before) apply_viewport();
+}
+
+void TargetScaler::ensure_scale(GLuint name, Framebuffer& f) {
+  const double s = wanted_scale(name, f);
+  if (s == f.scale && f.attachments_known) {
+    // Attachments re-specified by the app since are brought to the framebuffer's scale below.
+  }
+  f.scale = s;
+  for (const Attachment& a : f.attachments) {
+    auto& images = a.renderbuffer ? renderbuffers_ : textures_;
+    auto it = images.find(a.name);
+    if (it == images.end()) {
+      if (s != 1.0)
+        say_once("unknown-image" + std::to_string(a.name),
+                 std::string(a.renderbuffer ? "renderbuffer " : "texture ") + std::to_string(a.name) +
+                     " of framebuffer " + std::to_string(name) +
+                     " was not made by glTexImage2D or glRenderbufferStorage; it is not scaled");
+      continue;
+    }
+    if (it->second.scale != s) rescale(a.name, it->second, s);
+  }
+  any_scaled_ = any_scaled_ || s != 1.0;
+}
+
+void TargetScaler::rescale(GLuint name, Image& image, double scale) {
+  if (image.app_size.empty()) return;
+  const ApplyGl& g = agl();
+  SavedBindings saved;
+  const GLsizei old_w = image.stored_width(), old_h = image.stored_height();
+  const bool depth = is_depth(image.internal_format), depth_stencil = is_depth_stencil(image.internal_format);
+  const GLenum point = depth ? GL_DEPTH_ATTACHMENT : depth_stencil ? GL_DEPTH_STENCIL_ATTACHMENT
+                       : image.internal_format == GL_STENCIL_INDEX8 ? GL_STENCIL_ATTACHMENT
+                                                                     : GL_COLOR_ATTACHMENT0;
+  const GLbitfield mask = depth ? GL_DEPTH_BUFFER_BIT : depth_stencil ? GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT
+                          : point == GL_STENCIL_ATTACHMENT ? GL_STENCIL_BUFFER_BIT
+                                                           : GL_COLOR_BUFFER_BIT;
+  const GLenum filter = mask == GL_COLOR_BUFFER_BIT && !is_integer_format(image.format) ? GL_LINEAR : GL_NEAREST;
+  // Contents are carried over (a clear made before the first draw that revealed the target,
+  // or what a temporal effect keeps), except for multisampled images (blits between
+  // multisampled images of different sizes do not exist).
+  const bool carry = image.samples == 0;
+  GLuint fbo[2] = {0, 0}, copy = 0;
+  auto attach = [&](GLenum target, GLuint fb, bool rb, GLuint object) {
+    g.BindFramebuffer(target, fb);
+    if (rb) g.FramebufferRenderbuffer(target, point, GL_RENDERBUFFER, object);
+    else g.FramebufferTexture2D(target, point, GL_TEXTURE_2D, object, 0);
+  };
+  auto allocate = [&](GLuint object, GLsizei w, GLsizei h, int level) {
+    if (image.renderbuffer) {
+      g.BindRenderbuffer(GL_RENDERBUFFER, object);
+      g.RenderbufferStorageMultisample(GL_RENDERBUFFER, image.samples, static_cast<GLenum>(image.internal_format), w, h);
+    } else {
+      g.BindTexture(GL_TEXTURE_2D, object);
+      g.TexImage2D(GL_TEXTURE_2D, level, image.internal_format, w, h, 0, image.format, image.type, nullptr);
+    }
+  };
+  if (carry) {
+    g.GenFramebuffers(2, fbo);
+    if (image.renderbuffer) g.GenRenderbuffers(1, &copy);
+    else g.GenTextures(1, &copy);
+    allocate(copy, old_w, old_h, 0);
+    attach(GL_READ_FRAMEBUFFER, fbo[0], image.renderbuffer, name);
+    attach(GL_DRAW_FRAMEBUFFER, fbo[1], image.renderbuffer, copy);
+    g.BlitFramebuffer(0, 0, old_w, old_h, 0, 0, old_w, old_h, mask, GL_NEAREST);
+  }
+  image.scale = scale;
+  for (size_t level = 0; level < image.app_size.size(); ++level) {
+    if (image.app_size[level][0] == 0) continue;
+    allocate(name, scaled(image.app_size[level][0], scale), scaled(image.app_size[level][1], scale), static_cast<int>(level));
+  }
+  if (carry) {
+    attach(GL_READ_FRAMEBUFFER, fbo[0], image.renderbuffer, copy);
+    attach(GL_DRAW_FRAMEBUFFER, fbo[1], image.renderbuffer, name);
+    g.BlitFramebuffer(0, 0, old_w, old_h, 0, 0, image.stored_width(), image.stored_height(), mask, filter);
+    g.DeleteFramebuffers(2, fbo);
+    if (image.renderbuffer) g.DeleteRenderbuffers(1, &copy);
+    else g.DeleteTextures(1, &copy);
+  }
+}
+
+void TargetScaler::scale_of(GLuint fbo, double* sx, double* sy) const {
+  *sx = *sy = 1.0;
+  if (fbo == 0) return;
+  auto it = framebuffers_.find(fbo);
+  if (it == framebuffers_.end() || it->second.scale == 1.0) return;
+  for (const Attachment& a : it->second.attachments) {
+    const auto& images = a.renderbuffer ? renderbuffers_ : textures_;
+    auto im = images.find(a.name);
+    if (im == images.end() || im->second.app_size.empty()) continue;
+    // Exact ratios, so that the app's full-size viewport becomes exactly the stored size.
+    *sx = static_cast<double>(im->second.stored_width()) / im->second.app_size[0][0];
+    *sy = static_cast<double>(im->second.stored_height()) / im->second.app_size[0][1];
+    return;
+  }
+}
+
+namespace {
+void scale_box(const GLint* in, double sx, double sy, GLint* out) {
+  const auto x0 = std::lround(in[0] * sx), y0 = std::lround(in[1] * sy);
+  out[0] = static_cast<GLint>(x0);
+  out[1] = static_cast<GLint>(y0);
+  out[2] = static_cast<GLint>(std::lround((in[0] + in[2]) * sx) - x0);
+  out[3] = static_cast<GLint>(std::lround((in[1] + in[3]) * sy) - y0);
+}
+}  // namespace
+
+void TargetScaler::apply_viewport() {
+  double sx, sy;
+  scale_of(draw_fbo_, &sx, &sy);
+  const ApplyGl& g = agl();
+  GLint v[4], s[4];
+  scale_box(viewport_.data(), sx, sy, v);
+  scale_box(scissor_.data(), sx, sy, s);
+  g.Viewport(v[0], v[1], v[2], v[3]);
+  g.Scissor(s[0], s[1], s[2], s[3]);
+}
+
+void TargetScaler::bind_framebuffer(GLenum target, GLuint fbo) {
+  double before_x, before_y, after_x, after_y;
+  scale_of(draw_fbo_, &before_x, &before_y);
+  if (target == GL_FRAMEBUFFER || target == GL_DRAW_FRAMEBUFFER) draw_fbo_ = fbo;
+  if (target == GL_FRAMEBUFFER || target == GL_READ_FRAMEBUFFER) read_fbo_ = fbo;
+  scale_of(draw_fbo_, &after_x, &after_y);
+  if (before_x != after_x || before_y != after_y) apply_viewport();
+}
+
+void TargetScaler::framebuffer_attachment_changed(GLenum target) {
+  const GLuint fbo = target == GL_READ_FRAMEBUFFER ? read_fbo_ : draw_fbo_;
+  auto it = framebuffers_.find(fbo);
+  if (it != framebuffers_.end()) it->second.attachments_known = false;
+}
+
+void TargetScaler::framebuffers_deleted(GLsizei n, const GLuint* names) {
+  for (GLsizei i = 0; names && i < n; ++i) {
+    framebuffers_.erase(names[i]);
+    if (names[i] == draw_fbo_) bind_framebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    if (names[i] == read_fbo_) read_fbo_ = 0;
+  }
+}
+
+void TargetScaler::textures_deleted(GLsizei n, const GLuint* names) {
+  for (GLsizei i = 0; names && i < n; ++i) textures_.erase(names[i]);
+}
+
+void TargetScaler::renderbuffers_deleted(GLsizei n, const GLuint* names) {
+  for (GLsizei i = 0; names && i < n; ++i) renderbuffers_.erase(names[i]);
+}
+
+void TargetScaler::viewport(GLint x, GLint y, GLsizei w, GLsizei h) {
+  viewport_ = {x, y, w, h};
+  double sx, sy;
+  scale_of(draw_fbo_, &sx, &sy);
+  GLint v[4];
+  scale_box(viewport_.data(), sx, sy, v);
+  agl().Viewport(v[0], v[1], v[2], v[3]);
+}
+
+void TargetScaler::scissor(GLint x, GLint y, GLsizei w, GLsizei h) {
+  scissor_ = {x, y, w, h};
+  double sx, sy;
+  scale_of(draw_fbo_, &sx, &sy);
+  GLint s[4];
+  scale_box(scissor_.data(), sx, sy, s);
+  agl().Scissor(s[0], s[1], s[2], s[3]);
+}
+
+void TargetScaler::tex_image_2d(GLint level, GLint internal_format, GLsizei* width, GLsizei* height, GLenum format,
+                                GLenum type, bool with_data) {
+  if (level < 0 || level > 16) return;
+  GLint bound = 0;
+  agl().GetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
+  if (!bound) return;
+  Image& im = textures_[static_cast<GLuint>(bound)];
+  if (level == 0) {
+    im.internal_format = internal_format;
+    im.format = format;
+    im.type = type;
+  }
+  if (im.app_size.size() <= static_cast<size_t>(level)) im.app_size.resize(static_cast<size_t>(level) + 1, {0, 0});
+  im.app_size[static_cast<size_t>(level)] = {*width, *height};
+  if (im.scale == 1.0) return;
+  if (with_data) {
+    // The app's texels are for its own size: stored unscaled, the framebuffer rescales it.
+    im.scale = 1.0;
+    for (auto& [name, f] : framebuffers_)
+      for (const Attachment& a : f.attachments)
+        if (!a.renderbuffer && a.name == static_cast<GLuint>(bound)) f.scale = -1.0;  // re-check
+    return;
+  }
+  *width = scaled(*width, im.scale);
+  *height = scaled(*height, im.scale);
+}
+
+void TargetScaler::renderbuffer_storage(GLsizei samples, GLenum internal_format, GLsizei* width, GLsizei* height) {
+  GLint bound = 0;
+  agl().GetIntegerv(GL_RENDERBUFFER_BINDING, &bound);
+  if (!bound) return;
+  Image& im = renderbuffers_[static_cast<GLuint>(bound)];
+  im.renderbuffer = true;
+  im.samples = samples;
+  im.internal_format = static_cast<GLint>(internal_format);
+  im.app_size.assign(1, {*width, *height});
+  if (im.scale == 1.0) return;
+  *width = scaled(*width, im.scale);
+  *height = scaled(*height, im.scale);
+}
+
+void TargetScaler::blit_rectangles(GLint* src, GLint* dst) const {
+  double sx, sy;
+  scale_of(read_fbo_, &sx, &sy);
+  for (int i = 0; i < 4; ++i) src[i] = static_cast<GLint>(std::lround(src[i] * (i % 2 ? sy : sx)));
+  scale_of(draw_fbo_, &sx, &sy);
+  for (int i = 0; i < 4; ++i) dst[i] = static_cast<GLint>(std::lround(dst[i] * (i % 2 ? sy : sx)));
+}
+
+bool TargetScaler::texture_size(GLint level, GLenum pname, GLint* value) const {
+  if (pname != GL_TEXTURE_WIDTH && pname != GL_TEXTURE_HEIGHT) return false;
+  GLint bound = 0;
+  agl().GetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
+  auto it = textures_.find(static_cast<GLuint>(bound));
+  if (it == textures_.end() || it->second.scale == 1.0 || level < 0 ||
+      static_cast<size_t>(level) >= it->second.app_size.size())
+    return false;
+  *value = it->second.app_size[static_cast<size_t>(level)][pname == GL_TEXTURE_WIDTH ? 0 : 1];
+  return true;
+}
+
+bool TargetScaler::renderbuffer_size(GLenum pname, GLint* value) const {
+  if (pname != GL_RENDERBUFFER_WIDTH && pname != GL_RENDERBUFFER_HEIGHT) return false;
+  GLint bound = 0;
+  agl().GetIntegerv(GL_RENDERBUFFER_BINDING, &bound);
+  auto it = renderbuffers_.find(static_cast<GLuint>(bound));
+  if (it == renderbuffers_.end() || it->second.scale == 1.0 || it->second.app_size.empty()) return false;
+  *value = it->second.app_size[0][pname == GL_RENDERBUFFER_WIDTH ? 0 : 1];
+  return true;
+}
+
+}  // namespace glbudget

@@ -1,0 +1,369 @@
+#include "variants.h"
+
+#include <unistd.h>
+
+#include <map>
+#include <mutex>
+#include <set>
+
+#include "apply_gl.h"
+#include "glbudget/instrument/defines.hpp"
+#include "pass_names.h"
+#include "uniform_values.h"
+
+namespace glbudget {
+
+namespace {
+
+void say_once(const std::string& key, const std::string& text) {
+  static std::mutex mu;
+  static std::set<std::string> said;
+  std::lock_guard lock(mu);
+  if (!said.insert(key).second) return;
+  const std::string line = "glbudget: " + text + "\n";
+  (void)!write(STDERR_FILENO, line.data(), line.size());
+}
+
+std::optional<manifest::Stage> manifest_stage(GLenum stage) {
+  switch (stage) {
+    case GL_VERTEX_SHADER: return manifest::Stage::vertex;
+    case GL_TESS_CONTROL_SHADER: return manifest::Stage::tess_control;
+    case GL_TESS_EVALUATION_SHADER: return manifest::Stage::tess_evaluation;
+    case GL_GEOMETRY_SHADER: return manifest::Stage::geometry;
+    case GL_FRAGMENT_SHADER: return manifest::Stage::fragment;
+    case GL_COMPUTE_SHADER: return manifest::Stage::compute;
+    default: return std::nullopt;
+  }
+}
+
+std::string first_line(const std::string& log) {
+  const size_t end = log.find('\n');
+  return log.substr(0, end);
+}
+
+std::string program_log(GLuint program) {
+  const ApplyGl& g = agl();
+  char log[1024] = {};
+  g.GetProgramInfoLog(program, sizeof log, nullptr, log);
+  return log;
+}
+
+// Compiles one stage; returns 0 and the driver's message on failure.
+GLuint compile(GLenum stage, const std::string& source, std::string* error) {
+  const ApplyGl& g = agl();
+  const GLuint shader = g.CreateShader(stage);
+  if (!shader) {
+    *error = "the driver made no shader object";
+    return 0;
+  }
+  const GLchar* text = source.c_str();
+  const GLint length = static_cast<GLint>(source.size());
+  g.ShaderSource(shader, 1, &text, &length);
+  g.CompileShader(shader);
+  GLint ok = GL_FALSE;
+  g.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (ok == GL_TRUE) return shader;
+  char log[1024] = {};
+  g.GetShaderInfoLog(shader, sizeof log, nullptr, log);
+  *error = first_line(log);
+  g.DeleteShader(shader);
+  return 0;
+}
+
+bool at_least(const GlCaps& caps, int major, int minor) {
+  return caps.major > major || (caps.major == major && caps.minor >= minor);
+}
+bool has_program_interface(const GlCaps& caps) { return caps.gles ? at_least(caps, 3, 1) : at_least(caps, 4, 3); }
+
+// What must be set before a variant links to behave as the app's program: the separable flag,
+// attribute and fragment-output locations, transform-feedback varyings.
+void copy_before_link(GLuint app, GLuint variant, const GlCaps& caps) {
+  const ApplyGl& g = agl();
+  if (g.ProgramParameteri && (caps.gles ? at_least(caps, 3, 1) : at_least(caps, 4, 1))) {
+    GLint separable = GL_FALSE;
+    g.GetProgramiv(app, GL_PROGRAM_SEPARABLE, &separable);
+    if (separable) g.ProgramParameteri(variant, GL_PROGRAM_SEPARABLE, GL_TRUE);
+  }
+  char name[512];
+  GLint count = 0;
+  g.GetProgramiv(app, GL_ACTIVE_ATTRIBUTES, &count);
+  for (GLint i = 0; i < count; ++i) {
+    GLsizei length = 0;
+    GLint size = 0;
+    GLenum type = 0;
+    g.GetActiveAttrib(app, static_cast<GLuint>(i), sizeof name, &length, &size, &type, name);
+    if (length <= 0 || std::string_view(name).rfind("gl_", 0) == 0) continue;
+    const GLint location = g.GetAttribLocation(app, name);
+    if (location >= 0) g.BindAttribLocation(variant, static_cast<GLuint>(location), name);
+  }
+  if (!caps.gles && has_program_interface(caps) && g.GetProgramInterfaceiv && g.GetProgramResourceName &&
+      g.BindFragDataLocationIndexed && g.GetFragDataLocation && g.GetFragDataIndex) {
+    GLint outputs = 0;
+    g.GetProgramInterfaceiv(app, GL_PROGRAM_OUTPUT, GL_ACTIVE_RESOURCES, &outputs);
+    for (GLint i = 0; i < outputs; ++i) {
+      GLsizei length = 0;
+      g.GetProgramResourceName(app, GL_PROGRAM_OUTPUT, static_cast<GLuint>(i), sizeof name, &length, name);
+      if (length <= 0 || std::string_view(name).rfind("gl_", 0) == 0) continue;
+      const GLint location = g.GetFragDataLocation(app, name);
+      const GLint index = g.GetFragDataIndex(app, name);
+      if (location >= 0)
+        g.BindFragDataLocationIndexed(variant, static_cast<GLuint>(location), static_cast<GLuint>(index < 0 ? 0 : index), name);
+    }
+  }
+  GLint varyings = 0;
+  g.GetProgramiv(app, GL_TRANSFORM_FEEDBACK_VARYINGS, &varyings);
+  if (varyings > 0 && g.TransformFeedbackVaryings && g.GetTransformFeedbackVarying) {
+    GLint mode = GL_INTERLEAVED_ATTRIBS;
+    g.GetProgramiv(app, GL_TRANSFORM_FEEDBACK_BUFFER_MODE, &mode);
+    std::vector<std::string> names;
+    for (GLint i = 0; i < varyings; ++i) {
+      GLsizei length = 0, size = 0;
+      GLenum type = 0;
+      g.GetTransformFeedbackVarying(app, static_cast<GLuint>(i), sizeof name, &length, &size, &type, name);
+      names.emplace_back(name, static_cast<size_t>(length > 0 ? length : 0));
+    }
+    std::vector<const GLchar*> pointers;
+    for (const std::string& n : names) pointers.push_back(n.c_str());
+    g.TransformFeedbackVaryings(variant, varyings, pointers.data(), static_cast<GLenum>(mode));
+  }
+}
+
+struct ActiveUniform {
+  GLenum type = 0;
+  GLint size = 0;
+};
+
+// Active default-block uniforms by base name ("u_light_color" for "u_light_color[0]").
+std::map<std::string, ActiveUniform> active_uniforms(GLuint program) {
+  const ApplyGl& g = agl();
+  std::map<std::string, ActiveUniform> out;
+  GLint count = 0;
+  g.GetProgramiv(program, GL_ACTIVE_UNIFORMS, &count);
+  char name[512];
+  for (GLint i = 0; i < count; ++i) {
+    GLsizei length = 0;
+    GLint size = 0;
+    GLenum type = 0;
+    g.GetActiveUniform(program, static_cast<GLuint>(i), sizeof name, &length, &size, &type, name);
+    if (length <= 0) continue;
+    std::string base(name, static_cast<size_t>(length));
+    if (base.size() > 3 && base.compare(base.size() - 3, 3, "[0]") == 0) base.resize(base.size() - 3);
+    out[base] = {type, size};
+  }
+  return out;
+}
+
+std::string element_name(const std::string& base, GLint size, GLint element) {
+  return size > 1 ? base + "[" + std::to_string(element) + "]" : base;
+}
+
+bool held_by_level(const manifest::Level& level, const std::string& base) {
+  for (const auto& [name, value] : level.uniforms)
+    if (name == base) return true;
+  return false;
+}
+
+// The location table of one variant, with the app's current values copied in.
+void map_uniforms(GLuint app, Variant& v, const manifest::Level& level) {
+  const ApplyGl& g = agl();
+  const auto app_uniforms = active_uniforms(app);
+  const auto variant_uniforms = active_uniforms(v.program);
+  for (const auto& [base, info] : app_uniforms) {
+    auto it = variant_uniforms.find(base);
+    const bool usable = it != variant_uniforms.end() && it->second.type == info.type && !held_by_level(level, base);
+    for (GLint e = 0; e < info.size; ++e) {
+      const std::string name = element_name(base, info.size, e);
+      const GLint app_location = g.GetUniformLocation(app, name.c_str());
+      if (app_location < 0) continue;  // a block member or a built-in
+      GLint variant_location = -1;
+      if (usable && e < it->second.size) variant_location = g.GetUniformLocation(v.program, name.c_str());
+      if (static_cast<size_t>(app_location) >= v.location.size())
+        v.location.resize(static_cast<size_t>(app_location) + 1, -1);
+      v.location[static_cast<size_t>(app_location)] = variant_location;
+      if (variant_location >= 0) copy_uniform(app, app_location, v.program, variant_location, info.type);
+    }
+  }
+}
+
+void hold_uniforms(const manifest::Pass& pass, size_t level_index, const manifest::Level& level, GLuint program) {
+  const ApplyGl& g = agl();
+  const auto uniforms = active_uniforms(program);
+  for (const auto& [name, value] : level.uniforms) {
+    auto it = uniforms.find(name);
+    const std::string where = "pass '" + pass.name + "' level " + std::to_string(level_index);
+    if (it == uniforms.end()) {
+      say_once(where + name, "uniform '" + name + "' of " + where + " is not an active uniform of the program; not held");
+      continue;
+    }
+    const GLint location = g.GetUniformLocation(program, (it->second.size > 1 ? name + "[0]" : name).c_str());
+    if (location < 0 || !set_uniform(program, location, it->second.type, it->second.size, value.values))
+      say_once(where + name, "uniform '" + name + "' of " + where + ": " + std::to_string(value.values.size()) +
+                                 " values do not fill whole elements of its type; not held");
+  }
+}
+
+void map_blocks(GLuint app, Variant& v, const GlCaps& caps) {
+  const ApplyGl& g = agl();
+  char name[512];
+  GLint blocks = 0;
+  g.GetProgramiv(app, GL_ACTIVE_UNIFORM_BLOCKS, &blocks);
+  for (GLint i = 0; i < blocks; ++i) {
+    GLsizei length = 0;
+    g.GetActiveUniformBlockName(app, static_cast<GLuint>(i), sizeof name, &length, name);
+    const GLuint index = g.GetUniformBlockIndex(v.program, name);
+    v.uniform_block.push_back(index == GL_INVALID_INDEX ? -1 : static_cast<GLint>(index));
+    if (index == GL_INVALID_INDEX) continue;
+    GLint binding = 0;
+    g.GetActiveUniformBlockiv(app, static_cast<GLuint>(i), GL_UNIFORM_BLOCK_BINDING, &binding);
+    g.UniformBlockBinding(v.program, index, static_cast<GLuint>(binding));
+  }
+  if (!has_program_interface(caps) || !g.GetProgramInterfaceiv || !g.ShaderStorageBlockBinding) return;
+  GLint storage = 0;
+  g.GetProgramInterfaceiv(app, GL_SHADER_STORAGE_BLOCK, GL_ACTIVE_RESOURCES, &storage);
+  for (GLint i = 0; i < storage; ++i) {
+    GLsizei length = 0;
+    g.GetProgramResourceName(app, GL_SHADER_STORAGE_BLOCK, static_cast<GLuint>(i), sizeof name, &length, name);
+    const GLuint index = g.GetProgramResourceIndex(v.program, GL_SHADER_STORAGE_BLOCK, name);
+    v.storage_block.push_back(index == GL_INVALID_INDEX ? -1 : static_cast<GLint>(index));
+    if (index == GL_INVALID_INDEX) continue;
+    const GLenum property = GL_BUFFER_BINDING;
+    GLint binding = 0;
+    g.GetProgramResourceiv(app, GL_SHADER_STORAGE_BLOCK, static_cast<GLuint>(i), 1, &property, 1, nullptr, &binding);
+    g.ShaderStorageBlockBinding(v.program, index, static_cast<GLuint>(binding));
+  }
+}
+
+// The sources of a level's variant: replaced stages, then the level's #defines in every stage.
+std::vector<ShaderSource> variant_sources(const std::vector<ShaderSource>& app, const manifest::Level& level) {
+  std::vector<ShaderSource> out;
+  for (const ShaderSource& s : app) {
+    ShaderSource v = s;
+    if (auto stage = manifest_stage(s.stage)) {
+      auto r = level.replace_source.find(*stage);
+      if (r != level.replace_source.end()) v.source = r->second;
+    }
+    v.source = instrument::set_defines(v.source, level.defines);
+    out.push_back(std::move(v));
+  }
+  return out;
+}
+
+GLuint link_variant(GLuint app, const std::vector<ShaderSource>& sources, const GlCaps& caps, std::string* error) {
+  const ApplyGl& g = agl();
+  std::vector<GLuint> shaders;
+  bool ok = true;
+  for (const ShaderSource& s : sources) {
+    const GLuint shader = compile(s.stage, s.source, error);
+    if (!shader) {
+      ok = false;
+      break;
+    }
+    shaders.push_back(shader);
+  }
+  GLuint program = 0;
+  if (ok) {
+    program = g.CreateProgram();
+    for (GLuint s : shaders) g.AttachShader(program, s);
+    copy_before_link(app, program, caps);
+    g.LinkProgram(program);
+    GLint linked = GL_FALSE;
+    g.GetProgramiv(program, GL_LINK_STATUS, &linked);
+    if (linked != GL_TRUE) {
+      *error = "does not link: " + first_line(program_log(program));
+      g.DeleteProgram(program);
+      program = 0;
+    } else {
+      for (GLuint s : shaders) g.DetachShader(program, s);
+    }
+  } else {
+    *error = "does not compile: " + *error;
+  }
+  for (GLuint s : shaders) g.DeleteShader(s);
+  return program;
+}
+
+}  // namespace
+
+int match_pass(PassId hash, const std::vector<ShaderSource>& sources) {
+  const manifest::Manifest& m = active_manifest();
+  std::vector<std::string> texts;
+  for (const ShaderSource& s : sources) texts.push_back(s.source);
+  for (size_t i = 0; i < m.passes.size(); ++i)
+    if (!m.passes[i].match.empty() && manifest::matches(m.passes[i].match, hash, texts)) return static_cast<int>(i);
+  return -1;
+}
+
+std::shared_ptr<VariantSet> build_variants(GLuint program, PassId app_hash, int pass,
+                                           const std::vector<ShaderSource>& sources, const GlCaps& caps) {
+  const manifest::Pass& mp = active_manifest().passes[static_cast<size_t>(pass)];
+  auto set = std::make_shared<VariantSet>();
+  set->app_program = program;
+  set->pass = pass;
+  bool any = false;
+  for (size_t l = 0; l < mp.levels.size(); ++l) {
+    const manifest::Level& level = mp.levels[l];
+    Variant v;
+    v.pass_hash = app_hash;
+    v.draws = level.draws;
+    if (level.changes_program()) {
+      const std::string where = "pass '" + mp.name + "' level " + std::to_string(l) +
+                                (level.name.empty() ? "" : " (" + level.name + ")");
+      if (!apply_gl_has_program_uniforms()) {
+        say_once("no-program-uniform", "variants need glProgramUniform* (GL 4.1, GLES 3.1); " + where +
+                                           " and every other program variant draw with the app's programs");
+      } else {
+        const std::vector<ShaderSource> modified = variant_sources(sources, level);
+        std::string error;
+        v.program = link_variant(program, modified, caps, &error);
+        if (!v.program) {
+          say_once(where + hash_text(app_hash), where + ": the variant of program " + hash_text(app_hash) + " " + error +
+                                                    "; this level draws the app's program");
+        } else {
+          std::vector<uint64_t> hashes;
+          for (const ShaderSource& s : modified) hashes.push_back(shader_hash(s.stage, s.source));
+          v.pass_hash = program_hash(std::move(hashes));
+          map_uniforms(program, v, level);
+          map_blocks(program, v, caps);
+          hold_uniforms(mp, l, level, v.program);
+          set->programs.push_back(v.program);
+        }
+      }
+    }
+    any |= v.program != 0 || !v.draws;
+    set->levels.push_back(std::move(v));
+  }
+  if (!any) return nullptr;
+  return set;
+}
+
+void delete_variants(const VariantSet& set) {
+  const ApplyGl& g = agl();
+  for (GLuint p : set.programs) g.DeleteProgram(p);
+}
+
+void uniform_targets(const VariantSet& set, GLint app_location, UniformTargets* out) {
+  out->count = 1;
+  out->program[0] = set.app_program;
+  out->location[0] = app_location;
+  if (app_location < 0) return;
+  const auto at = static_cast<size_t>(app_location);
+  for (const Variant& v : set.levels) {
+    if (!v.program || at >= v.location.size() || v.location[at] < 0 || out->count > kMaxPasses) continue;
+    out->program[out->count] = v.program;
+    out->location[out->count] = v.location[at];
+    ++out->count;
+  }
+}
+
+void forward_block_binding(const VariantSet& set, GLuint index, GLuint binding, bool storage) {
+  const ApplyGl& g = agl();
+  for (const Variant& v : set.levels) {
+    if (!v.program) continue;
+    const std::vector<GLint>& map = storage ? v.storage_block : v.uniform_block;
+    if (index >= map.size() || map[index] < 0) continue;
+    if (storage) g.ShaderStorageBlockBinding(v.program, static_cast<GLuint>(map[index]), binding);
+    else g.UniformBlockBinding(v.program, static_cast<GLuint>(map[index]), binding);
+  }
+}
+
+}  // namespace glbudget

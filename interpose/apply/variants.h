@@ -1,0 +1,72 @@
+// Program shadowing: the variant programs of a program the manifest matches, one per level of
+// its pass that changes the program (#defines, a replaced stage, held uniforms). Built when the
+// app links its program, in the same share group, with the app's attribute and output
+// locations and separable flag; then every uniform and block binding the app sets reaches
+// each variant too, through per-variant location tables (a location a variant lacks is
+// dropped, never passed to the driver). The app only ever sees its own program.
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "configuration.h"
+#include "frame_row.h"
+#include "gl_types.h"
+#include "pass_counter.h"
+
+namespace glbudget {
+
+struct Variant {
+  GLuint program = 0;   // 0: the level draws with the app's program
+  PassId pass_hash = 0; // the program's name in the frame log (as if the app had built it)
+  bool draws = true;    // false: the level skips the pass's draws
+  // App location -> variant location (-1: absent, or held by the level).
+  std::vector<GLint> location;
+  std::vector<GLint> uniform_block;  // app block index -> variant index (-1: absent)
+  std::vector<GLint> storage_block;
+};
+
+struct VariantSet {
+  GLuint app_program = 0;
+  int pass = -1;                 // manifest pass
+  std::vector<Variant> levels;   // one per level of the pass
+  std::vector<GLuint> programs;  // distinct variant programs (not the app's)
+
+  const Variant& at(const Levels& config) const {
+    const int l = config[pass];
+    return levels[static_cast<size_t>(l < static_cast<int>(levels.size()) ? l : 0)];
+  }
+  GLuint program_for(const Levels& config) const {
+    const Variant& v = at(config);
+    return v.program ? v.program : app_program;
+  }
+};
+
+struct ShaderSource {
+  GLenum stage = 0;
+  std::string source;
+};
+
+// The manifest pass that claims a linked program, or -1.
+int match_pass(PassId hash, const std::vector<ShaderSource>& sources);
+
+// Builds the variants of `program` (linked successfully by the app) for manifest pass `pass`.
+// Levels whose variant does not compile or link are reported once and fall back to the app's
+// program. Null when the pass needs no variant program (only draws/scale levels) and skips
+// nothing, or when the driver lacks glProgramUniform*.
+std::shared_ptr<VariantSet> build_variants(GLuint program, PassId app_hash, int pass,
+                                           const std::vector<ShaderSource>& sources, const GlCaps& caps);
+void delete_variants(const VariantSet& set);
+
+// Where one of the app's uniform calls goes: each (program, location) pair.
+struct UniformTargets {
+  int count = 0;
+  GLuint program[kMaxPasses + 1];
+  GLint location[kMaxPasses + 1];
+};
+void uniform_targets(const VariantSet& set, GLint app_location, UniformTargets* out);
+
+// glUniformBlockBinding / glShaderStorageBlockBinding for each variant.
+void forward_block_binding(const VariantSet& set, GLuint index, GLuint binding, bool storage);
+
+}  // namespace glbudget
