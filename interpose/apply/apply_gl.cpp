@@ -105,6 +105,7 @@ ApplyGl load_all() {
   load(g.Disable, "glDisable");
   load(g.IsEnabled, "glIsEnabled");
   load(g.GetIntegerv, "glGetIntegerv");
+  load(g.ReadBuffer, "glReadBuffer");
   return g;
 }
 }  // namespace

@@ -102,6 +102,7 @@ struct ApplyGl {
   void(APIENTRYP Disable)(GLenum) = nullptr;
   GLboolean(APIENTRYP IsEnabled)(GLenum) = nullptr;
   void(APIENTRYP GetIntegerv)(GLenum, GLint*) = nullptr;
+  void(APIENTRYP ReadBuffer)(GLenum) = nullptr;
 };
 
 const ApplyGl& agl();  // resolves on first use (a context is current)

@@ -99,19 +99,6 @@ State& state() {
       }
     }
     st->every = o.force_every;
-    // The default framebuffer's stand-in is not built yet: say so once if a level asks for it.
-    for (const Levels& forced : st->forced)
-      for (int q = 0; q < forced.count; ++q) {
-        const manifest::Pass& p = st->manifest.passes[static_cast<size_t>(q)];
-        const manifest::Level& l = p.levels[static_cast<size_t>(forced.level[q])];
-        for (const manifest::Target& t : l.targets)
-          if (t.kind == manifest::Target::Kind::default_framebuffer) {
-            say("level " + std::to_string(forced.level[q]) + " of pass '" + p.name +
-                "' scales the default framebuffer, which this version of glbudget cannot do yet; it draws at full size");
-            q = forced.count;
-            break;
-          }
-      }
     return st;
   }();
   return *s;
@@ -138,6 +125,7 @@ std::string format_levels(const Levels& levels) {
 const manifest::Manifest& active_manifest() { return state().manifest; }
 bool manifest_has_programs() { return state().has_programs; }
 bool manifest_scales_targets() { return state().scales_targets; }
+bool manifest_scales_window() { return state().scales_window; }
 
 Levels configuration_for_frame(uint64_t frame) {
   const State& s = state();

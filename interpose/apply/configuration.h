@@ -36,7 +36,8 @@ int format_levels(const Levels& levels, char* out, int size);
 // once, at the first make-current; problems are reported then.
 const manifest::Manifest& active_manifest();
 bool manifest_has_programs();   // any pass matches programs
-bool manifest_scales_targets(); // any level scales render targets
+bool manifest_scales_targets(); // any level scales the app's render targets
+bool manifest_scales_window();  // any level scales the default framebuffer
 
 // The configuration the frame with this number (1-based, per context) draws.
 Levels configuration_for_frame(uint64_t frame);

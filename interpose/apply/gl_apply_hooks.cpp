@@ -1,6 +1,7 @@
 // The app's calls that meet render-target scaling and program shadowing: framebuffer and image
 // life cycle, viewport and scissor, blits, and the queries that must answer for the app.
 #include <algorithm>
+#include <vector>
 
 #include "context_state.h"
 #include "hooks_generated.h"
@@ -20,8 +21,15 @@ template <typename T>
 void answer_for_app(GLenum pname, T* params) {
   ContextState* c = current_context();
   if (!c || !params) return;
+  TargetScaler* s = c->targets.get();
   if (pname == GL_CURRENT_PROGRAM && c->bound_variants) {
     params[0] = static_cast<T>(c->program);
+  } else if (s && s->window_scaled() && (pname == GL_DRAW_FRAMEBUFFER_BINDING || pname == GL_READ_FRAMEBUFFER_BINDING)) {
+    params[0] = static_cast<T>(pname == GL_READ_FRAMEBUFFER_BINDING ? s->app_read_framebuffer() : s->app_draw_framebuffer());
+  } else if (s && s->window_scaled() && (pname == GL_DRAW_BUFFER || pname == GL_DRAW_BUFFER0 || pname == GL_READ_BUFFER)) {
+    // The stand-in's GL_COLOR_ATTACHMENT0 is the window's back buffer to the app.
+    const GLuint app = pname == GL_READ_BUFFER ? s->app_read_framebuffer() : s->app_draw_framebuffer();
+    if (app == 0 && params[0] == static_cast<T>(GL_COLOR_ATTACHMENT0)) params[0] = static_cast<T>(GL_BACK);
   } else if ((pname == GL_VIEWPORT || pname == GL_SCISSOR_BOX) && c->targets && c->targets->active()) {
     const GLint* box = pname == GL_VIEWPORT ? c->targets->app_viewport() : c->targets->app_scissor();
     for (int i = 0; i < 4; ++i) params[i] = static_cast<T>(box[i]);
@@ -51,9 +59,9 @@ void handle_glGetBooleanv(pfn_glGetBooleanv real, GLenum pname, GLboolean* data)
 }
 
 void handle_glBindFramebuffer(pfn_glBindFramebuffer real, GLenum target, GLuint framebuffer) {
-  real(target, framebuffer);
   ContextState* c = current_context();
-  if (!c || !c->targets) return;
+  if (!c || !c->targets) return real(target, framebuffer);
+  real(target, c->targets->real_framebuffer(framebuffer));
   c->targets->bind_framebuffer(target, framebuffer);
   if (target != GL_READ_FRAMEBUFFER) c->counter->invalidate();  // the next draw may reveal a target
 }
@@ -134,8 +142,157 @@ void handle_glBlitFramebuffer(pfn_glBlitFramebuffer real, GLint srcX0, GLint src
   TargetScaler* s = scaler();
   if (!s) return real(srcX0, srcY0, srcX1, srcY1, dstX0, dstY0, dstX1, dstY1, mask, filter);
   GLint src[4] = {srcX0, srcY0, srcX1, srcY1}, dst[4] = {dstX0, dstY0, dstX1, dstY1};
-  s->blit_rectangles(src, dst);
+  s->blit_rectangles(s->app_read_framebuffer(), s->app_draw_framebuffer(), src, dst);
   real(src[0], src[1], src[2], src[3], dst[0], dst[1], dst[2], dst[3], mask, filter);
+}
+
+void handle_glReadPixels(pfn_glReadPixels real, GLint x, GLint y, GLsizei width, GLsizei height, GLenum format,
+                         GLenum type, void* pixels) {
+  TargetScaler* s = scaler();
+  if (!s) return real(x, y, width, height, format, type, pixels);
+  s->read_window([&] { real(x, y, width, height, format, type, pixels); });
+}
+
+void handle_glCopyTexImage2D(pfn_glCopyTexImage2D real, GLenum target, GLint level, GLenum internalformat, GLint x,
+                             GLint y, GLsizei width, GLsizei height, GLint border) {
+  TargetScaler* s = scaler();
+  if (!s) return real(target, level, internalformat, x, y, width, height, border);
+  s->read_window([&] { real(target, level, internalformat, x, y, width, height, border); });
+}
+
+void handle_glCopyTexSubImage2D(pfn_glCopyTexSubImage2D real, GLenum target, GLint level, GLint xoffset,
+                                GLint yoffset, GLint x, GLint y, GLsizei width, GLsizei height) {
+  TargetScaler* s = scaler();
+  if (!s) return real(target, level, xoffset, yoffset, x, y, width, height);
+  s->read_window([&] { real(target, level, xoffset, yoffset, x, y, width, height); });
+}
+
+namespace {
+bool window_bound(const TargetScaler* s, bool read) {
+  return s && s->window_scaled() && (read ? s->app_read_framebuffer() : s->app_draw_framebuffer()) == 0;
+}
+
+// Default-framebuffer attachment names (GL_COLOR, GL_DEPTH, GL_STENCIL) as the stand-in's.
+std::vector<GLenum> stand_in_attachments(GLsizei n, const GLenum* attachments) {
+  std::vector<GLenum> out(attachments, attachments + (n > 0 ? n : 0));
+  for (GLenum& a : out) {
+    if (a == GL_COLOR || a == GL_BACK_LEFT || a == GL_BACK) a = GL_COLOR_ATTACHMENT0;
+    else if (a == GL_DEPTH) a = GL_DEPTH_ATTACHMENT;
+    else if (a == GL_STENCIL) a = GL_STENCIL_ATTACHMENT;
+  }
+  return out;
+}
+}  // namespace
+
+void handle_glDrawBuffer(pfn_glDrawBuffer real, GLenum buf) {
+  TargetScaler* s = scaler();
+  real(window_bound(s, false) ? TargetScaler::window_buffer(buf) : buf);
+}
+
+void handle_glDrawBuffers(pfn_glDrawBuffers real, GLsizei n, const GLenum* bufs) {
+  TargetScaler* s = scaler();
+  if (!window_bound(s, false) || n <= 0 || !bufs) return real(n, bufs);
+  std::vector<GLenum> mapped(bufs, bufs + n);
+  for (GLenum& b : mapped) b = TargetScaler::window_buffer(b);
+  real(n, mapped.data());
+}
+
+void handle_glReadBuffer(pfn_glReadBuffer real, GLenum src) {
+  TargetScaler* s = scaler();
+  real(window_bound(s, true) ? TargetScaler::window_buffer(src) : src);
+}
+
+void handle_glInvalidateFramebuffer(pfn_glInvalidateFramebuffer real, GLenum target, GLsizei n,
+                                    const GLenum* attachments) {
+  TargetScaler* s = scaler();
+  if (!window_bound(s, target == GL_READ_FRAMEBUFFER) || !attachments) return real(target, n, attachments);
+  const std::vector<GLenum> mapped = stand_in_attachments(n, attachments);
+  real(target, n, mapped.data());
+}
+
+void handle_glInvalidateSubFramebuffer(pfn_glInvalidateSubFramebuffer real, GLenum target, GLsizei n,
+                                       const GLenum* attachments, GLint x, GLint y, GLsizei width, GLsizei height) {
+  TargetScaler* s = scaler();
+  if (!window_bound(s, target == GL_READ_FRAMEBUFFER) || !attachments)
+    return real(target, n, attachments, x, y, width, height);
+  const std::vector<GLenum> mapped = stand_in_attachments(n, attachments);
+  real(target, n, mapped.data(), x, y, width, height);  // a hint: the region may be larger
+}
+
+void handle_glDiscardFramebufferEXT(pfn_glDiscardFramebufferEXT real, GLenum target, GLsizei n,
+                                    const GLenum* attachments) {
+  TargetScaler* s = scaler();
+  if (!window_bound(s, false) || !attachments) return real(target, n, attachments);
+  const std::vector<GLenum> mapped = stand_in_attachments(n, attachments);
+  real(target, n, mapped.data());
+}
+
+// Questions about the window's attachments are answered by the window itself.
+void handle_glGetFramebufferAttachmentParameteriv(pfn_glGetFramebufferAttachmentParameteriv real, GLenum target,
+                                                  GLenum attachment, GLenum pname, GLint* params) {
+  TargetScaler* s = scaler();
+  const bool read = target == GL_READ_FRAMEBUFFER;
+  if (!window_bound(s, read)) return real(target, attachment, pname, params);
+  static const auto bind = reinterpret_cast<pfn_glBindFramebuffer>(resolve_real(kHook_glBindFramebuffer));
+  bind(target, 0);
+  real(target, attachment, pname, params);
+  bind(target, s->real_framebuffer(0));
+}
+
+void handle_glBlitNamedFramebuffer(pfn_glBlitNamedFramebuffer real, GLuint readFramebuffer, GLuint drawFramebuffer,
+                                   GLint srcX0, GLint srcY0, GLint srcX1, GLint srcY1, GLint dstX0, GLint dstY0,
+                                   GLint dstX1, GLint dstY1, GLbitfield mask, GLenum filter) {
+  TargetScaler* s = scaler();
+  if (!s) return real(readFramebuffer, drawFramebuffer, srcX0, srcY0, srcX1, srcY1, dstX0, dstY0, dstX1, dstY1, mask, filter);
+  GLint src[4] = {srcX0, srcY0, srcX1, srcY1}, dst[4] = {dstX0, dstY0, dstX1, dstY1};
+  s->blit_rectangles(readFramebuffer, drawFramebuffer, src, dst);
+  real(s->real_framebuffer(readFramebuffer), s->real_framebuffer(drawFramebuffer), src[0], src[1], src[2], src[3],
+       dst[0], dst[1], dst[2], dst[3], mask, filter);
+}
+
+void handle_glNamedFramebufferDrawBuffer(pfn_glNamedFramebufferDrawBuffer real, GLuint framebuffer, GLenum buf) {
+  TargetScaler* s = scaler();
+  if (framebuffer || !s || !s->window_scaled()) return real(framebuffer, buf);
+  real(s->real_framebuffer(0), TargetScaler::window_buffer(buf));
+}
+
+void handle_glNamedFramebufferDrawBuffers(pfn_glNamedFramebufferDrawBuffers real, GLuint framebuffer, GLsizei n,
+                                          const GLenum* bufs) {
+  TargetScaler* s = scaler();
+  if (framebuffer || !s || !s->window_scaled() || n <= 0 || !bufs) return real(framebuffer, n, bufs);
+  std::vector<GLenum> mapped(bufs, bufs + n);
+  for (GLenum& b : mapped) b = TargetScaler::window_buffer(b);
+  real(s->real_framebuffer(0), n, mapped.data());
+}
+
+void handle_glNamedFramebufferReadBuffer(pfn_glNamedFramebufferReadBuffer real, GLuint framebuffer, GLenum src) {
+  TargetScaler* s = scaler();
+  if (framebuffer || !s || !s->window_scaled()) return real(framebuffer, src);
+  real(s->real_framebuffer(0), TargetScaler::window_buffer(src));
+}
+
+namespace {
+GLuint named(GLuint framebuffer) {
+  TargetScaler* s = scaler();
+  return framebuffer == 0 && s ? s->real_framebuffer(0) : framebuffer;
+}
+}  // namespace
+
+void handle_glClearNamedFramebufferiv(pfn_glClearNamedFramebufferiv real, GLuint framebuffer, GLenum buffer,
+                                      GLint drawbuffer, const GLint* value) {
+  real(named(framebuffer), buffer, drawbuffer, value);
+}
+void handle_glClearNamedFramebufferuiv(pfn_glClearNamedFramebufferuiv real, GLuint framebuffer, GLenum buffer,
+                                       GLint drawbuffer, const GLuint* value) {
+  real(named(framebuffer), buffer, drawbuffer, value);
+}
+void handle_glClearNamedFramebufferfv(pfn_glClearNamedFramebufferfv real, GLuint framebuffer, GLenum buffer,
+                                      GLint drawbuffer, const GLfloat* value) {
+  real(named(framebuffer), buffer, drawbuffer, value);
+}
+void handle_glClearNamedFramebufferfi(pfn_glClearNamedFramebufferfi real, GLuint framebuffer, GLenum buffer,
+                                      GLint drawbuffer, GLfloat depth, GLint stencil) {
+  real(named(framebuffer), buffer, drawbuffer, depth, stencil);
 }
 
 void handle_glGetTexLevelParameteriv(pfn_glGetTexLevelParameteriv real, GLenum target, GLint level, GLenum pname,

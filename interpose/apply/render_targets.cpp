@@ -82,10 +82,13 @@ void* SavedBindings::bind_buffer() {
 GLsizei TargetScaler::Image::stored_width() const { return app_size.empty() ? 0 : scaled(app_size[0][0], scale); }
 GLsizei TargetScaler::Image::stored_height() const { return app_size.empty() ? 0 : scaled(app_size[0][1], scale); }
 
-TargetScaler::TargetScaler() {
+TargetScaler::TargetScaler(bool gles) : gles_(gles) {
   const ApplyGl& g = agl();
   g.GetIntegerv(GL_VIEWPORT, viewport_.data());
   g.GetIntegerv(GL_SCISSOR_BOX, scissor_.data());
+  // GL sets the first viewport to the window's size: the size until the window system says.
+  window_width_ = viewport_[2];
+  window_height_ = viewport_[3];
   GLint fbo = 0;
   g.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
   draw_fbo_ = static_cast<GLuint>(fbo);
@@ -97,8 +100,200 @@ void TargetScaler::set_configuration(const Levels& config) {
   if (config == config_) return;
   config_ = config;
   for (auto& [name, f] : framebuffers_) ensure_scale(name, f);
+  update_window();
   apply_viewport();
 }
+
+double TargetScaler::wanted_window_scale() const {
+  const manifest::Manifest& m = active_manifest();
+  double s = 1.0;
+  for (size_t q = 0; q < m.passes.size(); ++q) {
+    const int l = config_[static_cast<int>(q)];
+    if (l < 0 || static_cast<size_t>(l) >= m.passes[q].levels.size()) continue;
+    const manifest::Level& level = m.passes[q].levels[static_cast<size_t>(l)];
+    for (const manifest::Target& t : level.targets)
+      if (t.kind == manifest::Target::Kind::default_framebuffer) s = std::min(s, level.scale);
+  }
+  return s;
+}
+
+GLenum TargetScaler::window_buffer(GLenum buffer) {
+  switch (buffer) {
+    case GL_BACK: case GL_FRONT: case GL_BACK_LEFT: case GL_FRONT_LEFT: case GL_LEFT: case GL_FRONT_AND_BACK:
+      return GL_COLOR_ATTACHMENT0;
+    default: return buffer;
+  }
+}
+
+void TargetScaler::set_window_size(int width, int height) {
+  if (width <= 0 || height <= 0 || (width == window_width_ && height == window_height_)) return;
+  window_width_ = width;
+  window_height_ = height;
+  if (window_.fbo) update_window();
+}
+
+void TargetScaler::update_window() {
+  const ApplyGl& g = agl();
+  const double s = wanted_window_scale();
+  if (s == 1.0 || window_width_ <= 0 || window_height_ <= 0) {
+    release_window();
+    return;
+  }
+  if (!window_.checked) {
+    // What the window is made of, asked of the real default framebuffer.
+    window_.checked = true;
+    GLint draw = 0, samples = 0, depth = 0, stencil = 0, encoding = GL_LINEAR;
+    g.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    g.GetIntegerv(GL_SAMPLES, &samples);
+    g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE, &depth);
+    g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_STENCIL, GL_FRAMEBUFFER_ATTACHMENT_STENCIL_SIZE, &stencil);
+    g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, gles_ ? GL_BACK : GL_BACK_LEFT, GL_FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING,
+                                          &encoding);
+    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
+    window_.multisampled = samples > 0;
+    window_.has_depth = depth > 0 || stencil > 0;
+    window_.color_format = encoding == GL_SRGB ? GL_SRGB8_ALPHA8 : GL_RGBA8;
+    if (window_.multisampled)
+      say_once("multisampled-window", "the window is multisampled: its resolution is not scaled");
+  }
+  if (window_.multisampled) return;
+  const int w = scaled(window_width_, s), h = scaled(window_height_, s);
+  if (window_.fbo && w == window_.width && h == window_.height) return;
+  GLint renderbuffer = 0, draw = 0, read = 0;
+  g.GetIntegerv(GL_RENDERBUFFER_BINDING, &renderbuffer);
+  g.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+  g.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read);
+  const bool fresh = !window_.fbo;
+  if (fresh) {
+    g.GenFramebuffers(1, &window_.fbo);
+    g.GenRenderbuffers(1, &window_.color);
+    if (window_.has_depth) g.GenRenderbuffers(1, &window_.depth);
+  }
+  window_.width = w;
+  window_.height = h;
+  g.BindRenderbuffer(GL_RENDERBUFFER, window_.color);
+  g.RenderbufferStorageMultisample(GL_RENDERBUFFER, 0, window_.color_format, w, h);
+  if (window_.depth) {
+    g.BindRenderbuffer(GL_RENDERBUFFER, window_.depth);
+    g.RenderbufferStorageMultisample(GL_RENDERBUFFER, 0, GL_DEPTH24_STENCIL8, w, h);
+  }
+  g.BindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(renderbuffer));
+  if (fresh) {
+    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, window_.fbo);
+    g.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, window_.color);
+    if (window_.depth)
+      g.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, window_.depth);
+    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
+  }
+  // The stand-in takes the window's place in whichever binding the app has at 0.
+  if (draw_fbo_ == 0) g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, window_.fbo);
+  if (read_fbo_ == 0) g.BindFramebuffer(GL_READ_FRAMEBUFFER, window_.fbo);
+  if (window_.copy_fbo) {  // the read copy follows the window's size
+    g.DeleteFramebuffers(1, &window_.copy_fbo);
+    g.DeleteRenderbuffers(1, &window_.copy_color);
+    if (window_.copy_depth) g.DeleteRenderbuffers(1, &window_.copy_depth);
+    window_.copy_fbo = window_.copy_color = window_.copy_depth = 0;
+  }
+  apply_viewport();
+}
+
+void TargetScaler::release_window() {
+  if (!window_.fbo) return;
+  const ApplyGl& g = agl();
+  if (draw_fbo_ == 0) g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  if (read_fbo_ == 0) g.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  g.DeleteFramebuffers(1, &window_.fbo);
+  g.DeleteRenderbuffers(1, &window_.color);
+  if (window_.depth) g.DeleteRenderbuffers(1, &window_.depth);
+  if (window_.copy_fbo) {
+    g.DeleteFramebuffers(1, &window_.copy_fbo);
+    g.DeleteRenderbuffers(1, &window_.copy_color);
+    if (window_.copy_depth) g.DeleteRenderbuffers(1, &window_.copy_depth);
+  }
+  const bool checked = window_.checked, multisampled = window_.multisampled, has_depth = window_.has_depth;
+  const GLenum format = window_.color_format;
+  window_ = Window{};
+  window_.checked = checked;
+  window_.multisampled = multisampled;
+  window_.has_depth = has_depth;
+  window_.color_format = format;
+  apply_viewport();
+}
+
+namespace {
+// Bindings and switches a blit of ours changes, restored when it is done.
+struct BlitState {
+  GLint draw = 0, read = 0;
+  bool scissor = false, discard = false;
+  BlitState() {
+    const ApplyGl& g = agl();
+    g.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+    g.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read);
+    scissor = g.IsEnabled(GL_SCISSOR_TEST);
+    discard = g.IsEnabled(GL_RASTERIZER_DISCARD);
+    if (scissor) g.Disable(GL_SCISSOR_TEST);  // a leftover scissor clips blits
+    if (discard) g.Disable(GL_RASTERIZER_DISCARD);
+  }
+  ~BlitState() {
+    const ApplyGl& g = agl();
+    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
+    g.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read));
+    if (scissor) g.Enable(GL_SCISSOR_TEST);
+    if (discard) g.Enable(GL_RASTERIZER_DISCARD);
+  }
+};
+
+// Blits the whole colour (linear) and depth-stencil (nearest) of `from` over `to`.
+void blit_whole(GLuint from, int fw, int fh, GLuint to, int tw, int th, bool depth) {
+  const ApplyGl& g = agl();
+  g.BindFramebuffer(GL_READ_FRAMEBUFFER, from);
+  g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, to);
+  GLint read_buffer = GL_COLOR_ATTACHMENT0;
+  if (from) g.GetIntegerv(GL_READ_BUFFER, &read_buffer);
+  if (from && read_buffer != GL_COLOR_ATTACHMENT0) g.ReadBuffer(GL_COLOR_ATTACHMENT0);
+  g.BlitFramebuffer(0, 0, fw, fh, 0, 0, tw, th, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+  if (depth) g.BlitFramebuffer(0, 0, fw, fh, 0, 0, tw, th, GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, GL_NEAREST);
+  if (from && read_buffer != GL_COLOR_ATTACHMENT0) g.ReadBuffer(static_cast<GLenum>(read_buffer));
+}
+}  // namespace
+
+void TargetScaler::present() {
+  if (!window_.fbo) return;
+  BlitState saved;
+  blit_whole(window_.fbo, window_.width, window_.height, 0, window_width_, window_height_, false);
+}
+
+void TargetScaler::bind_window_copy() {
+  const ApplyGl& g = agl();
+  if (!window_.copy_fbo) {
+    GLint renderbuffer = 0, draw = 0;
+    g.GetIntegerv(GL_RENDERBUFFER_BINDING, &renderbuffer);
+    g.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+    g.GenFramebuffers(1, &window_.copy_fbo);
+    g.GenRenderbuffers(1, &window_.copy_color);
+    g.BindRenderbuffer(GL_RENDERBUFFER, window_.copy_color);
+    g.RenderbufferStorageMultisample(GL_RENDERBUFFER, 0, window_.color_format, window_width_, window_height_);
+    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, window_.copy_fbo);
+    g.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, window_.copy_color);
+    if (window_.depth) {
+      g.GenRenderbuffers(1, &window_.copy_depth);
+      g.BindRenderbuffer(GL_RENDERBUFFER, window_.copy_depth);
+      g.RenderbufferStorageMultisample(GL_RENDERBUFFER, 0, GL_DEPTH24_STENCIL8, window_width_, window_height_);
+      g.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, window_.copy_depth);
+    }
+    g.BindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(renderbuffer));
+    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
+  }
+  {
+    BlitState saved;
+    blit_whole(window_.fbo, window_.width, window_.height, window_.copy_fbo, window_width_, window_height_,
+               window_.depth != 0);
+  }
+  g.BindFramebuffer(GL_READ_FRAMEBUFFER, window_.copy_fbo);
+}
+
+void TargetScaler::unbind_window_copy() { agl().BindFramebuffer(GL_READ_FRAMEBUFFER, window_.fbo); }
 
 double TargetScaler::wanted_scale(GLuint name, const Framebuffer& f) const {
   const manifest::Manifest& m = active_manifest();
@@ -245,7 +440,13 @@ void TargetScaler::rescale(GLuint name, Image& image, double scale) {
 
 void TargetScaler::scale_of(GLuint fbo, double* sx, double* sy) const {
   *sx = *sy = 1.0;
-  if (fbo == 0) return;
+  if (fbo == 0) {
+    if (window_.fbo && window_width_ > 0 && window_height_ > 0) {
+      *sx = static_cast<double>(window_.width) / window_width_;
+      *sy = static_cast<double>(window_.height) / window_height_;
+    }
+    return;
+  }
   auto it = framebuffers_.find(fbo);
   if (it == framebuffers_.end() || it->second.scale == 1.0) return;
   for (const Attachment& a : it->second.attachments) {
@@ -370,11 +571,11 @@ void TargetScaler::renderbuffer_storage(GLsizei samples, GLenum internal_format,
   *height = scaled(*height, im.scale);
 }
 
-void TargetScaler::blit_rectangles(GLint* src, GLint* dst) const {
+void TargetScaler::blit_rectangles(GLuint read, GLuint draw, GLint* src, GLint* dst) const {
   double sx, sy;
-  scale_of(read_fbo_, &sx, &sy);
+  scale_of(read, &sx, &sy);
   for (int i = 0; i < 4; ++i) src[i] = static_cast<GLint>(std::lround(src[i] * (i % 2 ? sy : sx)));
-  scale_of(draw_fbo_, &sx, &sy);
+  scale_of(draw, &sx, &sy);
   for (int i = 0; i < 4; ++i) dst[i] = static_cast<GLint>(std::lround(dst[i] * (i % 2 ? sy : sx)));
 }
 

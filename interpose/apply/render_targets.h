@@ -5,8 +5,12 @@
 // the app's values. A framebuffer is a target of a pass once a draw of that pass went to it;
 // when its scale changes (then, or at a swap that switches configuration) its images are
 // respecified and their contents carried over by a blit.
+// The default framebuffer (the window) is scaled the way Proton's fullscreen hack resizes it:
+// a stand-in framebuffer at the scaled size takes its place whenever the app binds 0, and is
+// drawn into the real back buffer at each swap. Reads of the window (glReadPixels,
+// glCopyTex*) see a window-sized image, binding queries answer 0.
 // Limits: 2D textures and renderbuffers (not immutable textures, arrays, cube maps); textures
-// are tracked per context; the default framebuffer is scaled elsewhere.
+// are tracked per context; multisampled windows are not scaled.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -20,12 +24,34 @@ namespace glbudget {
 
 class TargetScaler {
  public:
-  TargetScaler();  // reads the viewport and scissor the context starts with
+  explicit TargetScaler(bool gles);  // reads the viewport and scissor the context starts with
 
   // The configuration in force; re-scales the framebuffers seen so far.
   void set_configuration(const Levels& config);
   // A draw is about to go to the bound draw framebuffer under manifest pass `pass` (-1: none).
   void on_draw(int pass);
+
+  // The window's size, as the window system says (at make-current and at each swap).
+  void set_window_size(int width, int height);
+  // Before the real swap: the stand-in drawn into the back buffer.
+  void present();
+  // The name the driver must get for the app's framebuffer name (the stand-in for 0).
+  GLuint real_framebuffer(GLuint app) const { return app == 0 && window_.fbo ? window_.fbo : app; }
+  bool window_scaled() const { return window_.fbo != 0; }
+  GLuint app_draw_framebuffer() const { return draw_fbo_; }
+  GLuint app_read_framebuffer() const { return read_fbo_; }
+  // Runs `read` (a glReadPixels or glCopyTex* of the app) against a window-sized copy of the
+  // stand-in when the app reads the window, else as it is.
+  template <typename F>
+  void read_window(F&& read) {
+    if (read_fbo_ != 0 || !window_.fbo) return read();
+    bind_window_copy();
+    read();
+    unbind_window_copy();
+  }
+  // glDrawBuffer(s)/glReadBuffer of the window while the stand-in is bound: GL_BACK and the
+  // like become GL_COLOR_ATTACHMENT0.
+  static GLenum window_buffer(GLenum buffer);
 
   // Hooks. Each returns what the real call must be given, or handles the call itself.
   void bind_framebuffer(GLenum target, GLuint fbo);
@@ -39,7 +65,8 @@ class TargetScaler {
   void tex_image_2d(GLint level, GLint internal_format, GLsizei* width, GLsizei* height, GLenum format,
                     GLenum type, bool with_data);
   void renderbuffer_storage(GLsizei samples, GLenum internal_format, GLsizei* width, GLsizei* height);
-  void blit_rectangles(GLint* src, GLint* dst) const;  // x0, y0, x1, y1 each
+  // x0, y0, x1, y1 each, by the scales of the app's framebuffers `read` and `draw`.
+  void blit_rectangles(GLuint read, GLuint draw, GLint* src, GLint* dst) const;
   // The app's size for a scaled image (GL_TEXTURE_WIDTH/HEIGHT, GL_RENDERBUFFER_WIDTH/HEIGHT).
   bool texture_size(GLint level, GLenum pname, GLint* value) const;
   bool renderbuffer_size(GLenum pname, GLint* value) const;
@@ -71,6 +98,18 @@ class TargetScaler {
     double scale = 1.0;
   };
 
+  struct Window {
+    GLuint fbo = 0, color = 0, depth = 0;  // the stand-in (0: the window is not scaled)
+    GLuint copy_fbo = 0, copy_color = 0, copy_depth = 0;  // window-sized, for reads
+    int width = 0, height = 0;              // the stand-in's
+    GLenum color_format = GL_RGBA8;
+    bool has_depth = false, checked = false, multisampled = false;
+  };
+  double wanted_window_scale() const;
+  void update_window();
+  void release_window();
+  void bind_window_copy();
+  void unbind_window_copy();
   double wanted_scale(GLuint name, const Framebuffer& f) const;
   void learn_attachments(Framebuffer& f);
   void ensure_scale(GLuint name, Framebuffer& f);
@@ -81,9 +120,12 @@ class TargetScaler {
   Levels config_;
   std::unordered_map<GLuint, Image> textures_, renderbuffers_;
   std::unordered_map<GLuint, Framebuffer> framebuffers_;
-  GLuint draw_fbo_ = 0, read_fbo_ = 0;
+  GLuint draw_fbo_ = 0, read_fbo_ = 0;  // the app's names (0: the window)
+  Window window_;
+  int window_width_ = 0, window_height_ = 0;
   std::array<GLint, 4> viewport_{}, scissor_{};
   bool any_scaled_ = false;
+  bool gles_ = false;
 };
 
 }  // namespace glbudget

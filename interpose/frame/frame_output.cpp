@@ -14,7 +14,9 @@
 #include "context_state.h"
 #include "frame_log.h"
 #include "options.h"
+#include "render_targets.h"
 #include "shader_instrumentation.h"
+#include "window_size.h"
 #include "glbudget/sensors/sensor.hpp"
 
 namespace glbudget {
@@ -128,6 +130,7 @@ void swap_begin() {
   InFrameCode guard;
   const int64_t now = sensors::monotonic_now_ns();
   c->counter->end_frame(++c->frame, now, c->index, frame_energy(now));
+  if (c->targets) c->targets->present();  // the scaled window into the real back buffer
 }
 
 void swap_end() {
@@ -135,6 +138,10 @@ void swap_end() {
   if (!c) return;
   flush_pending_frames(*c, FlushMode::kCollect);
   instrumentation_swap(*c);
+  if (c->targets) {
+    int w = 0, h = 0;
+    if (current_window_size(c->egl, &w, &h)) c->targets->set_window_size(w, h);
+  }
   // A new configuration starts with a frame, never in the middle of one.
   apply_configuration(*c, configuration_for_frame(c->frame + 1));
 }

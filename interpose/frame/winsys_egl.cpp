@@ -30,7 +30,7 @@ GLBUDGET_EXPORT EGLBoolean eglMakeCurrent(EGLDisplay dpy, EGLSurface draw, EGLSu
   if (!fn) return EGL_FALSE;
   context_will_change(ctx);
   EGLBoolean ok = fn(dpy, draw, read, ctx);
-  if (ok) context_made_current(ctx, dpy);
+  if (ok) context_made_current(ctx, dpy, true);
   return ok;
 }
 
@@ -53,7 +53,7 @@ GLBUDGET_EXPORT EGLBoolean eglReleaseThread(void) {
   if (!fn) return EGL_FALSE;
   context_will_change(nullptr);
   EGLBoolean ok = fn();
-  if (ok) context_made_current(nullptr, nullptr);
+  if (ok) context_made_current(nullptr, nullptr, true);
   return ok;
 }
 

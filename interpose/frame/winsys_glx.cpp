@@ -54,7 +54,7 @@ GLBUDGET_EXPORT Bool glXMakeCurrent(Display* dpy, GLXDrawable drawable, GLXConte
   if (!fn) return False;
   context_will_change(ctx);
   Bool ok = fn(dpy, drawable, ctx);
-  if (ok) context_made_current(ctx, dpy);
+  if (ok) context_made_current(ctx, dpy, false);
   return ok;
 }
 
@@ -63,7 +63,7 @@ GLBUDGET_EXPORT Bool glXMakeContextCurrent(Display* dpy, GLXDrawable draw, GLXDr
   if (!fn) return False;
   context_will_change(ctx);
   Bool ok = fn(dpy, draw, read, ctx);
-  if (ok) context_made_current(ctx, dpy);
+  if (ok) context_made_current(ctx, dpy, false);
   return ok;
 }
 

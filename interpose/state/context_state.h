@@ -54,6 +54,7 @@ struct ShareGroup {
 struct ContextState {
   void* handle = nullptr;   // GLXContext or EGLContext
   void* display = nullptr;  // its Display* / EGLDisplay
+  bool egl = false;         // made current through EGL (else GLX)
   int index = 0;            // log name: order of first make-current in the process
   std::shared_ptr<ShareGroup> group;
   bool bound = false;        // current on some thread (guarded by the registry lock)
@@ -83,7 +84,7 @@ inline ContextState* current_context() { return t_ctx; }
 // Context life cycle, called by the GLX and EGL hooks after the real call succeeded.
 void context_created(void* handle, void* display, void* share_with);
 void context_will_change(void* handle);                  // before the real make-current
-void context_made_current(void* handle, void* display);  // handle null: released
+void context_made_current(void* handle, void* display, bool egl);  // handle null: released
 void context_destroyed(void* handle);
 void display_terminated(void* display);
 

@@ -7,6 +7,7 @@
 #include "gl_calls.h"
 #include "options.h"
 #include "render_targets.h"
+#include "window_size.h"
 #include "shader_instrumentation.h"
 
 namespace glbudget {
@@ -46,8 +47,10 @@ void initialise(ContextState& c, Registry& r) {
   c.index = r.next_index++;
   c.caps = detect_caps();
   c.counter = std::make_unique<PassCounter>(c.caps);
-  if (manifest_scales_targets()) {
-    c.targets = std::make_unique<TargetScaler>();
+  // Scaling needs framebuffer objects and blits: GL 3.0, GLES 3.0.
+  const bool fbo_blit = c.caps.major >= 3;
+  if ((manifest_scales_targets() || manifest_scales_window()) && fbo_blit) {
+    c.targets = std::make_unique<TargetScaler>(c.caps.gles);
     c.counter->set_draw_hook([](void* ctx) {
       auto* cs = static_cast<ContextState*>(ctx);
       cs->targets->on_draw(cs->manifest_pass);
@@ -79,7 +82,7 @@ void context_created(void* handle, void* display, void* share_with) {
   }
 }
 
-void context_made_current(void* handle, void* display) {
+void context_made_current(void* handle, void* display, bool egl) {
   Registry& r = registry();
   std::lock_guard lock(r.mu);
   if (t_ctx) t_ctx->bound = false;
@@ -90,7 +93,12 @@ void context_made_current(void* handle, void* display) {
   }
   ContextState& c = find_or_add(r, handle, display);
   c.bound = true;
+  c.egl = egl;
   initialise(c, r);
+  if (c.targets) {
+    int w = 0, h = 0;
+    if (current_window_size(c.egl, &w, &h)) c.targets->set_window_size(w, h);
+  }
   t_ctx = c.initialized ? &c : nullptr;
   t_draw = c.initialized ? c.counter.get() : nullptr;
 }

@@ -41,6 +41,12 @@ CUSTOM = [
     'glFramebufferRenderbuffer', 'glBlitFramebuffer', 'glGetTexLevelParameteriv',
     'glGetTexLevelParameterfv', 'glGetRenderbufferParameteriv', 'glDeleteTextures',
     'glDeleteFramebuffers', 'glDeleteRenderbuffers',
+    # apply/: the default framebuffer's stand-in
+    'glReadPixels', 'glCopyTexImage2D', 'glCopyTexSubImage2D', 'glDrawBuffer', 'glDrawBuffers', 'glReadBuffer',
+    'glInvalidateFramebuffer', 'glInvalidateSubFramebuffer', 'glDiscardFramebufferEXT',
+    'glGetFramebufferAttachmentParameteriv', 'glBlitNamedFramebuffer', 'glNamedFramebufferDrawBuffer',
+    'glNamedFramebufferDrawBuffers', 'glNamedFramebufferReadBuffer', 'glClearNamedFramebufferiv',
+    'glClearNamedFramebufferuiv', 'glClearNamedFramebufferfv', 'glClearNamedFramebufferfi',
 ]
 ALIASES_OF_CUSTOM = {
     'glUseProgramObjectARB': 'glUseProgram',
@@ -59,6 +65,8 @@ ALIASES_OF_CUSTOM = {
     'glBlitFramebufferEXT': 'glBlitFramebuffer', 'glDeleteFramebuffersEXT': 'glDeleteFramebuffers',
     'glDeleteRenderbuffersEXT': 'glDeleteRenderbuffers', 'glGetRenderbufferParameterivEXT': 'glGetRenderbufferParameteriv',
     'glRenderbufferStorageMultisampleEXT': 'glRenderbufferStorageMultisample',
+    'glGetFramebufferAttachmentParameterivEXT': 'glGetFramebufferAttachmentParameteriv',
+    'glDrawBuffersARB': 'glDrawBuffers', 'glDrawBuffersEXT': 'glDrawBuffers',
 }
 
 # Window-system entry points: implemented by hand (they carry frame and context logic), but
