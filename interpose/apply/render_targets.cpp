@@ -414,14 +414,16 @@ void TargetScaler::rescale(GLuint name, Image& image, double scale) {
       g.TexImage2D(GL_TEXTURE_2D, level, image.internal_format, w, h, 0, image.format, image.type, nullptr);
     }
   };
+  // The copy is made at the new size, so the larger of the two blits moves the smaller image.
+  const GLsizei new_w = scaled(image.app_size[0][0], scale), new_h = scaled(image.app_size[0][1], scale);
   if (carry) {
     g.GenFramebuffers(2, fbo);
     if (image.renderbuffer) g.GenRenderbuffers(1, &copy);
     else g.GenTextures(1, &copy);
-    allocate(copy, old_w, old_h, 0);
+    allocate(copy, new_w, new_h, 0);
     attach(GL_READ_FRAMEBUFFER, fbo[0], image.renderbuffer, name);
     attach(GL_DRAW_FRAMEBUFFER, fbo[1], image.renderbuffer, copy);
-    g.BlitFramebuffer(0, 0, old_w, old_h, 0, 0, old_w, old_h, mask, GL_NEAREST);
+    g.BlitFramebuffer(0, 0, old_w, old_h, 0, 0, new_w, new_h, mask, filter);
   }
   image.scale = scale;
   for (size_t level = 0; level < image.app_size.size(); ++level) {
@@ -431,7 +433,7 @@ void TargetScaler::rescale(GLuint name, Image& image, double scale) {
   if (carry) {
     attach(GL_READ_FRAMEBUFFER, fbo[0], image.renderbuffer, copy);
     attach(GL_DRAW_FRAMEBUFFER, fbo[1], image.renderbuffer, name);
-    g.BlitFramebuffer(0, 0, old_w, old_h, 0, 0, image.stored_width(), image.stored_height(), mask, filter);
+    g.BlitFramebuffer(0, 0, new_w, new_h, 0, 0, new_w, new_h, mask, GL_NEAREST);
     g.DeleteFramebuffers(2, fbo);
     if (image.renderbuffer) g.DeleteRenderbuffers(1, &copy);
     else g.DeleteTextures(1, &copy);

@@ -181,3 +181,40 @@ TEST_CASE("glmark2 under the shim: 33 scenes, each frame counted per pass, every
   unlink(log.c_str());
   std::filesystem::remove_all(dump);
 }
+
+// The window at 60 % (the built-in render scale's level 2: no manifest), on programs nobody
+// here wrote: they run to their end, every frame is drawn in that configuration, and the
+// window's pixels shaded drop with the window's area.
+TEST_CASE("glxgears and es2gears_x11 with their window at 60 %", "[integration]") {
+  for (const char* app : {"glxgears", "es2gears_x11"}) {
+    INFO(app);
+    const std::string log = temp_path(std::string(app) + "_60.csv");
+    unlink(log.c_str());
+    const ProcessResult r = run_under_xvfb({"timeout", "-s", "INT", "3"}, {app},
+                                           {{"GLBUDGET_LOG", log}, {"GLBUDGET_FORCE", "2"}, {"GLBUDGET_SENSOR", "cpu"}});
+    INFO(r.err);
+    CHECK(r.exit_code == 124);  // still drawing when stopped
+    CHECK(count_lines_with(r.err, "glbudget:") == 0);
+    const auto rows = read_csv_rows_by_name(log);
+    REQUIRE(rows.size() > 10);
+    for (const auto& row : rows) CHECK(row.at("configuration") == "2");
+    unlink(log.c_str());
+  }
+}
+
+TEST_CASE("glmark2 with its window at 60 %: offscreen passes, blur and terrain run to the end", "[integration]") {
+  const std::string log = temp_path("glmark2_60.csv");
+  unlink(log.c_str());
+  const std::vector<std::string> cmd = {"glmark2", "-s", "160x120", "-b", "build:duration=0.3", "-b",
+                                        "texture:duration=0.3", "-b", "desktop:effect=blur:duration=0.3",
+                                        "-b", "refract:duration=0.3", "-b", "terrain:duration=0.5"};
+  const ProcessResult r = run_under_xvfb({}, cmd, {{"GLBUDGET_LOG", log}, {"GLBUDGET_FORCE", "2"}, {"GLBUDGET_SENSOR", "cpu"}});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("glmark2 Score:") != std::string::npos);
+  CHECK(count_lines_with(r.err, "glbudget:") == 0);
+  const auto rows = read_csv_rows_by_name(log);
+  REQUIRE(rows.size() > 20);
+  for (const auto& row : rows) CHECK(row.at("configuration") == "2");
+  unlink(log.c_str());
+}
