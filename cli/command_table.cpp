@@ -7,9 +7,12 @@ namespace glbudget::cli {
 int sensors_main(std::span<char* const> args);
 int replay_main(std::span<char* const> args);
 int costs_main(std::span<char* const> args);
+int run_main(std::span<char* const> args);
 
 namespace {
 constexpr Command table[] = {
+    {"run", "run a GL app under the shim: glbudget run [--power 40%|35W] [--error E] [--fps N] -- APP [ARGS...]",
+     run_main},
     {"sensors", "list the power sensors this machine offers and what they read now",
      sensors_main},
     {"replay", "run a frame log through the power model and the baseline, print their errors",
