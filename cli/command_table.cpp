@@ -8,6 +8,7 @@ int sensors_main(std::span<char* const> args);
 int replay_main(std::span<char* const> args);
 int costs_main(std::span<char* const> args);
 int run_main(std::span<char* const> args);
+int ssim_main(std::span<char* const> args);
 
 namespace {
 constexpr Command table[] = {
@@ -19,6 +20,7 @@ constexpr Command table[] = {
      replay_main},
     {"costs", "fit this machine's per-batch, vertex, fragment, instruction and texel costs from frame logs",
      costs_main},
+    {"ssim", "the SSIM of two images (same size), as the governor measures quality", ssim_main},
 };
 }  // namespace
 

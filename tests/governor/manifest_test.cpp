@@ -351,6 +351,46 @@ TEST_CASE("an invalid level is reported where it is wrong and dropped") {
                     "m.toml:6:18: level 1 of pass 'a': fragment_scale must be a finite number > 0; level dropped");
 }
 
+TEST_CASE("a level's error (1 - SSIM) for the governor's estimates") {
+    std::vector<std::string> problems;
+    const Manifest m = load_ok(R"toml([[pass]]
+name = "a"
+match.source = "A"
+[[pass.level]]
+error = 0
+[[pass.level]]
+error = 0.02
+[[pass.level]]
+error = 1
+[[pass.level]]
+[[pass]]
+name = "b"
+[[pass.level]]
+error = 0.1
+)toml", &problems);
+    const auto& levels = m.passes[0].levels;
+    REQUIRE(levels.size() == 4);
+    CHECK(levels[0].error == 0.0);
+    CHECK(levels[1].error == 0.02);
+    CHECK(levels[2].error == 1.0);
+    CHECK_FALSE(levels[3].error);
+    // Level 0 is the reference: another value is ignored with a warning, the pass kept.
+    REQUIRE(m.passes[1].levels.size() == 1);
+    CHECK_FALSE(m.passes[1].levels[0].error);
+    CHECK(problems == std::vector<std::string>{
+                          "m.toml:14:9: level 0 of pass 'b': error ignored: level 0 is the reference, its error is 0"});
+
+    check_bad_level("error = 1.5",
+                    "m.toml:6:9: level 1 of pass 'a': error must be a number in [0, 1] (1 - SSIM), not 1.5; level dropped");
+    check_bad_level("error = -0.01",
+                    "m.toml:6:9: level 1 of pass 'a': error must be a number in [0, 1] (1 - SSIM), not -0.01; level "
+                    "dropped");
+    check_bad_level("error = nan",
+                    "m.toml:6:9: level 1 of pass 'a': error must be a number in [0, 1] (1 - SSIM), not nan; level dropped");
+    check_bad_level("error = \"low\"",
+                    "m.toml:6:9: level 1 of pass 'a': error must be a number in [0, 1] (1 - SSIM); level dropped");
+}
+
 TEST_CASE("a level may have several problems, each reported") {
     const LoadResult result = parse_manifest(
         "[[pass]]\nname = \"a\"\n[[pass.level]]\n[[pass.level]]\nscale = 2\ndraws = 1\n", "m.toml");

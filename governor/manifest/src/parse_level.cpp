@@ -140,6 +140,17 @@ std::optional<ParsedLevel> parse_level(Reader& reader, const toml::node& node, s
             const std::optional<double> scale = number(*value);
             if (scale && *scale > 0.0 && std::isfinite(*scale)) level.fragment_scale = *scale;
             else fail(*value, "fragment_scale must be a finite number > 0");
+        } else if (name == "error") {
+            const std::optional<double> error = number(*value);
+            if (error && *error >= 0.0 && *error <= 1.0) {
+                if (index == 0 && *error != 0.0) {
+                    reader.report(value->source(), out.label + ": error ignored: level 0 is the reference, its error is 0");
+                } else {
+                    level.error = *error;
+                }
+            } else {
+                fail(*value, "error must be a number in [0, 1] (1 - SSIM)" + (error ? ", not " + format_number(*error) : ""));
+            }
         } else {
             reader.warn_unknown_key(*key, out.label);
         }

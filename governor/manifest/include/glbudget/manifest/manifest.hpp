@@ -42,6 +42,11 @@
 //                   A "pass:NAME" naming no pass is dropped with a warning, and a level left
 //                   with no target is dropped.
 //   fragment_scale  number > 0 (default scale * scale).
+//   error           number in [0, 1]: the level's error (1 - SSIM against the best configuration)
+//                   with every other pass at its best, measured or guessed; the governor's error
+//                   estimates add these up (paper §6.2). Level 0 is the reference: its error
+//                   is 0 (a different value is ignored with a warning). Absent: the governor
+//                   uses a stand-in (governor/loop/error_table.hpp).
 // Stages: vertex, tess_control, tess_evaluation, geometry, fragment, compute.
 //
 // Problems never throw. A TOML syntax error is fatal. An unknown key is a warning and is
@@ -96,6 +101,7 @@ struct Level {
     double scale = 1.0;              // (0, 1]: linear factor on width and height
     std::vector<Target> targets;     // what `scale` applies to (empty when scale == 1)
     std::optional<double> fragment_scale;  // for the model; default scale * scale
+    std::optional<double> error;           // 1 - SSIM of this level alone, in [0, 1]; absent: unknown
 
     double fragment_scale_or_default() const { return fragment_scale.value_or(scale * scale); }
 

@@ -1,0 +1,19 @@
+#pragma once
+// The model's view of the variant manifest: its configuration space (the variant table) and
+// the per-pass errors of its levels. No second format: the manifest is the table.
+#include "glbudget/loop/error_table.hpp"
+#include "glbudget/manifest/manifest.hpp"
+#include "glbudget/model/configuration_space.hpp"
+
+namespace glbudget::loop {
+
+// One PassVariants per manifest pass, in manifest order, named as the pass. A level's cost is
+// its fragment_scale_or_default() and draws; instructions and texels per invocation are 0
+// until the shader instrumentation measures them (the run-time model works without them).
+model::ConfigurationSpace space_from_manifest(const manifest::Manifest& manifest);
+
+// e_i(l) from the levels' `error` keys; levels without one get the stand-in
+// (ErrorTable::stand_in), which the table remembers.
+ErrorTable errors_from_manifest(const manifest::Manifest& manifest);
+
+}  // namespace glbudget::loop
