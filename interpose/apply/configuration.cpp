@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <mutex>
 
+#include "governing.h"
 #include "options.h"
 
 namespace glbudget {
@@ -129,6 +130,8 @@ bool manifest_scales_window() { return state().scales_window; }
 
 Levels configuration_for_frame(uint64_t frame) {
   const State& s = state();
+  Levels governed;
+  if (governing() && governor_levels(&governed)) return governed;
   if (s.forced.empty()) {
     Levels best;
     best.count = static_cast<int>(s.manifest.passes.size());

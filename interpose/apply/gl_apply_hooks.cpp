@@ -146,6 +146,31 @@ void handle_glBlitFramebuffer(pfn_glBlitFramebuffer real, GLint srcX0, GLint src
   real(src[0], src[1], src[2], src[3], dst[0], dst[1], dst[2], dst[3], mask, filter);
 }
 
+void handle_glClear(pfn_glClear real, GLbitfield mask) {
+  if (TargetScaler* s = scaler()) s->on_clear(mask);
+  real(mask);
+}
+
+void handle_glClearBufferfv(pfn_glClearBufferfv real, GLenum buffer, GLint drawbuffer, const GLfloat* value) {
+  if (TargetScaler* s = scaler()) s->on_clear(buffer == GL_COLOR ? GL_COLOR_BUFFER_BIT : GL_DEPTH_BUFFER_BIT);
+  real(buffer, drawbuffer, value);
+}
+
+void handle_glClearBufferiv(pfn_glClearBufferiv real, GLenum buffer, GLint drawbuffer, const GLint* value) {
+  if (TargetScaler* s = scaler()) s->on_clear(buffer == GL_COLOR ? GL_COLOR_BUFFER_BIT : GL_STENCIL_BUFFER_BIT);
+  real(buffer, drawbuffer, value);
+}
+
+void handle_glClearBufferuiv(pfn_glClearBufferuiv real, GLenum buffer, GLint drawbuffer, const GLuint* value) {
+  if (TargetScaler* s = scaler()) s->on_clear(GL_COLOR_BUFFER_BIT);
+  real(buffer, drawbuffer, value);
+}
+
+void handle_glClearBufferfi(pfn_glClearBufferfi real, GLenum buffer, GLint drawbuffer, GLfloat depth, GLint stencil) {
+  if (TargetScaler* s = scaler()) s->on_clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  real(buffer, drawbuffer, depth, stencil);
+}
+
 void handle_glReadPixels(pfn_glReadPixels real, GLint x, GLint y, GLsizei width, GLsizei height, GLenum format,
                          GLenum type, void* pixels) {
   TargetScaler* s = scaler();

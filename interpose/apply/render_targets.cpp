@@ -99,7 +99,9 @@ TargetScaler::TargetScaler(bool gles) : gles_(gles) {
 void TargetScaler::set_configuration(const Levels& config) {
   if (config == config_) return;
   config_ = config;
-  for (auto& [name, f] : framebuffers_) ensure_scale(name, f);
+  // At a swap: a framebuffer the last frame cleared whole before drawing into it will be
+  // cleared again before it is read, so its contents need not be carried over.
+  for (auto& [name, f] : framebuffers_) ensure_scale(name, f, !cleared_before_drawn(f));
   update_window();
   apply_viewport();
 }
@@ -348,9 +350,35 @@ void TargetScaler::learn_attachments(Framebuffer& f) {
   f.attachments_known = true;
 }
 
+bool TargetScaler::cleared_before_drawn(const Framebuffer& f) const {
+  if (f.drawn_frame + 1 != frame_ || f.cleared_frame != f.drawn_frame) return false;
+  GLbitfield needed = 0;
+  for (const Attachment& a : f.attachments) {
+    const auto& images = a.renderbuffer ? renderbuffers_ : textures_;
+    auto it = images.find(a.name);
+    const GLint format = it == images.end() ? 0 : it->second.internal_format;
+    if (is_depth(format)) needed |= GL_DEPTH_BUFFER_BIT;
+    else if (is_depth_stencil(format)) needed |= GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT;
+    else if (format == GL_STENCIL_INDEX8) needed |= GL_STENCIL_BUFFER_BIT;
+    else needed |= GL_COLOR_BUFFER_BIT;
+  }
+  return (f.cleared & needed) == needed;
+}
+
+void TargetScaler::on_clear(GLbitfield mask) {
+  if (draw_fbo_ == 0) return;
+  Framebuffer& f = framebuffers_[draw_fbo_];
+  if (f.drawn_frame == frame_) return;  // drawn already this frame: a clear now is no fresh start
+  if (agl().IsEnabled(GL_SCISSOR_TEST)) return;  // a partial clear
+  if (f.cleared_frame != frame_) f.cleared = 0;
+  f.cleared_frame = frame_;
+  f.cleared |= mask;
+}
+
 void TargetScaler::on_draw(int pass) {
   if (draw_fbo_ == 0) return;
   Framebuffer& f = framebuffers_[draw_fbo_];
+  f.drawn_frame = frame_;
   const bool new_pass = pass >= 0 && pass < 64 && !((f.passes >> pass) & 1);
   if (!new_pass && f.attachments_known) return;
   if (new_pass) f.passes |= uint64_t{1} << pass;
@@ -360,7 +388,7 @@ void TargetScaler::on_draw(int pass) {
   if (f.scale != before) apply_viewport();
 }
 
-void TargetScaler::ensure_scale(GLuint name, Framebuffer& f) {
+void TargetScaler::ensure_scale(GLuint name, Framebuffer& f, bool carry) {
   const double s = wanted_scale(name, f);
   if (s == f.scale && f.attachments_known) {
     // Attachments re-specified by the app since are brought to the framebuffer's scale below.
@@ -377,12 +405,12 @@ void TargetScaler::ensure_scale(GLuint name, Framebuffer& f) {
                      " was not made by glTexImage2D or glRenderbufferStorage; it is not scaled");
       continue;
     }
-    if (it->second.scale != s) rescale(a.name, it->second, s);
+    if (it->second.scale != s) rescale(a.name, it->second, s, carry);
   }
   any_scaled_ = any_scaled_ || s != 1.0;
 }
 
-void TargetScaler::rescale(GLuint name, Image& image, double scale) {
+void TargetScaler::rescale(GLuint name, Image& image, double scale, bool carry_contents) {
   if (image.app_size.empty()) return;
   const ApplyGl& g = agl();
   SavedBindings saved;
@@ -398,7 +426,7 @@ void TargetScaler::rescale(GLuint name, Image& image, double scale) {
   // Contents are carried over (a clear made before the first draw that revealed the target,
   // or what a temporal effect keeps), except for multisampled images (blits between
   // multisampled images of different sizes do not exist).
-  const bool carry = image.samples == 0;
+  const bool carry = carry_contents && image.samples == 0;
   GLuint fbo[2] = {0, 0}, copy = 0;
   auto attach = [&](GLenum target, GLuint fb, bool rb, GLuint object) {
     g.BindFramebuffer(target, fb);

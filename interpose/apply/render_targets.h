@@ -30,6 +30,9 @@ class TargetScaler {
   void set_configuration(const Levels& config);
   // A draw is about to go to the bound draw framebuffer under manifest pass `pass` (-1: none).
   void on_draw(int pass);
+  // glClear / glClearBuffer* of the bound draw framebuffer (mask: GL_*_BUFFER_BIT).
+  void on_clear(GLbitfield mask);
+  void end_frame() { ++frame_; }
 
   // The window's size, as the window system says (at make-current and at each swap).
   void set_window_size(int width, int height);
@@ -95,6 +98,11 @@ class TargetScaler {
     std::vector<Attachment> attachments;
     bool attachments_known = false;
     uint64_t passes = 0;  // bit per manifest pass whose draws went here
+    // Frame numbers of the first draw here, and of a clear of every buffer before it: a
+    // framebuffer cleared whole before it is drawn each frame needs no contents carried over
+    // when a switch rescales it at a swap.
+    uint64_t drawn_frame = 0, cleared_frame = 0;
+    GLbitfield cleared = 0;
     double scale = 1.0;
   };
 
@@ -112,8 +120,9 @@ class TargetScaler {
   void unbind_window_copy();
   double wanted_scale(GLuint name, const Framebuffer& f) const;
   void learn_attachments(Framebuffer& f);
-  void ensure_scale(GLuint name, Framebuffer& f);
-  void rescale(GLuint name, Image& image, double scale);
+  void ensure_scale(GLuint name, Framebuffer& f, bool carry = true);
+  void rescale(GLuint name, Image& image, double scale, bool carry);
+  bool cleared_before_drawn(const Framebuffer& f) const;
   void apply_viewport();
   void scale_of(GLuint fbo, double* sx, double* sy) const;
 
@@ -126,6 +135,7 @@ class TargetScaler {
   std::array<GLint, 4> viewport_{}, scissor_{};
   bool any_scaled_ = false;
   bool gles_ = false;
+  uint64_t frame_ = 1;
 };
 
 }  // namespace glbudget

@@ -77,8 +77,14 @@ bool has_program_interface(const GlCaps& caps) { return caps.gles ? at_least(cap
 
 // What must be set before a variant links to behave as the app's program: the separable flag,
 // attribute and fragment-output locations, transform-feedback varyings.
-void copy_before_link(GLuint app, GLuint variant, const GlCaps& caps) {
+void copy_before_link(GLuint app, GLuint variant, const GlCaps& caps, const NameBindings& bindings) {
   const ApplyGl& g = agl();
+  // What the app bound by name first (its program may lack some of those names), then the
+  // locations its linked program actually has.
+  for (const auto& [name, location] : bindings.attributes) g.BindAttribLocation(variant, location, name.c_str());
+  if (g.BindFragDataLocationIndexed)
+    for (const auto& [name, where] : bindings.frag_data)
+      g.BindFragDataLocationIndexed(variant, where.first, where.second, name.c_str());
   if (g.ProgramParameteri && (caps.gles ? at_least(caps, 3, 1) : at_least(caps, 4, 1))) {
     GLint separable = GL_FALSE;
     g.GetProgramiv(app, GL_PROGRAM_SEPARABLE, &separable);
@@ -248,7 +254,8 @@ std::vector<ShaderSource> variant_sources(const std::vector<ShaderSource>& app, 
   return out;
 }
 
-GLuint link_variant(GLuint app, const std::vector<ShaderSource>& sources, const GlCaps& caps, std::string* error) {
+GLuint link_variant(GLuint app, const std::vector<ShaderSource>& sources, const GlCaps& caps,
+                    const NameBindings& bindings, std::string* error) {
   const ApplyGl& g = agl();
   std::vector<GLuint> shaders;
   bool ok = true;
@@ -264,7 +271,7 @@ GLuint link_variant(GLuint app, const std::vector<ShaderSource>& sources, const 
   if (ok) {
     program = g.CreateProgram();
     for (GLuint s : shaders) g.AttachShader(program, s);
-    copy_before_link(app, program, caps);
+    copy_before_link(app, program, caps, bindings);
     g.LinkProgram(program);
     GLint linked = GL_FALSE;
     g.GetProgramiv(program, GL_LINK_STATUS, &linked);
@@ -294,7 +301,8 @@ int match_pass(PassId hash, const std::vector<ShaderSource>& sources) {
 }
 
 std::shared_ptr<VariantSet> build_variants(GLuint program, PassId app_hash, int pass,
-                                           const std::vector<ShaderSource>& sources, const GlCaps& caps) {
+                                           const std::vector<ShaderSource>& sources, const GlCaps& caps,
+                                           const NameBindings& bindings) {
   const manifest::Pass& mp = active_manifest().passes[static_cast<size_t>(pass)];
   auto set = std::make_shared<VariantSet>();
   set->app_program = program;
@@ -314,7 +322,7 @@ std::shared_ptr<VariantSet> build_variants(GLuint program, PassId app_hash, int 
       } else {
         const std::vector<ShaderSource> modified = variant_sources(sources, level);
         std::string error;
-        v.program = link_variant(program, modified, caps, &error);
+        v.program = link_variant(program, modified, caps, bindings, &error);
         if (!v.program) {
           say_once(where + hash_text(app_hash), where + ": the variant of program " + hash_text(app_hash) + " " + error +
                                                     "; this level draws the app's program");

@@ -54,8 +54,13 @@ int match_pass(PassId hash, const std::vector<ShaderSource>& sources);
 // Levels whose variant does not compile or link are reported once and fall back to the app's
 // program. Null when the pass needs no variant program (only draws/scale levels) and skips
 // nothing, or when the driver lacks glProgramUniform*.
+struct NameBindings {
+  std::vector<std::pair<std::string, GLuint>> attributes;
+  std::vector<std::pair<std::string, std::pair<GLuint, GLuint>>> frag_data;  // colour, index
+};
 std::shared_ptr<VariantSet> build_variants(GLuint program, PassId app_hash, int pass,
-                                           const std::vector<ShaderSource>& sources, const GlCaps& caps);
+                                           const std::vector<ShaderSource>& sources, const GlCaps& caps,
+                                           const NameBindings& bindings);
 void delete_variants(const VariantSet& set);
 
 // Where one of the app's uniform calls goes: each (program, location) pair.

@@ -11,6 +11,7 @@
 #include <mutex>
 
 #include "configuration.h"
+#include "governing.h"
 #include "context_state.h"
 #include "frame_log.h"
 #include "options.h"
@@ -22,7 +23,11 @@
 namespace glbudget {
 
 namespace {
-void emit_row(const FrameRow& row) { FrameLog::get().push(row); }
+// When governing, rows reach the log through the governor thread, which annotates them.
+void emit_row(const FrameRow& row) {
+  if (governing()) governor_push(row);
+  else FrameLog::get().push(row);
+}
 
 // Set while this thread runs the code that changes a counter's queue of pending frames.
 thread_local bool t_in_frame_code = false;
@@ -79,6 +84,7 @@ void flush_pending_frames(ContextState& c, FlushMode mode) {
     case FlushMode::kWait: c.counter->collect(emit_row, PassCounter::Collect::kWait); break;
     case FlushMode::kCpuOnly: c.counter->collect(emit_row, PassCounter::Collect::kCpuOnly); break;
   }
+  governor_rows_done();
 }
 
 namespace {
@@ -114,7 +120,8 @@ void frame_output_started() {
     const Options& o = options();
     FrameLog::get().set_path(o.log_path);
     atexit(final_flush);
-    if (FrameLog::get().enabled()) {
+    const bool governed = governor_start();
+    if (FrameLog::get().enabled() || governed) {
       install_signal_flush(SIGTERM);
       install_signal_flush(SIGINT);
       g_sensor = sensors::open_sensor_from_environment().release();
@@ -130,7 +137,10 @@ void swap_begin() {
   InFrameCode guard;
   const int64_t now = sensors::monotonic_now_ns();
   c->counter->end_frame(++c->frame, now, c->index, frame_energy(now));
-  if (c->targets) c->targets->present();  // the scaled window into the real back buffer
+  if (c->targets) {
+    c->targets->present();  // the scaled window into the real back buffer
+    c->targets->end_frame();
+  }
 }
 
 void swap_end() {
@@ -160,6 +170,7 @@ void final_flush() {
   for_each_context([](ContextState& c) {
     if (&c != current_context() && !c.bound) flush_pending_frames(c, FlushMode::kCpuOnly);
   });
+  governor_stop();  // its queued frames are decided and logged first
   FrameLog::get().drain();
   report_unmatched_passes();
 }

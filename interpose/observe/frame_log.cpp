@@ -1,5 +1,7 @@
 #include "frame_log.h"
 
+#include <cmath>
+
 #include <pthread.h>
 #include <unistd.h>
 
@@ -25,9 +27,23 @@ int format_row(const FrameRow& r, char* out, int size) {
   }
   char power[128];
   sensors::format_power_fields(r.energy, power, sizeof power);
-  return snprintf(out, size, "%" PRIu64 ",%" PRId64 ",%d,%s,%" PRIu64 ",%s,%s,%s,%s,%s,%" PRIu64 ",%s", r.frame,
+  char governed[96] = "";
+  if (r.decision) {
+    auto number = [](double v, const char* format, char* text, size_t size) {
+      if (std::isfinite(v)) snprintf(text, size, format, v);
+      else text[0] = '\0';
+    };
+    char p[32], b[32], e[32];
+    number(r.predicted_w, "%.4f", p, sizeof p);
+    number(r.budget_w, "%.4f", b, sizeof b);
+    number(r.est_error, "%.6f", e, sizeof e);
+    snprintf(governed, sizeof governed, "%s,%s,%s,%s", p, b, e, r.decision);
+  } else {
+    snprintf(governed, sizeof governed, ",,,");
+  }
+  return snprintf(out, size, "%" PRIu64 ",%" PRId64 ",%d,%s,%" PRIu64 ",%s,%s,%s,%s,%s,%" PRIu64 ",%s,%s", r.frame,
                   r.time_ns, r.context, pass, r.batches, stat[0], stat[1], stat[2], stat[3], power,
-                  r.energy.dropped_samples, r.configuration.c_str());
+                  r.energy.dropped_samples, r.configuration.c_str(), governed);
 }
 
 struct FrameLog::Impl {

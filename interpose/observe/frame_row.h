@@ -27,6 +27,12 @@ struct FrameRow {
   sensors::FrameEnergy energy;
   // The levels that drew the frame ("0:2:1"), when a manifest or GLBUDGET_FORCE is in force.
   std::string configuration;
+  // Filled in by the governor (apply/governing.h): its prediction of the frame's power, the
+  // budget in watts, the estimated error of the configuration it chose, what it did.
+  double predicted_w = __builtin_nan("");
+  double budget_w = __builtin_nan("");
+  double est_error = __builtin_nan("");
+  const char* decision = nullptr;
 };
 
 }  // namespace glbudget

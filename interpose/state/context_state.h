@@ -40,6 +40,13 @@ struct ProgramInfo {
   bool instrumented = false;  // linked from instrumented shaders: its draws need the counters
   int manifest_pass = -1;     // the manifest pass that matched it at the last link
   std::shared_ptr<VariantSet> variants;  // its variant programs (apply/variants.h), if any
+  // The app deleted it while a variant stood in for it in the driver: deleted for real when
+  // the app stops using it (the driver would have deleted it at once, not being in use).
+  bool delete_pending = false;
+  // Locations the app bound by name before linking, also for names the program lacks (an
+  // engine binding one scheme for every program): replayed on each variant.
+  std::vector<std::pair<std::string, GLuint>> attribute_bindings;
+  std::vector<std::pair<std::string, std::pair<GLuint, GLuint>>> frag_data_bindings;  // colour, index
 };
 
 class TargetScaler;
@@ -65,6 +72,7 @@ struct ContextState {
   bool instrumentation_probed = false;
 
   GLuint program = 0;   // the app's program (the driver may have a variant of it bound)
+  GLuint real_program = 0;  // the program the driver has bound
   GLuint pipeline = 0;
   std::shared_ptr<const VariantSet> bound_variants;  // of `program`, when it has variants
   int manifest_pass = -1;  // the manifest pass of `program`

@@ -5,6 +5,7 @@
 #include "hooks_generated.h"
 #include "pass_names.h"
 #include "apply_gl.h"
+#include "governing.h"
 #include "gl_calls.h"
 #include "shader_instrumentation.h"
 
@@ -51,7 +52,12 @@ void shadow_program(ContextState& c, ShareGroup& g, GLuint program, ProgramInfo&
   if (p.manifest_pass < 0) return;
   note_pass_matched(p.manifest_pass);
   if (!link_succeeded(program)) return;  // the app's own failure: nothing to shadow
-  p.variants = build_variants(program, p.pass, p.manifest_pass, sources, c.caps);
+  p.variants = build_variants(program, p.pass, p.manifest_pass, sources, c.caps,
+                              {p.attribute_bindings, p.frag_data_bindings});
+  // The governor sums a pass's programs, under whichever name a variant logs them.
+  note_program_pass(p.pass, p.manifest_pass);
+  if (p.variants)
+    for (const Variant& v : p.variants->levels) note_program_pass(v.pass_hash, p.manifest_pass);
   if (p.variants) g.has_variants = true;
 }
 }  // namespace
@@ -69,8 +75,24 @@ void bind_program(ContextState& c) {
   }
   c.bound_variants = std::move(variants);
   c.manifest_pass = pass;
-  if (c.bound_variants) agl().UseProgram(c.bound_variants->program_for(c.config));
+  const GLuint wanted = c.bound_variants ? c.bound_variants->program_for(c.config) : c.program;
+  if (wanted != c.real_program) {
+    agl().UseProgram(wanted);
+    c.real_program = wanted;
+  }
 }
+
+namespace {
+// Deletes, for real, a program whose deletion waited for the app to stop using it.
+void finish_pending_delete(ContextState& c, GLuint program) {
+  std::lock_guard lock(c.group->mu);
+  auto it = c.group->programs.find(program);
+  if (it == c.group->programs.end() || !it->second.delete_pending) return;
+  agl().DeleteProgram(program);
+  if (it->second.variants) delete_variants(*it->second.variants);
+  c.group->programs.erase(it);
+}
+}  // namespace
 
 GLuint handle_glCreateShader(pfn_glCreateShader real, GLenum type) {
   GLuint shader = real(type);
@@ -163,8 +185,19 @@ GLuint handle_glCreateShaderProgramv(pfn_glCreateShaderProgramv real, GLenum typ
 }
 
 void handle_glDeleteProgram(pfn_glDeleteProgram real, GLuint program) {
-  real(program);
   ContextState* c = current_context();
+  if (c && program && c->program == program && c->group->has_variants) {
+    // GL keeps a program in use alive until it is unbound. The driver may have (or, after a
+    // switch, get) a variant bound in its place and would then delete it at once: the real
+    // delete waits until the app stops using it.
+    std::lock_guard lock(c->group->mu);
+    auto it = c->group->programs.find(program);
+    if (it != c->group->programs.end()) {
+      it->second.delete_pending = true;
+      return;
+    }
+  }
+  real(program);
   if (!c || !program) return;
   // GL keeps a program in use alive until it is unbound; so do we.
   if (c->program == program) return;
@@ -179,10 +212,44 @@ void handle_glUseProgram(pfn_glUseProgram real, GLuint program) {
   real(program);
   ContextState* c = current_context();
   if (!c) return;
+  const GLuint previous = c->program;
   c->program = program;
+  c->real_program = program;
   bind_program(*c);  // a variant in the app's program's place, when the configuration says so
+  if (previous && previous != program) finish_pending_delete(*c, previous);
   update_pass(*c);
   bind_counters(*c);
+}
+
+void handle_glBindAttribLocation(pfn_glBindAttribLocation real, GLuint program, GLuint index, const GLchar* name) {
+  real(program, index, name);
+  ContextState* c = current_context();
+  if (!c || !name || !manifest_has_programs()) return;
+  std::lock_guard lock(c->group->mu);
+  auto& bindings = c->group->programs[program].attribute_bindings;
+  std::erase_if(bindings, [&](const auto& b) { return b.first == name; });
+  bindings.emplace_back(name, index);
+}
+
+void handle_glBindFragDataLocationIndexed(pfn_glBindFragDataLocationIndexed real, GLuint program, GLuint colorNumber,
+                                          GLuint index, const GLchar* name) {
+  real(program, colorNumber, index, name);
+  ContextState* c = current_context();
+  if (!c || !name || !manifest_has_programs()) return;
+  std::lock_guard lock(c->group->mu);
+  auto& bindings = c->group->programs[program].frag_data_bindings;
+  std::erase_if(bindings, [&](const auto& b) { return b.first == name; });
+  bindings.emplace_back(name, std::make_pair(colorNumber, index));
+}
+
+void handle_glBindFragDataLocation(pfn_glBindFragDataLocation real, GLuint program, GLuint color, const GLchar* name) {
+  real(program, color, name);
+  ContextState* c = current_context();
+  if (!c || !name || !manifest_has_programs()) return;
+  std::lock_guard lock(c->group->mu);
+  auto& bindings = c->group->programs[program].frag_data_bindings;
+  std::erase_if(bindings, [&](const auto& b) { return b.first == name; });
+  bindings.emplace_back(name, std::make_pair(color, 0u));
 }
 
 void handle_glUniformBlockBinding(pfn_glUniformBlockBinding real, GLuint program, GLuint index, GLuint binding) {

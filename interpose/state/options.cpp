@@ -52,6 +52,26 @@ Options parse_options(char** env, std::string* warnings) {
       o.config_path = value;
     } else if (name == "GLBUDGET_FORCE") {
       o.force = value;  // checked against the manifest when it is loaded
+    } else if (name == "GLBUDGET_POWER") {
+      if (value != "off") o.power = value;
+    } else if (name == "GLBUDGET_ERROR") {
+      if (value != "off") o.error = value;
+    } else if (name == "GLBUDGET_SELECT_FRAMES") {
+      errno = 0;
+      char* end = nullptr;
+      const unsigned long long n = std::strtoull(value.c_str(), &end, 10);
+      if (errno || end == value.c_str() || *end != '\0' || n == 0 || n > 1000000 || value[0] == '-')
+        warn(warnings, "GLBUDGET_SELECT_FRAMES='" + value + "' is not a number of frames in [1, 1000000]; 200");
+      else
+        o.select_frames = n;
+    } else if (name == "GLBUDGET_TRANSITION_S") {
+      errno = 0;
+      char* end = nullptr;
+      const double t = std::strtod(value.c_str(), &end);
+      if (errno || end == value.c_str() || *end != '\0' || !std::isfinite(t) || t < 0 || t > 3600)
+        warn(warnings, "GLBUDGET_TRANSITION_S='" + value + "' is not a number of seconds in [0, 3600]; 2");
+      else
+        o.transition_s = t;
     } else if (name == "GLBUDGET_FORCE_EVERY") {
       errno = 0;
       char* end = nullptr;

@@ -17,6 +17,10 @@ struct Options {
   std::string config_path;  // GLBUDGET_CONFIG: the variant manifest
   std::string force;        // GLBUDGET_FORCE: levels per pass ("1,0,2"), or several separated by ';'
   uint64_t force_every = 0; // GLBUDGET_FORCE_EVERY: frames per configuration of a GLBUDGET_FORCE list
+  std::string power;        // GLBUDGET_POWER: "40%", "35W" (parsed by the governor)
+  std::string error;        // GLBUDGET_ERROR: the dual problem's error budget
+  size_t select_frames = 200;  // GLBUDGET_SELECT_FRAMES: frames between selections
+  double transition_s = 2.0;   // GLBUDGET_TRANSITION_S: the temporal filter's length
 };
 
 const Options& options();

@@ -1,6 +1,7 @@
 // Unit: the GLBUDGET_* parser and the frame-log row format (no GL involved).
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -51,14 +52,24 @@ TEST_CASE("frame-log rows: empty fields for what was not measured", "[unit]") {
   r.primitives = 20000;
   r.gpu_ns = -1;
   format_row(r, line, sizeof line);
-  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,");
+  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,,,,,");
   r.configuration = "2:0:1";  // the levels that drew the frame, last
   format_row(r, line, sizeof line);
-  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1");
+  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,,,,");
+  // The governor's view of the frame: predicted power, budget, estimated error, decision.
+  r.predicted_w = 21.5;
+  r.budget_w = 24.0;
+  r.est_error = 0.004;
+  r.decision = "select";
+  format_row(r, line, sizeof line);
+  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,21.5000,24.0000,0.004000,select");
+  r.predicted_w = NAN;  // before the first fit
+  format_row(r, line, sizeof line);
+  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,,24.0000,0.004000,select");
   FrameRow ff;
   ff.pass = kFixedFunctionPass;
   format_row(ff, line, sizeof line);
-  CHECK(std::string(line) == "0,0,0,fixed-function,0,,,,,,,,0,");
+  CHECK(std::string(line) == "0,0,0,fixed-function,0,,,,,,,,0,,,,,");
   // With a sensor: power, energy, the sensor's name (estimates labelled), dropped samples.
   FrameRow powered;
   powered.energy.valid = true;

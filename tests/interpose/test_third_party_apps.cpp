@@ -16,8 +16,9 @@
 
 namespace {
 
-// frame,time_ns,context,pass,batches,vertices,fragments,primitives,gpu_ns,power_w,energy_j,sensor,sensor_dropped,configuration
-constexpr size_t kLogColumns = 14;
+// frame,time_ns,context,pass,batches,vertices,fragments,primitives,gpu_ns,power_w,energy_j,sensor,sensor_dropped,
+// configuration,predicted_w,budget_w,est_error,decision
+constexpr size_t kLogColumns = 18;
 
 struct AppLog {
   ProcessResult process;

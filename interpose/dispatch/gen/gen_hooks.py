@@ -47,6 +47,8 @@ CUSTOM = [
     'glGetFramebufferAttachmentParameteriv', 'glBlitNamedFramebuffer', 'glNamedFramebufferDrawBuffer',
     'glNamedFramebufferDrawBuffers', 'glNamedFramebufferReadBuffer', 'glClearNamedFramebufferiv',
     'glClearNamedFramebufferuiv', 'glClearNamedFramebufferfv', 'glClearNamedFramebufferfi',
+    'glClear', 'glClearBufferfv', 'glClearBufferiv', 'glClearBufferuiv', 'glClearBufferfi',
+    'glBindAttribLocation', 'glBindFragDataLocation', 'glBindFragDataLocationIndexed',
 ]
 ALIASES_OF_CUSTOM = {
     'glUseProgramObjectARB': 'glUseProgram',
@@ -67,6 +69,7 @@ ALIASES_OF_CUSTOM = {
     'glRenderbufferStorageMultisampleEXT': 'glRenderbufferStorageMultisample',
     'glGetFramebufferAttachmentParameterivEXT': 'glGetFramebufferAttachmentParameteriv',
     'glDrawBuffersARB': 'glDrawBuffers', 'glDrawBuffersEXT': 'glDrawBuffers',
+    'glBindAttribLocationARB': 'glBindAttribLocation', 'glBindFragDataLocationEXT': 'glBindFragDataLocation',
 }
 
 # Window-system entry points: implemented by hand (they carry frame and context logic), but

@@ -1,0 +1,269 @@
+#include "governing.h"
+
+#include <pthread.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cmath>
+#include <condition_variable>
+#include <cstdlib>
+#include <deque>
+#include <mutex>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "frame_log.h"
+#include "glbudget/loop/from_manifest.hpp"
+#include "glbudget/loop/governor.hpp"
+#include "glbudget/model/platform_profile.hpp"
+#include "glbudget/model/selection.hpp"
+#include "options.h"
+
+namespace glbudget {
+
+namespace {
+
+void say(const std::string& text) {
+  const std::string line = "glbudget: " + text + "\n";
+  (void)!write(STDERR_FILENO, line.data(), line.size());
+}
+
+// Programs outside the manifest's passes (every program, without a manifest) are modelled as
+// one more pass of a single level; the built-in render scale scales it with the rest.
+constexpr const char* kAppPass = "app";
+
+manifest::Manifest governed_manifest(const manifest::Manifest& m) {
+  manifest::Manifest out = m;
+  manifest::Pass app;
+  app.name = kAppPass;
+  app.levels.emplace_back();
+  out.passes.push_back(app);
+  for (manifest::Pass& p : out.passes) {
+    bool scales_window = false;
+    for (const manifest::Level& l : p.levels)
+      for (const manifest::Target& t : l.targets) scales_window |= t.kind == manifest::Target::Kind::default_framebuffer;
+    if (scales_window) {
+      // The window holds every pass's final image: its scale shrinks whatever draws into it.
+      p.scales.clear();
+      for (const manifest::Pass& q : out.passes)
+        if (!q.match.empty() || q.name == kAppPass) p.scales.push_back(q.name);
+    }
+  }
+  return out;
+}
+
+std::string default_profile_path() {
+  if (const char* p = std::getenv("GLBUDGET_PROFILE"); p && *p) return p;
+  std::string base;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) base = xdg;
+  else if (const char* home = std::getenv("HOME"); home && *home) base = std::string(home) + "/.cache";
+  const char* sensor = std::getenv("GLBUDGET_SENSOR");
+  std::string name = sensor && *sensor ? sensor : "auto";
+  name = name.substr(0, name.find(':'));
+  return base.empty() ? std::string() : base + "/glbudget/" + name + ".json";
+}
+
+struct Frame {
+  std::vector<FrameRow> rows;
+};
+
+class GovernorThread {
+ public:
+  GovernorThread(loop::Governor governor, manifest::Manifest manifest)
+      : governor_(std::move(governor)), manifest_(std::move(manifest)) {}
+
+  void start() { pthread_create(&thread_, nullptr, &GovernorThread::main, this); }
+
+  // Render thread: never waits. A frame that finds the queue locked is kept for the next try.
+  void push(Frame&& frame) {
+    thread_local std::vector<Frame> waiting;
+    waiting.push_back(std::move(frame));
+    std::unique_lock lock(mu_, std::try_to_lock);
+    if (!lock.owns_lock()) return;
+    for (Frame& f : waiting) queue_.push_back(std::move(f));
+    waiting.clear();
+    lock.unlock();
+    wake_.notify_one();
+  }
+
+  bool levels(Levels* out) const {
+    const uint64_t packed = decision_.load(std::memory_order_acquire);
+    if (!(packed >> 63)) return false;
+    out->count = static_cast<int>((packed >> 56) & 0x1f);
+    for (int i = 0; i < out->count && i < 14; ++i) out->level[i] = static_cast<int8_t>((packed >> (4 * i)) & 0xf);
+    return true;
+  }
+
+  void stop() {
+    {
+      std::lock_guard lock(mu_);
+      stopping_ = true;
+    }
+    wake_.notify_one();
+    pthread_join(thread_, nullptr);
+  }
+
+  void note_program(PassId program, int pass) {
+    std::lock_guard lock(names_mu_);
+    pass_of_program_[program] = pass;
+  }
+
+ private:
+  static void* main(void* self) {
+    static_cast<GovernorThread*>(self)->run();
+    return nullptr;
+  }
+
+  void run() {
+    std::deque<Frame> work;
+    for (;;) {
+      {
+        std::unique_lock lock(mu_);
+        wake_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+        work.swap(queue_);
+        if (work.empty() && stopping_) return;
+      }
+      for (Frame& f : work) decide(f);
+      work.clear();
+    }
+  }
+
+  std::string pass_name(PassId program) {
+    std::lock_guard lock(names_mu_);
+    auto it = pass_of_program_.find(program);
+    return it == pass_of_program_.end() ? kAppPass : manifest_.passes[static_cast<size_t>(it->second)].name;
+  }
+
+  void decide(Frame& f) {
+    if (f.rows.empty()) return;
+    const FrameRow& first = f.rows.front();
+    loop::FrameRecord record;
+    record.frame = first.frame;
+    record.time_ns = first.time_ns;
+    record.power_w = first.energy.valid ? first.energy.mean_power_w : std::nan("");
+    // The shim's levels ("0:2:1"), then the "app" pass's only level.
+    for (size_t at = 0; at < first.configuration.size();) {
+      size_t end = first.configuration.find(':', at);
+      if (end == std::string::npos) end = first.configuration.size();
+      record.configuration.push_back(std::atoi(first.configuration.substr(at, end - at).c_str()));
+      at = end + 1;
+    }
+    record.configuration.resize(manifest_.passes.size(), 0);
+    for (const FrameRow& row : f.rows) {
+      const std::string name = pass_name(row.pass);
+      model::PassFrame* pass = nullptr;
+      for (model::PassFrame& p : record.passes)
+        if (p.pass == name) pass = &p;
+      if (!pass) {
+        record.passes.push_back({name, {0.0, 0.0, 0.0}});
+        pass = &record.passes.back();
+      }
+      pass->counts.batches += static_cast<double>(row.batches);
+      pass->counts.vertices += row.vertices < 0 ? std::nan("") : static_cast<double>(row.vertices);
+      pass->counts.fragments += row.fragments < 0 ? std::nan("") : static_cast<double>(row.fragments);
+    }
+    const loop::Decision d = governor_.on_frame(record);
+    for (; notes_said_ < governor_.notes().size(); ++notes_said_) say(governor_.notes()[notes_said_]);
+    publish(d.next);
+    for (FrameRow& row : f.rows) {
+      row.predicted_w = d.predicted_w;
+      row.budget_w = d.budget_w;
+      row.est_error = d.est_error;
+      row.decision = loop::event_name(d.event);
+      FrameLog::get().push(row);
+    }
+  }
+
+  void publish(const model::Configuration& next) {
+    // Without the trailing "app" pass; 4 bits a level, the count, and a valid bit.
+    const size_t count = std::min<size_t>(next.size() - 1, 14);
+    uint64_t packed = (uint64_t{1} << 63) | (static_cast<uint64_t>(count) << 56);
+    for (size_t i = 0; i < count; ++i) packed |= static_cast<uint64_t>(next[i] & 0xf) << (4 * i);
+    decision_.store(packed, std::memory_order_release);
+  }
+
+  loop::Governor governor_;
+  manifest::Manifest manifest_;
+  pthread_t thread_{};
+  std::mutex mu_;
+  std::condition_variable wake_;
+  std::deque<Frame> queue_;
+  bool stopping_ = false;
+  std::atomic<uint64_t> decision_{0};
+  std::mutex names_mu_;
+  std::unordered_map<PassId, int> pass_of_program_;
+  size_t notes_said_ = 0;
+};
+
+GovernorThread* g_thread = nullptr;  // never destroyed: hooks may run during exit
+std::atomic<bool> g_governing{false};
+thread_local Frame t_building;
+
+}  // namespace
+
+bool governor_start() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    const Options& o = options();
+    if (o.power.empty() && o.error.empty()) return;
+    loop::GovernorSettings settings;
+    if (!o.power.empty()) {
+      std::optional<model::Budget> b = model::parse_budget(o.power);  // says why when it fails
+      if (b) settings.power = *b;
+    }
+    if (!o.error.empty()) {
+      char* end = nullptr;
+      const double e = std::strtod(o.error.c_str(), &end);
+      if (end != o.error.c_str() && !*end && e >= 0.0 && e <= 1.0) settings.error_budget = e;
+      else say("GLBUDGET_ERROR='" + o.error + "' is not an error (1 - SSIM) in [0, 1]; ignored");
+    }
+    if (settings.power.kind == model::Budget::Kind::Off && !settings.error_budget) return;
+    settings.select_frames = o.select_frames;
+    settings.transition_s = o.transition_s;
+    const std::string path = default_profile_path();
+    std::optional<model::PlatformProfile> profile;
+    if (!path.empty()) profile = model::load_platform_profile(path);
+    if (!profile) {
+      say("no platform profile (" + (path.empty() ? std::string("GLBUDGET_PROFILE is unset") : path) +
+          "): the budget is not kept, the app runs unchanged; `glbudget calibrate` writes one");
+      return;
+    }
+    manifest::Manifest m = governed_manifest(active_manifest());
+    loop::Governor governor(*profile, loop::space_from_manifest(m), loop::errors_from_manifest(m), settings);
+    g_thread = new GovernorThread(std::move(governor), std::move(m));
+    g_thread->start();
+    g_governing = true;
+  });
+  return g_governing;
+}
+
+bool governing() { return g_governing.load(std::memory_order_relaxed); }
+
+void governor_push(const FrameRow& row) {
+  if (!t_building.rows.empty()) {
+    const FrameRow& last = t_building.rows.back();
+    if (last.frame != row.frame || last.context != row.context) governor_rows_done();
+  }
+  t_building.rows.push_back(row);
+}
+
+void governor_rows_done() {
+  if (t_building.rows.empty() || !g_thread) return;
+  g_thread->push(std::move(t_building));
+  t_building = Frame{};
+}
+
+bool governor_levels(Levels* out) { return g_thread && g_thread->levels(out); }
+
+void governor_stop() {
+  if (!g_thread || !g_governing.exchange(false)) return;
+  governor_rows_done();
+  g_thread->stop();
+}
+
+void note_program_pass(PassId program, int pass) {
+  if (g_thread) g_thread->note_program(program, pass);
+}
+
+}  // namespace glbudget
