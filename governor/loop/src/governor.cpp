@@ -147,6 +147,11 @@ model::OnlineFitter::Event Governor::see(const FrameRecord& record, Decision& de
 bool Governor::selection_due(const FrameRecord& record) const {
     if (!model_.fitted() || record.probe) return false;
     if (selections_ == 0) return true;
+    // Beyond the paper: when the model predicts the chosen configuration over the budget for
+    // reselect_over_budget_frames frames in a row (the scene got heavier, or a refit learnt that it costs
+    // more), select again at once instead of waiting out select_frames over budget.
+    if (settings_.reselect_over_budget_frames > 0 && over_budget_frames_ >= settings_.reselect_over_budget_frames)
+        return true;
     // A frame number that went backwards (a new counter) is taken as a due selection.
     return record.frame < last_selection_frame_ || record.frame - last_selection_frame_ >= settings_.select_frames;
 }
@@ -222,9 +227,13 @@ Decision Governor::on_frame(const FrameRecord& record) {
     }
 
     if (!holding_) {
+        const bool over = !record.probe && !transitioning_ && aim_ == Aim::power && std::isfinite(budget_w_) &&
+                          record.configuration == target_ && decision.predicted_w > budget_w_;
+        if (!record.probe) over_budget_frames_ = over ? over_budget_frames_ + 1 : 0;
         if (selection_due(record)) {
             select(record);
             decision.event = Event::select;
+            over_budget_frames_ = 0;
         }
         if (transitioning_) {
             const double t = static_cast<double>(record.time_ns - transition_start_ns_) * 1e-9;

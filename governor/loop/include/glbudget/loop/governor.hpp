@@ -31,6 +31,9 @@ struct GovernorSettings {
     std::size_t select_frames = 200;            // frames between selections (paper §6.3)
     double transition_s = 2.0;                  // the temporal filter's T (paper §6.2)
     std::size_t hold_after_missing_power = 30;  // consecutive frames without power before holding
+    // Beyond the paper: select again at once after this many frames in a row whose chosen
+    // configuration the model predicts over the budget (0: only every select_frames).
+    std::size_t reselect_over_budget_frames = 10;
     model::FitSettings fit = {};
     model::HistorySettings history = {};
 };
@@ -123,6 +126,8 @@ private:
     bool transitioning_ = false;
 
     std::size_t selections_ = 0;
+    // Consecutive frames whose chosen configuration the model predicts over the budget.
+    std::size_t over_budget_frames_ = 0;
     std::uint64_t last_selection_frame_ = 0;
     double budget_w_ = 0.0;
     bool within_budget_ = true;
