@@ -10,8 +10,10 @@ thread_local UniformTargets t_targets;
 
 const UniformTargets* bound_uniform_targets(GLint location) {
   const ContextState* c = current_context();
-  if (!c || !c->bound_variants) return nullptr;
-  uniform_targets(*c->bound_variants, location, &t_targets);
+  if (!c) return nullptr;
+  const VariantSet* v = c->bound_variants ? c->bound_variants.get() : c->pipeline_uniform_variants.get();
+  if (!v) return nullptr;
+  uniform_targets(*v, location, &t_targets);
   return &t_targets;
 }
 

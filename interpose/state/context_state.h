@@ -76,9 +76,17 @@ struct ContextState {
   GLuint pipeline = 0;
   std::shared_ptr<const VariantSet> bound_variants;  // of `program`, when it has variants
   int manifest_pass = -1;  // the manifest pass of `program`
+  // The app's subroutine selections per stage slot while `program` has variants, in its terms
+  // (apply/subroutines.h): re-applied after glbudget's own glUseProgram.
+  std::array<SubroutineSelection, kShaderStages> subroutines;
   Levels config;        // the configuration this context draws (changes only at its swap)
   std::unique_ptr<TargetScaler> targets;  // render-target scaling (apply/render_targets.h)
-  std::unordered_map<GLuint, std::array<GLuint, 6>> pipeline_stages;  // per context, not shared
+  std::unordered_map<GLuint, std::array<GLuint, 6>> pipeline_stages;  // the app's, per context
+  // What the driver holds in each pipeline's stages (a variant where the configuration says).
+  std::unordered_map<GLuint, std::array<GLuint, 6>> pipeline_real_stages;
+  std::unordered_map<GLuint, GLuint> pipeline_active;  // glActiveShaderProgram, the app's
+  // With a pipeline bound and no program, non-DSA glUniform* go to its active program.
+  std::shared_ptr<const VariantSet> pipeline_uniform_variants;
   bool list_compile_only = false;
 
   uint64_t frame = 0;
@@ -102,6 +110,8 @@ void apply_configuration(ContextState& c, const Levels& config);
 // Binds, in the driver, the variant of the app's current program that the context's
 // configuration draws with (or the app's own program).
 void bind_program(ContextState& c);
+// Puts in each pipeline's stages the variants the configuration asks for.
+void bind_pipeline_stages(ContextState& c);
 
 // Re-derives the pass of the current binding (program, pipeline or fixed function).
 void update_pass(ContextState& c);

@@ -158,6 +158,7 @@ void apply_configuration(ContextState& c, const Levels& config) {
   c.config = config;
   if (c.counter) c.counter->set_configuration(format_levels(config).c_str());
   if (c.bound_variants) bind_program(c);
+  bind_pipeline_stages(c);
   if (c.targets) c.targets->set_configuration(config);
   update_pass(c);
 }
@@ -178,7 +179,17 @@ void update_pass(ContextState& c) {
     if (it != c.pipeline_stages.end()) {
       std::lock_guard lock(c.group->mu);
       uint64_t h = fnv1a("pipeline");
-      for (GLuint p : it->second) h = fnv1a_u64(p ? pass_of_program(*c.group, p) : 0, h);
+      for (GLuint p : it->second) {
+        // A stage drawn through a variant is named by the variant, as a program is.
+        PassId stage = p ? pass_of_program(*c.group, p) : 0;
+        auto info = p ? c.group->programs.find(p) : c.group->programs.end();
+        if (info != c.group->programs.end() && info->second.variants) {
+          const Variant& v = info->second.variants->at(c.config);
+          stage = v.pass_hash;
+          skip = skip || !v.draws;
+        }
+        h = fnv1a_u64(stage, h);
+      }
       pass = h;
     }
   }

@@ -5,6 +5,7 @@
 #include "hooks_generated.h"
 #include "pass_names.h"
 #include "apply_gl.h"
+#include "hook_table.h"
 #include "governing.h"
 #include "gl_calls.h"
 #include "shader_instrumentation.h"
@@ -36,14 +37,14 @@ bool link_succeeded(GLuint program) {
 
 // After the app's link: the manifest pass that claims the program, and its variants. Caller
 // holds the share group's lock.
-void shadow_program(ContextState& c, ShareGroup& g, GLuint program, ProgramInfo& p) {
+void shadow_program(ContextState& c, ShareGroup& g, GLuint program, ProgramInfo& p,
+                    std::vector<ShaderSource> sources = {}) {
   if (p.variants) {
     delete_variants(*p.variants);  // a relink replaces them: they were built from the old sources
     p.variants.reset();
   }
   p.manifest_pass = -1;
   if (!manifest_has_programs()) return;
-  std::vector<ShaderSource> sources;
   for (GLuint s : p.shaders) {
     auto it = g.shaders.find(s);
     if (it != g.shaders.end()) sources.push_back({it->second.stage, it->second.source});
@@ -59,6 +60,35 @@ void shadow_program(ContextState& c, ShareGroup& g, GLuint program, ProgramInfo&
   if (p.variants)
     for (const Variant& v : p.variants->levels) note_program_pass(v.pass_hash, p.manifest_pass);
   if (p.variants) g.has_variants = true;
+}
+}  // namespace
+
+namespace {
+// Bits of GL_{VERTEX,FRAGMENT,GEOMETRY,TESS_CONTROL,TESS_EVALUATION,COMPUTE}_SHADER_BIT, and
+// the matching stage names for glGetProgramPipelineiv.
+const GLbitfield kStageBits[6] = {GL_VERTEX_SHADER_BIT, GL_FRAGMENT_SHADER_BIT, GL_GEOMETRY_SHADER_BIT,
+                                  GL_TESS_CONTROL_SHADER_BIT, GL_TESS_EVALUATION_SHADER_BIT, GL_COMPUTE_SHADER_BIT};
+const GLenum kStageNames[6] = {GL_VERTEX_SHADER, GL_FRAGMENT_SHADER, GL_GEOMETRY_SHADER,
+                               GL_TESS_CONTROL_SHADER, GL_TESS_EVALUATION_SHADER, GL_COMPUTE_SHADER};
+
+std::shared_ptr<const VariantSet> variants_of(ContextState& c, GLuint program) {
+  if (!program || !c.group->has_variants) return nullptr;
+  std::lock_guard lock(c.group->mu);
+  auto it = c.group->programs.find(program);
+  return it == c.group->programs.end() ? nullptr : it->second.variants;
+}
+
+// The program the driver must hold where the app put `program`, under the configuration.
+GLuint real_stage_program(ContextState& c, GLuint program) {
+  auto v = variants_of(c, program);
+  return v ? v->program_for(c.config) : program;
+}
+
+void update_pipeline_uniforms(ContextState& c) {
+  c.pipeline_uniform_variants.reset();
+  if (c.program || !c.pipeline) return;
+  auto it = c.pipeline_active.find(c.pipeline);
+  if (it != c.pipeline_active.end()) c.pipeline_uniform_variants = variants_of(c, it->second);
 }
 }  // namespace
 
@@ -178,8 +208,11 @@ GLuint handle_glCreateShaderProgramv(pfn_glCreateShaderProgramv real, GLenum typ
   if (c && program) {
     std::lock_guard lock(c->group->mu);
     ProgramInfo& p = c->group->programs[program];
-    p.pass = program_hash({shader_hash(type, join_sources(count, strings, nullptr))});
+    const std::string source = join_sources(count, strings, nullptr);
+    p.pass = program_hash({shader_hash(type, source)});
     p.linked = true;
+    // No shader objects to hook: the variants are built from the strings themselves.
+    shadow_program(*c, *c->group, program, p, {{type, source}});
   }
   return program;
 }
@@ -216,6 +249,7 @@ void handle_glUseProgram(pfn_glUseProgram real, GLuint program) {
   c->program = program;
   c->real_program = program;
   bind_program(*c);  // a variant in the app's program's place, when the configuration says so
+  update_pipeline_uniforms(*c);
   if (previous && previous != program) finish_pending_delete(*c, previous);
   update_pass(*c);
   bind_counters(*c);
@@ -276,22 +310,65 @@ void handle_glBindProgramPipeline(pfn_glBindProgramPipeline real, GLuint pipelin
   ContextState* c = current_context();
   if (!c) return;
   c->pipeline = pipeline;
+  update_pipeline_uniforms(*c);
   update_pass(*c);
   bind_counters(*c);
 }
 
+
+void bind_pipeline_stages(ContextState& c) {
+  if (!c.group->has_variants) return;
+  auto use_stages = reinterpret_cast<pfn_glUseProgramStages>(real_entry(kHook_glUseProgramStages));
+  for (auto& [pipeline, app] : c.pipeline_stages) {
+    auto& real = c.pipeline_real_stages[pipeline];
+    for (int i = 0; i < 6; ++i) {
+      const GLuint wanted = real_stage_program(c, app[i]);
+      if (wanted == real[i]) continue;
+      if (use_stages) use_stages(pipeline, kStageBits[i], wanted);
+      real[i] = wanted;
+    }
+  }
+}
+
 void handle_glUseProgramStages(pfn_glUseProgramStages real, GLuint pipeline, GLbitfield stages, GLuint program) {
-  real(pipeline, stages, program);
+  ContextState* c = current_context();
+  if (!c) return real(pipeline, stages, program);
+  // Each stage the call sets holds the variant the configuration asks for; stages of one call
+  // share one program, and so one variant.
+  const GLuint real_program = real_stage_program(*c, program);
+  real(pipeline, stages, real_program);
+  auto& slots = c->pipeline_stages[pipeline];
+  auto& real_slots = c->pipeline_real_stages[pipeline];
+  for (int i = 0; i < 6; ++i)
+    if (stages & kStageBits[i]) {
+      slots[i] = program;
+      real_slots[i] = real_program;
+    }
+  if (c->pipeline == pipeline) refresh_if_bound(c);
+}
+
+void handle_glActiveShaderProgram(pfn_glActiveShaderProgram real, GLuint pipeline, GLuint program) {
+  real(pipeline, program);  // the app's program: glbudget's fan-out reaches its variants
   ContextState* c = current_context();
   if (!c) return;
-  // Bits of GL_{VERTEX,FRAGMENT,GEOMETRY,TESS_CONTROL,TESS_EVALUATION,COMPUTE}_SHADER_BIT.
-  static const GLbitfield kBits[6] = {GL_VERTEX_SHADER_BIT, GL_FRAGMENT_SHADER_BIT, GL_GEOMETRY_SHADER_BIT,
-                                      GL_TESS_CONTROL_SHADER_BIT, GL_TESS_EVALUATION_SHADER_BIT,
-                                      GL_COMPUTE_SHADER_BIT};
-  auto& slots = c->pipeline_stages[pipeline];
+  c->pipeline_active[pipeline] = program;
+  update_pipeline_uniforms(*c);
+}
+
+// The app's programs, never the variants glbudget put in the stages.
+void handle_glGetProgramPipelineiv(pfn_glGetProgramPipelineiv real, GLuint pipeline, GLenum pname, GLint* params) {
+  real(pipeline, pname, params);
+  ContextState* c = current_context();
+  if (!c || !params) return;
+  if (pname == GL_ACTIVE_PROGRAM) {
+    auto it = c->pipeline_active.find(pipeline);
+    if (it != c->pipeline_active.end()) *params = static_cast<GLint>(it->second);
+    return;
+  }
+  auto it = c->pipeline_stages.find(pipeline);
+  if (it == c->pipeline_stages.end()) return;
   for (int i = 0; i < 6; ++i)
-    if (stages & kBits[i]) slots[i] = program;
-  if (c->pipeline == pipeline) refresh_if_bound(c);
+    if (pname == kStageNames[i]) *params = static_cast<GLint>(it->second[i]);
 }
 
 }  // namespace glbudget

@@ -287,19 +287,17 @@ TEST_CASE("shadowing 4b: locations the app bound for names its program lacks hol
   if (!r.log.empty()) unlink(r.log.c_str());
 }
 
-TEST_CASE("shadowing 5: program pipelines are not shadowed; their programs draw, correctly",
+TEST_CASE("shadowing 5: program pipelines draw their stages' variants, switched with the configuration",
           "[integration][shadowing]") {
-  // The manifest's pass matches all three fragment programs. Today glbudget shadows only
-  // programs bound with glUseProgram: pipeline stages (glCreateShaderProgramv, or separable
-  // programs linked by the app and put in a pipeline with glUseProgramStages) always draw the
-  // app's own programs, at every level, while the ordinary program C next to them switches.
-  // The configuration column still names the forced level. What must hold: no crash, no GL
-  // error, every draw's values right, GL_CURRENT_PROGRAM 0 with a pipeline bound (the probe
-  // checks these), and the app's programs draw in the pipelines.
+  // The manifest's pass matches all three fragment programs: A (glCreateShaderProgramv) and B
+  // (a separable program the app linked) drawn in program pipelines, C with glUseProgram.
+  // glbudget puts each stage's variant in the app's pipelines (glUseProgramStages with the
+  // variant) and swaps them at a switch; glGetProgramPipelineiv answers the app's programs,
+  // uniforms set through glActiveShaderProgram + glUniform* or glProgramUniform* reach the
+  // variants, GL_CURRENT_PROGRAM stays 0 with a pipeline bound (the probe checks these).
   const Forced forced{{0, 1}};
-  const Run r = run_three_ways("probe_pipeline_stages", "pipeline_stages", forced, 4, 16, [](const Draw& d, int level) {
-    return field(d, "program") == "C" ? static_cast<unsigned>(level) : 0u;
-  });
+  const Run r = run_three_ways("probe_pipeline_stages", "pipeline_stages", forced, 4, 16,
+                               [](const Draw&, int level) { return static_cast<unsigned>(level); });
   CHECK(count_lines_with(r.result.err, "glbudget:") == 0);
   check_log_configurations(r, forced, 4);
 }

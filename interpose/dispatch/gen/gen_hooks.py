@@ -49,6 +49,7 @@ CUSTOM = [
     'glClearNamedFramebufferuiv', 'glClearNamedFramebufferfv', 'glClearNamedFramebufferfi',
     'glClear', 'glClearBufferfv', 'glClearBufferiv', 'glClearBufferuiv', 'glClearBufferfi',
     'glBindAttribLocation', 'glBindFragDataLocation', 'glBindFragDataLocationIndexed',
+    'glActiveShaderProgram', 'glGetProgramPipelineiv',
 ]
 ALIASES_OF_CUSTOM = {
     'glUseProgramObjectARB': 'glUseProgram',
