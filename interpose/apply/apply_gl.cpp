@@ -84,6 +84,13 @@ ApplyGl load_all() {
   load(g.GetUniformBlockIndex, "glGetUniformBlockIndex");
   load(g.UniformBlockBinding, "glUniformBlockBinding");
   load(g.ShaderStorageBlockBinding, "glShaderStorageBlockBinding");
+  load(g.GetProgramStageiv, "glGetProgramStageiv");
+  load(g.GetActiveSubroutineName, "glGetActiveSubroutineName");
+  load(g.GetActiveSubroutineUniformName, "glGetActiveSubroutineUniformName");
+  load(g.GetActiveSubroutineUniformiv, "glGetActiveSubroutineUniformiv");
+  load(g.GetSubroutineIndex, "glGetSubroutineIndex");
+  load(g.GetSubroutineUniformLocation, "glGetSubroutineUniformLocation");
+  load(g.UniformSubroutinesuiv, "glUniformSubroutinesuiv");
   load(g.GenFramebuffers, "glGenFramebuffers");
   load(g.DeleteFramebuffers, "glDeleteFramebuffers");
   load(g.BindFramebuffer, "glBindFramebuffer");

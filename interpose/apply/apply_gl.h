@@ -80,6 +80,14 @@ struct ApplyGl {
   PFNGLGETUNIFORMBLOCKINDEXPROC GetUniformBlockIndex = nullptr;
   PFNGLUNIFORMBLOCKBINDINGPROC UniformBlockBinding = nullptr;
   PFNGLSHADERSTORAGEBLOCKBINDINGPROC ShaderStorageBlockBinding = nullptr;
+  // Subroutine uniforms (GL 4.0).
+  PFNGLGETPROGRAMSTAGEIVPROC GetProgramStageiv = nullptr;
+  PFNGLGETACTIVESUBROUTINENAMEPROC GetActiveSubroutineName = nullptr;
+  PFNGLGETACTIVESUBROUTINEUNIFORMNAMEPROC GetActiveSubroutineUniformName = nullptr;
+  PFNGLGETACTIVESUBROUTINEUNIFORMIVPROC GetActiveSubroutineUniformiv = nullptr;
+  PFNGLGETSUBROUTINEINDEXPROC GetSubroutineIndex = nullptr;
+  PFNGLGETSUBROUTINEUNIFORMLOCATIONPROC GetSubroutineUniformLocation = nullptr;
+  PFNGLUNIFORMSUBROUTINESUIVPROC UniformSubroutinesuiv = nullptr;
   // Render targets.
   PFNGLGENFRAMEBUFFERSPROC GenFramebuffers = nullptr;
   PFNGLDELETEFRAMEBUFFERSPROC DeleteFramebuffers = nullptr;

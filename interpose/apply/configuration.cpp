@@ -1,4 +1,5 @@
 #include "configuration.h"
+#include "messages.h"
 
 #include <unistd.h>
 
@@ -14,11 +15,6 @@
 namespace glbudget {
 
 namespace {
-
-void say(const std::string& text) {
-  const std::string line = "glbudget: " + text + "\n";
-  (void)!write(STDERR_FILENO, line.data(), line.size());
-}
 
 std::string executable_name() {
   char path[4096];

@@ -1,4 +1,5 @@
 #include "governing.h"
+#include "messages.h"
 
 #include <pthread.h>
 #include <unistd.h>
@@ -23,11 +24,6 @@
 namespace glbudget {
 
 namespace {
-
-void say(const std::string& text) {
-  const std::string line = "glbudget: " + text + "\n";
-  (void)!write(STDERR_FILENO, line.data(), line.size());
-}
 
 // Programs outside the manifest's passes (every program, without a manifest) are modelled as
 // one more pass of a single level; the built-in render scale scales it with the rest.

@@ -1,4 +1,5 @@
 #include "render_targets.h"
+#include "messages.h"
 
 #include <unistd.h>
 
@@ -13,15 +14,6 @@
 namespace glbudget {
 
 namespace {
-
-void say_once(const std::string& key, const std::string& text) {
-  static std::mutex mu;
-  static std::set<std::string> said;
-  std::lock_guard lock(mu);
-  if (!said.insert(key).second) return;
-  const std::string line = "glbudget: " + text + "\n";
-  (void)!write(STDERR_FILENO, line.data(), line.size());
-}
 
 GLsizei scaled(GLsizei size, double scale) {
   return std::max<GLsizei>(1, static_cast<GLsizei>(std::lround(size * scale)));

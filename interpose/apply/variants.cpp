@@ -2,11 +2,13 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <map>
 #include <mutex>
 #include <set>
 
 #include "apply_gl.h"
+#include "messages.h"
 #include "glbudget/instrument/defines.hpp"
 #include "pass_names.h"
 #include "uniform_values.h"
@@ -14,15 +16,6 @@
 namespace glbudget {
 
 namespace {
-
-void say_once(const std::string& key, const std::string& text) {
-  static std::mutex mu;
-  static std::set<std::string> said;
-  std::lock_guard lock(mu);
-  if (!said.insert(key).second) return;
-  const std::string line = "glbudget: " + text + "\n";
-  (void)!write(STDERR_FILENO, line.data(), line.size());
-}
 
 std::optional<manifest::Stage> manifest_stage(GLenum stage) {
   switch (stage) {
@@ -239,6 +232,106 @@ void map_blocks(GLuint app, Variant& v, const GlCaps& caps) {
   }
 }
 
+// A program's subroutine interface of one stage (GL 4.0), with names to match another
+// program's by. Only for stages the program has: the driver raises an error for the others.
+struct StageInterface {
+  SubroutineStage stage;
+  std::vector<std::string> subroutine;     // by index ("": none)
+  std::vector<std::string> location_name;  // by location ("": no uniform there; "u[1]" for arrays)
+};
+
+StageInterface stage_interface(GLuint program, GLenum stage) {
+  const ApplyGl& g = agl();
+  StageInterface out;
+  GLint locations = 0, subroutines = 0, uniforms = 0;
+  g.GetProgramStageiv(program, stage, GL_ACTIVE_SUBROUTINE_UNIFORM_LOCATIONS, &locations);
+  g.GetProgramStageiv(program, stage, GL_ACTIVE_SUBROUTINES, &subroutines);
+  g.GetProgramStageiv(program, stage, GL_ACTIVE_SUBROUTINE_UNIFORMS, &uniforms);
+  out.stage.locations = locations > 0 ? locations : 0;
+  out.stage.compatible.resize(static_cast<size_t>(out.stage.locations));
+  out.location_name.resize(static_cast<size_t>(out.stage.locations));
+  char name[512];
+  for (GLint i = 0; i < subroutines; ++i) {
+    GLsizei length = 0;
+    g.GetActiveSubroutineName(program, stage, static_cast<GLuint>(i), sizeof name, &length, name);
+    if (length <= 0) continue;
+    const GLuint index = g.GetSubroutineIndex(program, stage, name);
+    if (index == GL_INVALID_INDEX) continue;
+    if (index >= out.subroutine.size()) out.subroutine.resize(index + 1);
+    out.subroutine[index].assign(name, static_cast<size_t>(length));
+  }
+  out.stage.subroutines = static_cast<GLuint>(out.subroutine.size());
+  for (GLint u = 0; u < uniforms; ++u) {
+    GLsizei length = 0;
+    g.GetActiveSubroutineUniformName(program, stage, static_cast<GLuint>(u), sizeof name, &length, name);
+    if (length <= 0) continue;
+    std::string base(name, static_cast<size_t>(length));
+    if (base.size() > 3 && base.compare(base.size() - 3, 3, "[0]") == 0) base.resize(base.size() - 3);
+    GLint size = 1, count = 0;
+    g.GetActiveSubroutineUniformiv(program, stage, static_cast<GLuint>(u), GL_UNIFORM_SIZE, &size);
+    g.GetActiveSubroutineUniformiv(program, stage, static_cast<GLuint>(u), GL_NUM_COMPATIBLE_SUBROUTINES, &count);
+    std::vector<GLint> compatible(static_cast<size_t>(count > 0 ? count : 0));
+    if (count > 0)
+      g.GetActiveSubroutineUniformiv(program, stage, static_cast<GLuint>(u), GL_COMPATIBLE_SUBROUTINES,
+                                     compatible.data());
+    // An array's elements have consecutive locations.
+    const GLint first = g.GetSubroutineUniformLocation(program, stage, base.c_str());
+    for (GLint e = 0; first >= 0 && e < size; ++e) {
+      const GLint location = first + e;
+      if (location >= out.stage.locations) break;
+      out.location_name[static_cast<size_t>(location)] = element_name(base, size, e);
+      for (GLint c : compatible)
+        if (c >= 0) out.stage.compatible[static_cast<size_t>(location)].push_back(static_cast<GLuint>(c));
+    }
+  }
+  return out;
+}
+
+bool has_subroutines(const GlCaps& caps) {
+  const ApplyGl& g = agl();
+  return !caps.gles && at_least(caps, 4, 0) && g.GetProgramStageiv && g.GetActiveSubroutineName &&
+         g.GetActiveSubroutineUniformName && g.GetActiveSubroutineUniformiv && g.GetSubroutineIndex &&
+         g.GetSubroutineUniformLocation && g.UniformSubroutinesuiv;
+}
+
+// The stages a program was linked from, by slot (each once).
+std::vector<std::pair<int, GLenum>> program_stages(const std::vector<ShaderSource>& sources) {
+  std::vector<std::pair<int, GLenum>> out;
+  for (const ShaderSource& s : sources) {
+    const int slot = shader_stage_slot(s.stage);
+    if (slot >= 0 && std::find_if(out.begin(), out.end(), [&](const auto& p) { return p.first == slot; }) == out.end())
+      out.emplace_back(slot, s.stage);
+  }
+  return out;
+}
+
+// The variant's subroutine tables: the app's indices and locations matched by name.
+void map_subroutines(const std::array<StageInterface, kShaderStages>& app,
+                     const std::vector<std::pair<int, GLenum>>& stages, Variant& v) {
+  for (const auto& [slot, stage] : stages) {
+    const StageInterface& a = app[static_cast<size_t>(slot)];
+    StageInterface own = stage_interface(v.program, stage);
+    SubroutineMap& m = v.subroutines[static_cast<size_t>(slot)];
+    std::map<std::string, GLuint> index_of;
+    for (size_t i = 0; i < own.subroutine.size(); ++i)
+      if (!own.subroutine[i].empty()) index_of[own.subroutine[i]] = static_cast<GLuint>(i);
+    m.index.assign(a.subroutine.size(), GL_INVALID_INDEX);
+    for (size_t i = 0; i < a.subroutine.size(); ++i) {
+      auto it = a.subroutine[i].empty() ? index_of.end() : index_of.find(a.subroutine[i]);
+      if (it != index_of.end()) m.index[i] = it->second;
+    }
+    std::map<std::string, GLint> app_location_of;
+    for (size_t l = 0; l < a.location_name.size(); ++l)
+      if (!a.location_name[l].empty()) app_location_of[a.location_name[l]] = static_cast<GLint>(l);
+    m.app_location.assign(own.location_name.size(), -1);
+    for (size_t l = 0; l < own.location_name.size(); ++l) {
+      auto it = own.location_name[l].empty() ? app_location_of.end() : app_location_of.find(own.location_name[l]);
+      if (it != app_location_of.end()) m.app_location[l] = it->second;
+    }
+    m.own = std::move(own.stage);
+  }
+}
+
 // The sources of a level's variant: replaced stages, then the level's #defines in every stage.
 std::vector<ShaderSource> variant_sources(const std::vector<ShaderSource>& app, const manifest::Level& level) {
   std::vector<ShaderSource> out;
@@ -291,6 +384,18 @@ GLuint link_variant(GLuint app, const std::vector<ShaderSource>& sources, const 
 
 }  // namespace
 
+int shader_stage_slot(GLenum stage) {
+  switch (stage) {
+    case GL_VERTEX_SHADER: return 0;
+    case GL_TESS_CONTROL_SHADER: return 1;
+    case GL_TESS_EVALUATION_SHADER: return 2;
+    case GL_GEOMETRY_SHADER: return 3;
+    case GL_FRAGMENT_SHADER: return 4;
+    case GL_COMPUTE_SHADER: return 5;
+    default: return -1;
+  }
+}
+
 int match_pass(PassId hash, const std::vector<ShaderSource>& sources) {
   const manifest::Manifest& m = active_manifest();
   std::vector<std::string> texts;
@@ -307,6 +412,11 @@ std::shared_ptr<VariantSet> build_variants(GLuint program, PassId app_hash, int 
   auto set = std::make_shared<VariantSet>();
   set->app_program = program;
   set->pass = pass;
+  // Subroutine uniforms (GL 4.0): the app's interface, read when the first variant links; each
+  // variant's tables map from it.
+  const auto stages = has_subroutines(caps) ? program_stages(sources) : std::vector<std::pair<int, GLenum>>{};
+  std::array<StageInterface, kShaderStages> app_stages;
+  bool app_stages_read = false;
   bool any = false;
   for (size_t l = 0; l < mp.levels.size(); ++l) {
     const manifest::Level& level = mp.levels[l];
@@ -332,6 +442,14 @@ std::shared_ptr<VariantSet> build_variants(GLuint program, PassId app_hash, int 
           v.pass_hash = program_hash(std::move(hashes));
           map_uniforms(program, v, level);
           map_blocks(program, v, caps);
+          if (!app_stages_read) {
+            for (const auto& [slot, stage] : stages) {
+              app_stages[static_cast<size_t>(slot)] = stage_interface(program, stage);
+              set->app_subroutines[static_cast<size_t>(slot)] = app_stages[static_cast<size_t>(slot)].stage;
+            }
+            app_stages_read = true;
+          }
+          map_subroutines(app_stages, stages, v);
           hold_uniforms(mp, l, level, v.program);
           set->programs.push_back(v.program);
         }

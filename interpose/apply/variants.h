@@ -3,8 +3,10 @@
 // app links its program, in the same share group, with the app's attribute and output
 // locations and separable flag; then every uniform and block binding the app sets reaches
 // each variant too, through per-variant location tables (a location a variant lacks is
-// dropped, never passed to the driver). The app only ever sees its own program.
+// dropped, never passed to the driver), and so do its subroutine selections (per-variant
+// subroutine tables, apply/subroutines.h). The app only ever sees its own program.
 #pragma once
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -16,6 +18,25 @@
 
 namespace glbudget {
 
+// Subroutine uniforms (GL 4.0): their indices and locations belong to a program, as uniform
+// locations do (apply/subroutines.h). Stages are slotted 0..5: vertex, tess control, tess
+// evaluation, geometry, fragment, compute; -1 for anything else.
+constexpr int kShaderStages = 6;
+int shader_stage_slot(GLenum stage);
+// One stage of one program, in its own terms.
+struct SubroutineStage {
+  GLint locations = -1;    // GL_ACTIVE_SUBROUTINE_UNIFORM_LOCATIONS; -1: not tracked (the program
+                           // has no such stage, or the context no GL 4.0)
+  GLuint subroutines = 0;  // 1 + the highest subroutine index
+  std::vector<std::vector<GLuint>> compatible;  // per location (empty: no uniform there)
+};
+// How the app's selection of one stage reaches a variant: built with it, matched by name.
+struct SubroutineMap {
+  SubroutineStage own;              // the variant's
+  std::vector<GLuint> index;        // app subroutine index -> the variant's (GL_INVALID_INDEX: lacks it)
+  std::vector<GLint> app_location;  // variant location -> the app's (-1: the app has no such uniform)
+};
+
 struct Variant {
   GLuint program = 0;   // 0: the level draws with the app's program
   PassId pass_hash = 0; // the program's name in the frame log (as if the app had built it)
@@ -24,6 +45,7 @@ struct Variant {
   std::vector<GLint> location;
   std::vector<GLint> uniform_block;  // app block index -> variant index (-1: absent)
   std::vector<GLint> storage_block;
+  std::array<SubroutineMap, kShaderStages> subroutines;  // per stage slot
 };
 
 struct VariantSet {
@@ -31,6 +53,7 @@ struct VariantSet {
   int pass = -1;                 // manifest pass
   std::vector<Variant> levels;   // one per level of the pass
   std::vector<GLuint> programs;  // distinct variant programs (not the app's)
+  std::array<SubroutineStage, kShaderStages> app_subroutines;  // the app program's, per stage slot
 
   const Variant& at(const Levels& config) const {
     const int l = config[pass];
@@ -62,6 +85,13 @@ std::shared_ptr<VariantSet> build_variants(GLuint program, PassId app_hash, int 
                                            const std::vector<ShaderSource>& sources, const GlCaps& caps,
                                            const NameBindings& bindings);
 void delete_variants(const VariantSet& set);
+
+// The app's last glUniformSubroutinesuiv of one stage, in its program's indices, and the
+// variant set (of that program, at that link) it was made under (apply/subroutines.h).
+struct SubroutineSelection {
+  std::shared_ptr<const VariantSet> set;
+  std::vector<GLuint> indices;
+};
 
 // Where one of the app's uniform calls goes: each (program, location) pair.
 struct UniformTargets {

@@ -1,4 +1,5 @@
 #include "shader_instrumentation.h"
+#include "messages.h"
 
 #include <unistd.h>
 
@@ -17,19 +18,6 @@ namespace glbudget {
 
 namespace {
 using instrument::Stage;
-
-void say(const std::string& text) {
-  std::string line = "glbudget: " + text + "\n";
-  (void)!write(STDERR_FILENO, line.data(), line.size());
-}
-
-// One line per shader or program (by hash), however often the app rebuilds it.
-void say_once(const std::string& key, const std::string& text) {
-  static std::mutex mu;
-  static std::set<std::string> said;
-  std::lock_guard lock(mu);
-  if (said.insert(key).second) say(text);
-}
 
 std::optional<Stage> stage_of(GLenum type) {
   switch (type) {

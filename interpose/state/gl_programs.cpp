@@ -9,6 +9,7 @@
 #include "governing.h"
 #include "gl_calls.h"
 #include "shader_instrumentation.h"
+#include "subroutines.h"
 
 namespace glbudget {
 
@@ -109,6 +110,7 @@ void bind_program(ContextState& c) {
   if (wanted != c.real_program) {
     agl().UseProgram(wanted);
     c.real_program = wanted;
+    reapply_subroutines(c);  // GL reset the subroutine selections
   }
 }
 

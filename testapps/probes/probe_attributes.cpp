@@ -295,9 +295,5 @@ int main(int argc, char** argv) {
     probe.check_gl_error("after drawing");
     eglSwapBuffers(w.display, w.surface);
   }
-  const int code = probe.finish();
-  eglMakeCurrent(w.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-  eglDestroyContext(w.display, w.context);
-  eglTerminate(w.display);
-  return code;
+  return finish_and_close(probe, w);
 }

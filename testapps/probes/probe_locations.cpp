@@ -201,12 +201,7 @@ int main(int argc, char** argv) {
     glUseProgram(prog);
     query_current("bound again", prog, other);
     probe.check_gl_error("after the queries");
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    eglSwapBuffers(w.display, w.surface);
+    swap_window(w);
   }
-  const int code = probe.finish();
-  eglMakeCurrent(w.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-  eglDestroyContext(w.display, w.context);
-  eglTerminate(w.display);
-  return code;
+  return finish_and_close(probe, w);
 }

@@ -236,4 +236,22 @@ inline uint32_t report_mark(Probe& probe, const std::vector<uint32_t>& words, co
   return words[0];
 }
 
+// The end of a frame: the window bound again and swapped (the switch of configuration happens
+// at the swap).
+inline void swap_window(EglWindow& w) {
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  eglSwapBuffers(w.display, w.surface);
+}
+
+// The probe's verdict, after releasing its context and display.
+inline int finish_and_close(Probe& probe, EglWindow& w) {
+  const int code = probe.finish();
+  eglMakeCurrent(w.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  eglDestroyContext(w.display, w.context);
+  eglTerminate(w.display);
+  return code;
+}
+
+
 }  // namespace shadow_probe
+

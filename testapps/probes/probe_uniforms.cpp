@@ -412,12 +412,7 @@ int main(int argc, char** argv) {
     probe.check_gl_error("after setting uniforms");
     draw_and_check(frame);
     probe.check_gl_error("after drawing");
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    eglSwapBuffers(w.display, w.surface);
+    swap_window(w);
   }
-  const int code = probe.finish();
-  eglMakeCurrent(w.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-  eglDestroyContext(w.display, w.context);
-  eglTerminate(w.display);
-  return code;
+  return finish_and_close(probe, w);
 }

@@ -192,15 +192,15 @@ TEST_CASE("shadowing 1b: uniforms set only while the variant is bound (level 1 f
 }
 
 TEST_CASE("shadowing 1c: subroutine selections survive a switch of variant",
-          "[integration][shadowing][!shouldfail]") {
-  // KNOWN SHIM BUG (see the report of issue 12's probes): GL resets subroutine uniforms at
-  // glUseProgram, so an app selects after binding and may then draw for frames without either
-  // call. A switch of configuration at a swap rebinds the program through glUseProgram
-  // (interpose/state/contexts.cpp apply_configuration -> gl_programs.cpp bind_program), which
-  // resets the selections behind the app's back: from the next frame the variant (and, after a
-  // switch back, the app's program) runs subroutine index 0 and glGetUniformSubroutineuiv
-  // answers 0. glUniformSubroutinesuiv is not intercepted, so nothing restores them. Level 2's
-  // variant has the app's subroutine indices: only the reset is at stake here.
+          "[integration][shadowing]") {
+  // GL resets subroutine uniforms at glUseProgram, so an app selects after binding and may then
+  // draw for frames without either call. A switch of configuration at a swap rebinds the
+  // program through glUseProgram (interpose/state/contexts.cpp apply_configuration ->
+  // gl_programs.cpp bind_program); the shim keeps the app's last selection per context and
+  // stage and re-applies it right after (interpose/apply/subroutines.cpp), so the variant, and
+  // the app's program after a switch back, run the function the app selected, and
+  // glGetUniformSubroutineuiv answers the app's index. Level 2's variant has the app's
+  // subroutine indices: only the reset is at stake here.
   const Forced forced{{0, 2}};
   const Run r = run_three_ways("probe_subroutines", "subroutines", forced, 6, 6, level_is_mark);
   CHECK(count_lines_with(r.result.err, "glbudget:") == 0);
@@ -208,12 +208,13 @@ TEST_CASE("shadowing 1c: subroutine selections survive a switch of variant",
 }
 
 TEST_CASE("shadowing 1d: subroutine indices the app selects reach a variant whose indices differ",
-          "[integration][shadowing][!shouldfail]") {
-  // KNOWN SHIM BUG (see the report of issue 12's probes): subroutine indices, like uniform
-  // locations, belong to a program; level 1's variant declares one more subroutine function, so
-  // its indices differ from the app's. glUniformSubroutinesuiv goes unchanged to whichever
-  // program is bound (it is not intercepted), so with the variant bound from the first frame
-  // the app's "pick_b" (index 1) selects the variant's pick_a, and "pick_c" its pick_b.
+          "[integration][shadowing]") {
+  // Subroutine indices, like uniform locations, belong to a program; level 1's variant declares
+  // one more subroutine function, so its indices differ from the app's. With the variant bound
+  // from the first frame, the app's glUniformSubroutinesuiv reaches it translated by name
+  // (tables built with the variant, interpose/apply/variants.cpp): the app's "pick_b" (index 1)
+  // selects the variant's pick_b (index 2), and glGetUniformSubroutineuiv answers the app's
+  // indices.
   const Forced forced{{1}};
   const Run r = run_probe("probe_subroutines", Mode::shadowed, "subroutines", forced, 6);
   INFO(r.result.out << r.result.err);

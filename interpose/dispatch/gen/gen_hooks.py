@@ -35,6 +35,7 @@ CUSTOM = [
     'glBegin', 'glEnd', 'glNewList', 'glEndList', 'glCallList', 'glCallLists',
     # apply/: variants and render-target scaling
     'glUniformBlockBinding', 'glShaderStorageBlockBinding',
+    'glUniformSubroutinesuiv', 'glGetUniformSubroutineuiv',  # apply/subroutines.cpp
     'glGetIntegerv', 'glGetInteger64v', 'glGetFloatv', 'glGetDoublev', 'glGetBooleanv',
     'glBindFramebuffer', 'glViewport', 'glScissor', 'glTexImage2D', 'glRenderbufferStorage',
     'glRenderbufferStorageMultisample', 'glFramebufferTexture2D', 'glFramebufferTexture',
