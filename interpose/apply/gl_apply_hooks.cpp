@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "configuration.h"
 #include "context_state.h"
 #include "hooks_generated.h"
 #include "hook_table.h"
@@ -24,6 +25,10 @@ void answer_for_app(GLenum pname, T* params) {
   TargetScaler* s = c->targets.get();
   if (pname == GL_CURRENT_PROGRAM && c->bound_variants) {
     params[0] = static_cast<T>(c->program);
+  } else if (pname == GL_NUM_PROGRAM_BINARY_FORMATS && manifest_has_programs()) {
+    // An app that loads cached binaries never gives its sources for the manifest to match: with
+    // no binary format, apps build from source, as after a driver update.
+    params[0] = 0;
   } else if (s && s->window_scaled() && (pname == GL_DRAW_FRAMEBUFFER_BINDING || pname == GL_READ_FRAMEBUFFER_BINDING)) {
     params[0] = static_cast<T>(pname == GL_READ_FRAMEBUFFER_BINDING ? s->app_read_framebuffer() : s->app_draw_framebuffer());
   } else if (s && s->window_scaled() && (pname == GL_DRAW_BUFFER || pname == GL_DRAW_BUFFER0 || pname == GL_READ_BUFFER)) {
