@@ -9,6 +9,7 @@ int replay_main(std::span<char* const> args);
 int costs_main(std::span<char* const> args);
 int run_main(std::span<char* const> args);
 int ssim_main(std::span<char* const> args);
+int calibrate_main(std::span<char* const> args);
 
 namespace {
 constexpr Command table[] = {
@@ -21,6 +22,8 @@ constexpr Command table[] = {
     {"costs", "fit this machine's per-batch, vertex, fragment, instruction and texel costs from frame logs",
      costs_main},
     {"ssim", "the SSIM of two images (same size), as the governor measures quality", ssim_main},
+    {"calibrate", "measure this machine's platform profile (P_m, P_M, B, V, F) with a sensor, in under a minute",
+     calibrate_main},
 };
 }  // namespace
 

@@ -15,6 +15,7 @@
 
 #include "command.hpp"
 #include "glbudget/model/selection.hpp"
+#include "shim_path.hpp"
 
 namespace glbudget::cli {
 
@@ -33,33 +34,6 @@ void print_help() {
       "variant manifest (default $XDG_CONFIG_HOME/glbudget/<exe>.toml). --force draws one\n"
       "configuration (a level per manifest pass). --log writes the per-frame CSV. The exit\n"
       "status is APP's; signals sent to glbudget reach APP.\n");
-}
-
-// The shim: beside this program in the build tree (cli/../interpose), or where `cmake
-// --install` puts it (bin/../lib/<multiarch>/glbudget/).
-std::string find_shim() {
-  if (const char* env = std::getenv("GLBUDGET_SHIM"); env && *env) return env;
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  if (ec) return {};
-  const fs::path dir = self.parent_path();
-  std::vector<fs::path> candidates = {dir / "../interpose/libglbudget.so", dir / "../lib/glbudget/libglbudget.so"};
-#ifdef GLBUDGET_MULTIARCH
-  candidates.insert(candidates.begin() + 1, dir / "../lib" / GLBUDGET_MULTIARCH / "glbudget/libglbudget.so");
-#endif
-  for (const fs::path& p : candidates)
-    if (fs::is_regular_file(p, ec)) return fs::weakly_canonical(p, ec).string();
-  return {};
-}
-
-// $GLBUDGET_PROFILE, else $XDG_CACHE_HOME/glbudget/<sensor>.json (~/.cache when unset).
-std::string default_profile(const std::string& sensor) {
-  std::string base;
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) base = xdg;
-  else if (const char* home = std::getenv("HOME"); home && *home) base = std::string(home) + "/.cache";
-  if (base.empty()) return {};
-  std::string name = sensor.empty() ? "auto" : sensor.substr(0, sensor.find(':'));
-  return base + "/glbudget/" + name + ".json";
 }
 
 pid_t g_child = 0;

@@ -19,6 +19,7 @@
 #include "glbudget/loop/governor.hpp"
 #include "glbudget/model/platform_profile.hpp"
 #include "glbudget/model/selection.hpp"
+#include "glbudget/sensors/registry.hpp"
 #include "options.h"
 
 namespace glbudget {
@@ -57,6 +58,15 @@ std::string default_profile_path() {
   const char* sensor = std::getenv("GLBUDGET_SENSOR");
   std::string name = sensor && *sensor ? sensor : "auto";
   name = name.substr(0, name.find(':'));
+  if (name == "auto") {
+    // The profile is the one `glbudget calibrate` wrote for the sensor auto picks here.
+    std::string error;
+    if (const auto spec = sensors::parse_sensor_spec("auto", error)) {
+      const sensors::OpenResult opened =
+          sensors::open_source(*spec, sensors::SourceEnvironment::from_process_environment());
+      if (opened.source) name = opened.source->name();
+    }
+  }
   return base.empty() ? std::string() : base + "/glbudget/" + name + ".json";
 }
 
