@@ -177,7 +177,9 @@ TEST_CASE("flat regions far from the mean keep full precision", "[quality][ssim]
 }
 
 TEST_CASE("ssim is symmetric and the same on any number of threads", "[quality][ssim]") {
-    const LumaImage a = rendered_like(301, 263), b = with_noise(rendered_like(301, 263, 0.7f), 9.0f, 11);
+    // Large enough for several bands of rows (a band takes at least 64 Ki map pixels) and
+    // several strips of 256 columns.
+    const LumaImage a = rendered_like(701, 503), b = with_noise(rendered_like(701, 503, 0.7f), 9.0f, 11);
     const double one_thread = ssim(a.view(), b.view(), {1, 1});
     CHECK(ssim(b.view(), a.view(), {1, 1}) == one_thread);
     CHECK(ssim_reference(a.view(), b.view()) == ssim_reference(b.view(), a.view()));

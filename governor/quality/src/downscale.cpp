@@ -12,7 +12,9 @@ LumaImage box_downscale(const LumaView& image, int scale, unsigned threads) {
     const int width = (image.width + scale - 1) / scale;
     const int height = (image.height + scale - 1) / scale;
     LumaImage out(width, height);
-    run_in_bands(height, threads, 16, [&](int first, int end) {
+    // Bands of at least 256 Ki input pixels: less and a thread costs more than it saves.
+    const int min_rows = std::max(1, (1 << 18) / std::max(1, image.width * scale));
+    run_in_bands(height, threads, min_rows, [&](int first, int end) {
         std::vector<float> column_sums(static_cast<std::size_t>(image.width));
         for (int y = first; y < end; ++y) {
             const int y0 = y * scale, y1 = std::min(image.height, y0 + scale);

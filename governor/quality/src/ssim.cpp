@@ -16,15 +16,16 @@ namespace glbudget::quality {
 
 namespace {
 
-// A band re-filters the 10 rows above it; below this many map rows more threads do not pay.
-constexpr int kMinBandRows = 64;
+// Less work than this per band (about half a millisecond) and starting a thread does not pay;
+// a band also re-filters the 10 rows above it.
+constexpr int kMinBandPixels = 1 << 16;
 
 double ssim_full_resolution(const LumaView& a, const LumaView& b, unsigned threads) {
     // Below the window the borders matter and the map is tiny: the reference computes it.
     if (!window_fits(a.width, a.height)) return ssim_reference(a, b, 1);
     const int map_width = a.width - 2 * kRadius, map_height = a.height - 2 * kRadius;
     std::vector<double> row_sums(static_cast<std::size_t>(map_height));
-    run_in_bands(map_height, threads, kMinBandRows,
+    run_in_bands(map_height, threads, std::max(2 * kWindow, kMinBandPixels / map_width),
                  [&](int first, int end) { ssim_row_sums(a, b, first, end, row_sums.data()); });
     // Summed in row order whatever the bands were: the same result on any thread count.
     double total = 0.0;
