@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "glbudget/sensors/registry.hpp"
+#include "glbudget/sensors/profile_path.hpp"
 
 namespace glbudget::cli {
 
@@ -23,17 +23,6 @@ std::string first_file(const std::vector<fs::path>& candidates) {
   for (const fs::path& p : candidates)
     if (fs::is_regular_file(p, ec)) return fs::weakly_canonical(p, ec).string();
   return {};
-}
-
-// The kind a sensor spec names; "auto" resolved as the shim resolves it.
-std::string sensor_kind(const std::string& sensor) {
-  const std::string kind = sensor.empty() ? "auto" : sensor.substr(0, sensor.find(':'));
-  if (kind != "auto") return kind;
-  std::string error;
-  const auto spec = sensors::parse_sensor_spec("auto", error);
-  if (!spec) return kind;
-  const sensors::OpenResult opened = sensors::open_source(*spec, sensors::SourceEnvironment::from_process_environment());
-  return opened.source ? std::string(opened.source->name()) : kind;
 }
 
 }  // namespace
@@ -56,12 +45,6 @@ std::string find_helper(const char* name, const char* build_dir, const char* env
   return first_file({dir / ".." / build_dir / name, dir / "../lib/glbudget" / name});
 }
 
-std::string default_profile(const std::string& sensor) {
-  std::string base;
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) base = xdg;
-  else if (const char* home = std::getenv("HOME"); home && *home) base = std::string(home) + "/.cache";
-  if (base.empty()) return {};
-  return base + "/glbudget/" + sensor_kind(sensor) + ".json";
-}
+std::string default_profile(const std::string& sensor) { return sensors::default_profile_path(sensor); }
 
 }  // namespace glbudget::cli

@@ -19,7 +19,7 @@
 #include "glbudget/loop/governor.hpp"
 #include "glbudget/model/platform_profile.hpp"
 #include "glbudget/model/selection.hpp"
-#include "glbudget/sensors/registry.hpp"
+#include "glbudget/sensors/profile_path.hpp"
 #include "options.h"
 
 namespace glbudget {
@@ -52,22 +52,8 @@ manifest::Manifest governed_manifest(const manifest::Manifest& m) {
 
 std::string default_profile_path() {
   if (const char* p = std::getenv("GLBUDGET_PROFILE"); p && *p) return p;
-  std::string base;
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) base = xdg;
-  else if (const char* home = std::getenv("HOME"); home && *home) base = std::string(home) + "/.cache";
   const char* sensor = std::getenv("GLBUDGET_SENSOR");
-  std::string name = sensor && *sensor ? sensor : "auto";
-  name = name.substr(0, name.find(':'));
-  if (name == "auto") {
-    // The profile is the one `glbudget calibrate` wrote for the sensor auto picks here.
-    std::string error;
-    if (const auto spec = sensors::parse_sensor_spec("auto", error)) {
-      const sensors::OpenResult opened =
-          sensors::open_source(*spec, sensors::SourceEnvironment::from_process_environment());
-      if (opened.source) name = opened.source->name();
-    }
-  }
-  return base.empty() ? std::string() : base + "/glbudget/" + name + ".json";
+  return sensors::default_profile_path(sensor ? sensor : "");
 }
 
 struct Frame {

@@ -534,23 +534,19 @@ void TargetScaler::renderbuffers_deleted(GLsizei n, const GLuint* names) {
   for (GLsizei i = 0; names && i < n; ++i) renderbuffers_.erase(names[i]);
 }
 
-void TargetScaler::viewport(GLint x, GLint y, GLsizei w, GLsizei h) {
-  viewport_ = {x, y, w, h};
+void TargetScaler::set_box(std::array<GLint, 4>& box, void(APIENTRYP set)(GLint, GLint, GLsizei, GLsizei), GLint x,
+                           GLint y, GLsizei w, GLsizei h) {
+  box = {x, y, w, h};
   double sx, sy;
   scale_of(draw_fbo_, &sx, &sy);
-  GLint v[4];
-  scale_box(viewport_.data(), sx, sy, v);
-  agl().Viewport(v[0], v[1], v[2], v[3]);
+  GLint b[4];
+  scale_box(box.data(), sx, sy, b);
+  set(b[0], b[1], b[2], b[3]);
 }
 
-void TargetScaler::scissor(GLint x, GLint y, GLsizei w, GLsizei h) {
-  scissor_ = {x, y, w, h};
-  double sx, sy;
-  scale_of(draw_fbo_, &sx, &sy);
-  GLint s[4];
-  scale_box(scissor_.data(), sx, sy, s);
-  agl().Scissor(s[0], s[1], s[2], s[3]);
-}
+void TargetScaler::viewport(GLint x, GLint y, GLsizei w, GLsizei h) { set_box(viewport_, agl().Viewport, x, y, w, h); }
+
+void TargetScaler::scissor(GLint x, GLint y, GLsizei w, GLsizei h) { set_box(scissor_, agl().Scissor, x, y, w, h); }
 
 void TargetScaler::tex_image_2d(GLint level, GLint internal_format, GLsizei* width, GLsizei* height, GLenum format,
                                 GLenum type, bool with_data) {

@@ -124,6 +124,9 @@ class TargetScaler {
   void rescale(GLuint name, Image& image, double scale, bool carry);
   bool cleared_before_drawn(const Framebuffer& f) const;
   void apply_viewport();
+  // Keeps the app's box and gives the driver it scaled to the bound draw framebuffer.
+  void set_box(std::array<GLint, 4>& box, void(APIENTRYP set)(GLint, GLint, GLsizei, GLsizei), GLint x, GLint y,
+               GLsizei w, GLsizei h);
   void scale_of(GLuint fbo, double* sx, double* sy) const;
 
   Levels config_;
