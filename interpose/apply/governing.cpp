@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <condition_variable>
+#include <cstdio>
 #include <cstdlib>
 #include <deque>
 #include <mutex>
@@ -157,6 +158,7 @@ class GovernorThread {
     }
     const loop::Decision d = governor_.on_frame(record);
     for (; notes_said_ < governor_.notes().size(); ++notes_said_) say(governor_.notes()[notes_said_]);
+    if (d.event == loop::Event::select) write_selection();
     publish(d.next);
     for (FrameRow& row : f.rows) {
       row.predicted_w = d.predicted_w;
@@ -165,6 +167,32 @@ class GovernorThread {
       row.decision = loop::event_name(d.event);
       FrameLog::get().push(row);
     }
+  }
+
+  // Every configuration's corrected prediction and estimated error at a selection, beside the
+  // log (`glbudget report` draws them): LOG.selections.csv.
+  void write_selection() {
+    const std::string& log = options().log_path;
+    if (log.empty() || selections_failed_) return;
+    if (!selections_) {
+      selections_ = std::fopen((log + ".selections.csv").c_str(), "w");
+      if (!selections_) {
+        selections_failed_ = true;
+        say("cannot write " + log + ".selections.csv; the selections are not kept");
+        return;
+      }
+      std::fputs("frame,configuration,predicted_w,est_error,selected,budget_w,margin_w\n", selections_);
+    }
+    const loop::Governor::SelectionTable t = governor_.last_selection();
+    const model::ConfigurationSpace& space = governor_.space();
+    for (size_t i = 0; i < t.power_w->size() && i < t.error->size(); ++i) {
+      const model::Configuration c = space.decode(i);
+      std::string text;
+      for (size_t p = 0; p + 1 < c.size(); ++p) text += (p ? ":" : "") + std::to_string(c[p]);
+      std::fprintf(selections_, "%llu,%s,%.4f,%.6f,%d,%.4f,%.4f\n", static_cast<unsigned long long>(t.frame),
+                   text.c_str(), (*t.power_w)[i], (*t.error)[i], i == t.chosen ? 1 : 0, t.budget_w, t.margin_w);
+    }
+    std::fflush(selections_);
   }
 
   void publish(const model::Configuration& next) {
@@ -186,6 +214,8 @@ class GovernorThread {
   std::mutex names_mu_;
   std::unordered_map<PassId, int> pass_of_program_;
   size_t notes_said_ = 0;
+  std::FILE* selections_ = nullptr;
+  bool selections_failed_ = false;
 };
 
 GovernorThread* g_thread = nullptr;  // never destroyed: hooks may run during exit
@@ -213,6 +243,7 @@ bool governor_start() {
     if (settings.power.kind == model::Budget::Kind::Off && !settings.error_budget) return;
     settings.select_frames = o.select_frames;
     settings.transition_s = o.transition_s;
+    settings.feedback.enabled = o.feedback;
     const std::string path = default_profile_path();
     std::optional<model::PlatformProfile> profile;
     if (!path.empty()) profile = model::load_platform_profile(path);

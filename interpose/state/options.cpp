@@ -72,6 +72,10 @@ Options parse_options(char** env, std::string* warnings) {
         warn(warnings, "GLBUDGET_TRANSITION_S='" + value + "' is not a number of seconds in [0, 3600]; 2");
       else
         o.transition_s = t;
+    } else if (name == "GLBUDGET_FEEDBACK") {
+      if (value == "1" || value == "on") o.feedback = true;
+      else if (value == "0" || value == "off") o.feedback = false;
+      else warn(warnings, "GLBUDGET_FEEDBACK='" + value + "' is not 0/1/on/off; on");
     } else if (name == "GLBUDGET_FORCE_EVERY") {
       errno = 0;
       char* end = nullptr;

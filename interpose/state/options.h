@@ -21,6 +21,7 @@ struct Options {
   std::string error;        // GLBUDGET_ERROR: the dual problem's error budget
   size_t select_frames = 200;  // GLBUDGET_SELECT_FRAMES: frames between selections
   double transition_s = 2.0;   // GLBUDGET_TRANSITION_S: the temporal filter's length
+  bool feedback = true;        // GLBUDGET_FEEDBACK=0: no correction from measured power (the paper's open loop)
 };
 
 const Options& options();

@@ -64,3 +64,26 @@ TEST_CASE("selection survives NaN, ties and a flat power range", "[model][select
     CHECK(select_configuration(flat, errors, *parse_budget("0%")).index == 2);
     CHECK(select_configuration(flat, errors, *parse_budget("0%")).within_budget);
 }
+
+TEST_CASE("a margin keeps the selection that far under the budget while anything is", "[selection][extremes]") {
+    const std::vector<double> power{30.0, 25.0, 21.0, 15.0};
+    const std::vector<double> error{0.0, 0.01, 0.02, 0.05};
+    const Budget watts{Budget::Kind::Watts, 26.0};
+    // No margin: 25 W fits 26 W. A 2-W margin: 25 W is too close, 21 W is taken.
+    CHECK(select_configuration(power, error, watts).index == 1);
+    const Selection margined = select_configuration(power, error, watts, 2.0);
+    CHECK(margined.index == 2);
+    CHECK(margined.budget_w == 26.0);
+    CHECK(margined.within_budget);
+    // A margin wider than the room under the budget: the budget itself decides.
+    const Selection wide = select_configuration(power, error, Budget{Budget::Kind::Watts, 16.0}, 5.0);
+    CHECK(wide.index == 3);
+    CHECK(wide.within_budget);
+    // Nothing fits either way: the cheapest, said to be over.
+    const Selection none = select_configuration(power, error, Budget{Budget::Kind::Watts, 10.0}, 1.0);
+    CHECK(none.index == 3);
+    CHECK_FALSE(none.within_budget);
+    // NaN and infinite margins are no margin.
+    CHECK(select_configuration(power, error, watts, std::nan("")).index == 1);
+    CHECK(select_configuration(power, error, watts, std::numeric_limits<double>::infinity()).index == 1);
+}

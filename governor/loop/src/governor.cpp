@@ -57,7 +57,8 @@ Governor::Governor(model::PlatformProfile profile, model::ConfigurationSpace spa
     : space_(std::move(space)),
       errors_(std::move(errors)),
       settings_(settings),
-      model_(profile, space_, settings.fit, settings.history) {
+      model_(profile, space_, settings.fit, settings.history),
+      feedback_(settings.feedback) {
     if (!errors_.fits(space_)) {
         notes_.push_back("the error table does not match the configuration space (" +
                          std::to_string(errors_.pass_count()) + " passes for " + std::to_string(space_.pass_count()) +
@@ -146,7 +147,7 @@ model::OnlineFitter::Event Governor::see(const FrameRecord& record, Decision& de
 
 bool Governor::selection_due(const FrameRecord& record) const {
     if (!model_.fitted() || record.probe) return false;
-    if (selections_ == 0) return true;
+    if (selections_ == 0 || reselect_now_) return true;
     // Beyond the paper: when the model predicts the chosen configuration over the budget for
     // reselect_over_budget_frames frames in a row (the scene got heavier, or a refit learnt that it costs
     // more), select again at once instead of waiting out select_frames over budget.
@@ -166,13 +167,22 @@ void Governor::select(const FrameRecord& record) {
     times_.estimate_errors.add(microseconds_since(start));
 
     start = Clock::now();
+    margin_w_ = 0.0;
+    if (aim_ == Aim::power) {
+        feedback_.correct(space_, power_);
+        // 100 % of the range admits the best configuration by definition: no margin below it.
+        const bool whole_range = settings_.power.kind == model::Budget::Kind::ShareOfRange && settings_.power.value >= 1.0;
+        margin_w_ = whole_range ? 0.0 : feedback_.margin_w();
+    }
     const model::Selection selection = aim_ == Aim::power
-                                           ? model::select_configuration(power_, error_, settings_.power)
+                                           ? model::select_configuration(power_, error_, settings_.power, margin_w_)
                                            : select_within_error(power_, error_, *settings_.error_budget);
     times_.select.add(microseconds_since(start));
 
     ++selections_;
+    reselect_now_ = false;
     last_selection_frame_ = record.frame;
+    chosen_index_ = selection.index;
     budget_w_ = selection.budget_w;
     within_budget_ = selection.within_budget;
     model::Configuration chosen = space_.decode(selection.index);
@@ -195,6 +205,20 @@ void Governor::hold(const FrameRecord& record) {
     notes_.push_back("no power measurement for " + std::to_string(missing_power_) + " frames (frame " +
                      std::to_string(record.frame) + "): holding configuration " + configuration_text(current_) +
                      " until power returns");
+}
+
+// Windows of measured power at the settled target correct its prediction; one measured over
+// the budget asks for a selection at once. The frame's prediction is given corrected.
+void Governor::feed_back(const FrameRecord& record, Decision& decision) {
+    if (record.probe || !space_.contains(record.configuration)) return;
+    const bool settled = aim_ == Aim::power && selections_ > 0 && !transitioning_ && !holding_ &&
+                         record.configuration == target_;
+    if (!settled) {
+        feedback_.interrupt();
+    } else if (const auto window = feedback_.add(record.configuration, record.time_ns, record.power_w, decision.predicted_w)) {
+        if (std::isfinite(budget_w_) && window->measured_w > budget_w_) reselect_now_ = true;
+    }
+    if (std::isfinite(decision.predicted_w)) decision.predicted_w += feedback_.bias(record.configuration);
 }
 
 Decision Governor::on_frame(const FrameRecord& record) {
@@ -227,6 +251,7 @@ Decision Governor::on_frame(const FrameRecord& record) {
     }
 
     if (!holding_) {
+        feed_back(record, decision);
         const bool over = !record.probe && !transitioning_ && aim_ == Aim::power && std::isfinite(budget_w_) &&
                           record.configuration == target_ && decision.predicted_w > budget_w_;
         if (!record.probe) over_budget_frames_ = over ? over_budget_frames_ + 1 : 0;

@@ -72,29 +72,36 @@ double budget_watts(const Budget& budget, std::span<const double> predicted_powe
 }
 
 Selection select_configuration(std::span<const double> predicted_power_w,
-                               std::span<const double> error, const Budget& budget) {
+                               std::span<const double> error, const Budget& budget, double margin_w) {
     Selection selection;
     selection.budget_w = budget_watts(budget, predicted_power_w);
     const auto rank = [](double e) { return std::isnan(e) ? std::numeric_limits<double>::infinity() : e; };
 
-    bool found = false;
+    const auto lowest_error_within = [&](double limit, std::size_t* index) {
+        bool found = false;
+        for (std::size_t i = 0; i < predicted_power_w.size(); ++i) {
+            const double p = predicted_power_w[i];
+            if (!(p <= limit)) continue;
+            const double e = rank(error[i]);
+            const double best_e = rank(error[*index]);
+            if (!found || e < best_e || (e == best_e && p < predicted_power_w[*index])) {
+                *index = i;
+                found = true;
+            }
+        }
+        return found;
+    };
+    const bool margined = std::isfinite(margin_w) && margin_w > 0.0 && std::isfinite(selection.budget_w);
+    if (margined && lowest_error_within(selection.budget_w - margin_w, &selection.index)) return selection;
+    if (lowest_error_within(selection.budget_w, &selection.index)) return selection;
+
     std::size_t cheapest = 0;
     for (std::size_t i = 0; i < predicted_power_w.size(); ++i) {
         const double p = predicted_power_w[i];
-        if (std::isnan(p)) continue;
-        if (std::isnan(predicted_power_w[cheapest]) || p < predicted_power_w[cheapest]) cheapest = i;
-        if (!(p <= selection.budget_w)) continue;
-        const double e = rank(error[i]);
-        const double best_e = rank(error[selection.index]);
-        if (!found || e < best_e || (e == best_e && p < predicted_power_w[selection.index])) {
-            selection.index = i;
-            found = true;
-        }
+        if (!std::isnan(p) && (std::isnan(predicted_power_w[cheapest]) || p < predicted_power_w[cheapest])) cheapest = i;
     }
-    if (!found) {
-        selection.index = cheapest;
-        selection.within_budget = false;
-    }
+    selection.index = cheapest;
+    selection.within_budget = false;
     return selection;
 }
 

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "glbudget/loop/error_table.hpp"
+#include "glbudget/loop/power_feedback.hpp"
 #include "glbudget/loop/step_times.hpp"
 #include "glbudget/model/configuration_space.hpp"
 #include "glbudget/model/online_fitter.hpp"
@@ -34,6 +35,10 @@ struct GovernorSettings {
     // Beyond the paper: select again at once after this many frames in a row whose chosen
     // configuration the model predicts over the budget (0: only every select_frames).
     std::size_t reselect_over_budget_frames = 10;
+    // Beyond the paper: each configuration's measured power corrects its prediction, a margin
+    // from the measured spread keeps windows within a power budget, and a window measured
+    // over the budget selects again at once (power_feedback.hpp).
+    FeedbackSettings feedback = {};
     model::FitSettings fit = {};
     model::HistorySettings history = {};
 };
@@ -64,7 +69,8 @@ const char* event_name(Event event);  // "none", "fit", ...
 struct Decision {
     model::Configuration next;  // what to draw from the next frame on
     Event event = Event::none;
-    // The frame's own predicted power: NaN before the first fit and for probe frames.
+    // The frame's own predicted power, corrected by what was measured of its configuration
+    // (power_feedback.hpp): NaN before the first fit.
     double predicted_w = std::numeric_limits<double>::quiet_NaN();
     // The last selection's power limit; +inf without a power budget, and before the first
     // selection the budget's watts (NaN for a share of the range, which needs predictions).
@@ -91,6 +97,20 @@ public:
     const ErrorTable& errors() const { return errors_; }
     const model::RunTimeModel& model() const { return model_; }
     const model::ConfigurationSpace& space() const { return space_; }
+    const PowerFeedback& feedback() const { return feedback_; }
+    // The last selection: every configuration's predicted power (corrected) and estimated
+    // error, by ConfigurationSpace index, and the margin kept under the budget.
+    struct SelectionTable {
+        std::uint64_t frame = 0;
+        std::size_t chosen = 0;
+        double budget_w = 0.0;
+        double margin_w = 0.0;
+        const std::vector<double>* power_w = nullptr;
+        const std::vector<double>* error = nullptr;
+    };
+    SelectionTable last_selection() const {
+        return {last_selection_frame_, chosen_index_, budget_w_, margin_w_, &power_, &error_};
+    }
     const GovernorSettings& settings() const { return settings_; }
 
     // A power or error budget is in force; false: observe only, nothing is ever changed.
@@ -109,6 +129,7 @@ private:
     bool selection_due(const FrameRecord& record) const;
     void select(const FrameRecord& record);
     void hold(const FrameRecord& record);
+    void feed_back(const FrameRecord& record, Decision& decision);
     double initial_budget_w() const;
 
     model::ConfigurationSpace space_;
@@ -130,7 +151,11 @@ private:
     std::size_t over_budget_frames_ = 0;
     std::uint64_t last_selection_frame_ = 0;
     double budget_w_ = 0.0;
+    double margin_w_ = 0.0;
+    std::size_t chosen_index_ = 0;
     bool within_budget_ = true;
+    PowerFeedback feedback_;
+    bool reselect_now_ = false;  // a window was measured over the budget
 
     std::size_t missing_power_ = 0;
     bool holding_ = false;

@@ -32,7 +32,10 @@ struct Selection {
 // Lowest error among configurations with power <= budget (inclusive, so 100% admits the most
 // expensive one and 0% the cheapest); ties go to lower power. NaN errors rank last, NaN powers
 // are never admitted. Requires predicted_power_w.size() == error.size() > 0.
+// margin_w > 0 admits only power <= budget - margin while any configuration is that far
+// under the budget, and falls back to the budget itself when none is (budget_w is the
+// budget either way).
 Selection select_configuration(std::span<const double> predicted_power_w,
-                               std::span<const double> error, const Budget& budget);
+                               std::span<const double> error, const Budget& budget, double margin_w = 0.0);
 
 }  // namespace glbudget::model
