@@ -16,6 +16,7 @@
 #include "command.hpp"
 #include "glbudget/quality/luma_image.hpp"
 #include "glbudget/quality/ssim.hpp"
+#include "ssim_gpu.hpp"
 
 namespace glbudget::cli {
 
@@ -23,7 +24,7 @@ namespace {
 
 using namespace glbudget::quality;
 
-constexpr const char* kUsage = "usage: glbudget ssim A.png B.png [--scale 1|2|4]";
+constexpr const char* kUsage = "usage: glbudget ssim A.png B.png [--scale 1|2|4] [--gpu]";
 
 void print_help() {
     std::printf("%s\n\n", kUsage);
@@ -33,8 +34,9 @@ void print_help() {
         "al. 2004 define it and skimage computes it: Rec. 709 luma of the 8-bit values (range 255),\n"
         "11x11 Gaussian window of sigma 1.5, K1 0.01, K2 0.03, the mean over the map less a\n"
         "5-pixel border. --scale 2 or 4 first box-averages 2x2 or 4x4 blocks: faster, and a coarser\n"
-        "measure (pixel noise and aliasing count less, banding and missing effects more). See\n"
-        "docs/ssim.md.\n");
+        "measure (pixel noise and aliasing count less, banding and missing effects more).\n"
+        "--gpu computes the same SSIM with the shim's compute shaders (GpuSsim) in an EGL\n"
+        "surfaceless OpenGL 4.3 (or OpenGL ES 3.1) context instead of on the CPU. See docs/ssim.md.\n");
 }
 
 // One line: OpenImageIO's messages may run over several.
@@ -50,7 +52,7 @@ int fail(const std::string& message) {
     return 2;
 }
 
-std::optional<LumaImage> read_luma(const std::string& path, std::string& error) {
+std::optional<DecodedImage> read_image(const std::string& path, std::string& error) {
     // Colour as stored: PNG readers would otherwise premultiply it by alpha.
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
@@ -60,20 +62,30 @@ std::optional<LumaImage> read_luma(const std::string& path, std::string& error) 
         return std::nullopt;
     }
     const OIIO::ImageSpec& spec = input->spec();
-    const int channels = spec.nchannels >= 3 ? 3 : 1;  // RGB, or grey; alpha is not read
-    const std::size_t count = static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) * channels;
-    std::optional<LumaImage> luma;
+    DecodedImage image;
+    image.width = spec.width;
+    image.height = spec.height;
+    image.channels = spec.nchannels >= 3 ? 3 : 1;  // RGB, or grey; alpha is not read
+    const std::size_t count =
+        static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) * image.channels;
+    bool read = false;
     if (spec.format == OIIO::TypeDesc::UINT8) {
-        std::vector<std::uint8_t> pixels(count);
-        if (input->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, pixels.data()))
-            luma = luma_from_8bit(pixels.data(), spec.width, spec.height, channels);
+        image.bytes.resize(count);
+        read = input->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::UINT8, image.bytes.data());
     } else {
-        std::vector<float> pixels(count);
-        if (input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
-            luma = luma_from_unit_float(pixels.data(), spec.width, spec.height, channels);
+        image.floats.resize(count);
+        read = input->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::FLOAT, image.floats.data());
     }
-    if (!luma) error = "cannot read " + path + ": " + input->geterror();
-    return luma;
+    if (!read) {
+        error = "cannot read " + path + ": " + input->geterror();
+        return std::nullopt;
+    }
+    return image;
+}
+
+LumaImage luma_of(const DecodedImage& image) {
+    return image.floats.empty() ? luma_from_8bit(image.bytes.data(), image.width, image.height, image.channels)
+                                : luma_from_unit_float(image.floats.data(), image.width, image.height, image.channels);
 }
 
 }  // namespace
@@ -81,6 +93,7 @@ std::optional<LumaImage> read_luma(const std::string& path, std::string& error) 
 int ssim_main(std::span<char* const> args) {
     std::vector<std::string> paths;
     int scale = 1;
+    bool gpu = false;
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string_view arg = args[i];
         if (arg == "--help" || arg == "-h") {
@@ -93,6 +106,8 @@ int ssim_main(std::span<char* const> args) {
             const auto [end, status] = std::from_chars(value.data(), value.data() + value.size(), scale);
             if (status != std::errc() || end != value.data() + value.size() || !is_valid_scale(scale))
                 return fail("--scale must be 1, 2 or 4, not \"" + std::string(value) + "\"");
+        } else if (arg == "--gpu") {
+            gpu = true;
         } else if (arg.starts_with("-") && arg.size() > 1) {
             return fail("unknown option \"" + std::string(arg) + "\"; " + kUsage);
         } else {
@@ -101,15 +116,16 @@ int ssim_main(std::span<char* const> args) {
     }
     if (paths.size() != 2) return fail(std::string("ssim needs two images; ") + kUsage);
     std::string error;
-    const auto a = read_luma(paths[0], error);
+    const auto a = read_image(paths[0], error);
     if (!a) return fail(error);
-    const auto b = read_luma(paths[1], error);
+    const auto b = read_image(paths[1], error);
     if (!b) return fail(error);
     if (a->width != b->width || a->height != b->height)
         return fail(paths[0] + " is " + std::to_string(a->width) + "x" + std::to_string(a->height) + " but " +
                     paths[1] + " is " + std::to_string(b->width) + "x" + std::to_string(b->height));
     try {
-        std::printf("%.9f\n", ssim(a->view(), b->view(), {scale, 0}));
+        const double value = gpu ? ssim_on_gpu(*a, *b, scale) : ssim(luma_of(*a).view(), luma_of(*b).view(), {scale, 0});
+        std::printf("%.9f\n", value);
     } catch (const std::exception& e) {
         return fail(e.what());
     }

@@ -197,7 +197,6 @@ def check_bad_input(glbudget, directory, a, b_other_size):
         ("--scale x", [a, a, "--scale", "x"]),
         ("--scale without value", [a, a, "--scale"]),
         ("one image", [a]),
-        ("--gpu (not yet)", [a, a, "--gpu"]),
     ]
     failures = 0
     print("\nbad input: exit status 2 and one line `glbudget: ...` on stderr")
