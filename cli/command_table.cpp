@@ -10,6 +10,7 @@ int costs_main(std::span<char* const> args);
 int run_main(std::span<char* const> args);
 int ssim_main(std::span<char* const> args);
 int calibrate_main(std::span<char* const> args);
+int report_main(std::span<char* const> args);
 
 namespace {
 constexpr Command table[] = {
@@ -24,6 +25,7 @@ constexpr Command table[] = {
     {"ssim", "the SSIM of two images (same size), as the governor measures quality", ssim_main},
     {"calibrate", "measure this machine's platform profile (P_m, P_M, B, V, F) with a sensor, in under a minute",
      calibrate_main},
+    {"report", "draw a governed run from its log: glbudget report run.csv [--html out.html] [--png DIR]", report_main},
 };
 }  // namespace
 
