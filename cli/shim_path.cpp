@@ -42,7 +42,11 @@ std::string find_helper(const char* name, const char* build_dir, const char* env
   if (const char* env = std::getenv(env_variable); env && *env) return env;
   const fs::path dir = own_directory();
   if (dir.empty()) return {};
-  return first_file({dir / ".." / build_dir / name, dir / "../lib/glbudget" / name});
+  std::vector<fs::path> candidates = {dir / ".." / build_dir / name, dir / "../lib/glbudget" / name};
+#ifdef GLBUDGET_MULTIARCH
+  candidates.insert(candidates.begin() + 1, dir / "../lib" / GLBUDGET_MULTIARCH / "glbudget" / name);
+#endif
+  return first_file(candidates);
 }
 
 std::string default_profile(const std::string& sensor) { return sensors::default_profile_path(sensor); }
