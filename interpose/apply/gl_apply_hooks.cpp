@@ -8,6 +8,7 @@
 #include "hooks_generated.h"
 #include "hook_table.h"
 #include "render_targets.h"
+#include "probes.h"
 
 namespace glbudget {
 
@@ -146,34 +147,46 @@ void handle_glBlitFramebuffer(pfn_glBlitFramebuffer real, GLint srcX0, GLint src
                               GLint dstX0, GLint dstY0, GLint dstX1, GLint dstY1, GLbitfield mask, GLenum filter) {
   TargetScaler* s = scaler();
   if (!s) return real(srcX0, srcY0, srcX1, srcY1, dstX0, dstY0, dstX1, dstY1, mask, filter);
+  const GLint app_src[4] = {srcX0, srcY0, srcX1, srcY1}, app_dst[4] = {dstX0, dstY0, dstX1, dstY1};
   GLint src[4] = {srcX0, srcY0, srcX1, srcY1}, dst[4] = {dstX0, dstY0, dstX1, dstY1};
   s->blit_rectangles(s->app_read_framebuffer(), s->app_draw_framebuffer(), src, dst);
+  if (ProbeFrames* p = t_probe) p->prepare();
   real(src[0], src[1], src[2], src[3], dst[0], dst[1], dst[2], dst[3], mask, filter);
+  if (ProbeFrames* p = t_probe) p->blit(app_src, app_dst, mask, filter);
 }
 
-void handle_glClear(pfn_glClear real, GLbitfield mask) {
+namespace {
+// A clear of the app's, and on probe frames the same clear of each stream's shadow.
+template <typename F>
+void clear_with_probes(GLbitfield mask, F&& clear) {
   if (TargetScaler* s = scaler()) s->on_clear(mask);
-  real(mask);
+  ProbeFrames* p = t_probe;
+  if (p) p->prepare();
+  clear();
+  if (p) p->clear(clear);
+}
+}  // namespace
+
+void handle_glClear(pfn_glClear real, GLbitfield mask) {
+  clear_with_probes(mask, [&] { real(mask); });
 }
 
 void handle_glClearBufferfv(pfn_glClearBufferfv real, GLenum buffer, GLint drawbuffer, const GLfloat* value) {
-  if (TargetScaler* s = scaler()) s->on_clear(buffer == GL_COLOR ? GL_COLOR_BUFFER_BIT : GL_DEPTH_BUFFER_BIT);
-  real(buffer, drawbuffer, value);
+  clear_with_probes(buffer == GL_COLOR ? GL_COLOR_BUFFER_BIT : GL_DEPTH_BUFFER_BIT,
+                    [&] { real(buffer, drawbuffer, value); });
 }
 
 void handle_glClearBufferiv(pfn_glClearBufferiv real, GLenum buffer, GLint drawbuffer, const GLint* value) {
-  if (TargetScaler* s = scaler()) s->on_clear(buffer == GL_COLOR ? GL_COLOR_BUFFER_BIT : GL_STENCIL_BUFFER_BIT);
-  real(buffer, drawbuffer, value);
+  clear_with_probes(buffer == GL_COLOR ? GL_COLOR_BUFFER_BIT : GL_STENCIL_BUFFER_BIT,
+                    [&] { real(buffer, drawbuffer, value); });
 }
 
 void handle_glClearBufferuiv(pfn_glClearBufferuiv real, GLenum buffer, GLint drawbuffer, const GLuint* value) {
-  if (TargetScaler* s = scaler()) s->on_clear(GL_COLOR_BUFFER_BIT);
-  real(buffer, drawbuffer, value);
+  clear_with_probes(GL_COLOR_BUFFER_BIT, [&] { real(buffer, drawbuffer, value); });
 }
 
 void handle_glClearBufferfi(pfn_glClearBufferfi real, GLenum buffer, GLint drawbuffer, GLfloat depth, GLint stencil) {
-  if (TargetScaler* s = scaler()) s->on_clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
-  real(buffer, drawbuffer, depth, stencil);
+  clear_with_probes(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, [&] { real(buffer, drawbuffer, depth, stencil); });
 }
 
 void handle_glReadPixels(pfn_glReadPixels real, GLint x, GLint y, GLsizei width, GLsizei height, GLenum format,

@@ -4,6 +4,7 @@
 #include <pthread.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <condition_variable>
@@ -22,6 +23,9 @@
 #include "glbudget/model/selection.hpp"
 #include "glbudget/sensors/profile_path.hpp"
 #include "options.h"
+#include "probes.h"
+#include "glbudget/quality/luma_image.hpp"
+#include "glbudget/quality/ssim.hpp"
 
 namespace glbudget {
 
@@ -80,6 +84,17 @@ class GovernorThread {
     wake_.notify_one();
   }
 
+  void push_probe(ProbeCapture&& capture) {
+    thread_local std::vector<ProbeCapture> waiting;
+    waiting.push_back(std::move(capture));
+    std::unique_lock lock(mu_, std::try_to_lock);
+    if (!lock.owns_lock()) return;
+    for (ProbeCapture& c : waiting) probes_.push_back(std::move(c));
+    waiting.clear();
+    lock.unlock();
+    wake_.notify_one();
+  }
+
   bool levels(Levels* out) const {
     const uint64_t packed = decision_.load(std::memory_order_acquire);
     if (!(packed >> 63)) return false;
@@ -110,15 +125,85 @@ class GovernorThread {
 
   void run() {
     std::deque<Frame> work;
+    std::deque<ProbeCapture> probes;
     for (;;) {
       {
         std::unique_lock lock(mu_);
-        wake_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+        wake_.wait(lock, [&] { return stopping_ || !queue_.empty() || !probes_.empty(); });
         work.swap(queue_);
-        if (work.empty() && stopping_) return;
+        probes.swap(probes_);
+        if (work.empty() && probes.empty() && stopping_) {
+          flush_held(UINT64_MAX);
+          return;
+        }
       }
+      for (ProbeCapture& p : probes) measure(p);
+      probes.clear();
       for (Frame& f : work) decide(f);
       work.clear();
+    }
+  }
+
+  // A probe frame's errors (paper §6.2): the shown frame against s0, and each s_i^lmax
+  // against s0. e_i(lmax) is measured; the levels between take the manifest's ratio to it
+  // where both have an `error`, else l / lmax of it. Repeated probes of a pass average.
+  void measure(const ProbeCapture& p) {
+    if (p.images.size() != p.streams.size() + 1 || p.width <= 0 || p.height <= 0) return;
+    std::vector<quality::LumaImage> luma;
+    for (const std::vector<uint8_t>& image : p.images) {
+      if (image.size() != static_cast<size_t>(p.width) * p.height * 4) return;
+      luma.push_back(quality::luma_from_8bit(image.data(), p.width, p.height, 4));
+    }
+    quality::SsimOptions options;
+    options.scale = scale_.load(std::memory_order_relaxed);
+    options.threads = 1;  // beside the app's render threads
+    auto error = [&](size_t a, size_t b) { return 1.0 - quality::ssim(luma[a].view(), luma[b].view(), options); };
+    size_t best = 0;  // the image of s0: the shown one unless a stream drew it
+    for (size_t s = 0; s < p.streams.size(); ++s) {
+      bool all_best = true;
+      for (int i = 0; i < p.streams[s].count; ++i) all_best = all_best && p.streams[s].level[i] == 0;
+      if (all_best) best = s + 1;
+    }
+    shown_error_[p.frame] = best == 0 ? 0.0 : error(0, best);
+    for (size_t s = 0; s < p.streams.size(); ++s) {
+      if (s + 1 == best) continue;
+      int pass = -1;
+      for (int i = 0; i < p.streams[s].count; ++i)
+        if (p.streams[s].level[i] != 0) pass = pass < 0 ? i : -2;
+      if (pass < 0 || static_cast<size_t>(pass) >= manifest_.passes.size()) continue;
+      const manifest::Pass& mp = manifest_.passes[static_cast<size_t>(pass)];
+      const int lmax = static_cast<int>(mp.levels.size()) - 1;
+      if (p.streams[s].level[pass] != lmax) continue;
+      double e = error(best, s + 1);
+      auto [it, first] = measured_.try_emplace(pass, e);
+      if (!first) it->second = e = 0.5 * (it->second + e);
+      loop::ErrorTable& table = governor_.errors();
+      table.set(static_cast<size_t>(pass), lmax, e);
+      const std::optional<double> top = mp.levels[static_cast<size_t>(lmax)].error;
+      for (int l = 1; l < lmax; ++l) {
+        const std::optional<double> own = mp.levels[static_cast<size_t>(l)].error;
+        const double k = own && top && *top > 0.0 ? std::clamp(*own / *top, 0.0, 1.0) : static_cast<double>(l) / lmax;
+        table.set(static_cast<size_t>(pass), l, k * e);
+      }
+    }
+    flush_held(0);
+  }
+
+  // Rows of probe frames wait (a few frames at most) for their measured error.
+  void flush_held(uint64_t up_to_frame) {
+    for (auto it = held_.begin(); it != held_.end();) {
+      auto found = shown_error_.find(it->frame);
+      const bool known = found != shown_error_.end();
+      if (!known && it->frame >= up_to_frame) {
+        ++it;
+        continue;
+      }
+      for (FrameRow& row : it->rows) {
+        if (known) row.probe_error = found->second;
+        FrameLog::get().push(row);
+      }
+      if (known) shown_error_.erase(found);
+      it = held_.erase(it);
     }
   }
 
@@ -135,6 +220,7 @@ class GovernorThread {
     record.frame = first.frame;
     record.time_ns = first.time_ns;
     record.power_w = first.energy.valid ? first.energy.mean_power_w : std::nan("");
+    record.probe = first.probe;
     // The shim's levels ("0:2:1"), then the "app" pass's only level.
     for (size_t at = 0; at < first.configuration.size();) {
       size_t end = first.configuration.find(':', at);
@@ -157,7 +243,9 @@ class GovernorThread {
       pass->counts.fragments += row.fragments < 0 ? std::nan("") : static_cast<double>(row.fragments);
     }
     const loop::Decision d = governor_.on_frame(record);
-    for (; notes_said_ < governor_.notes().size(); ++notes_said_) say(governor_.notes()[notes_said_]);
+    // Observing only for the probes, the governor has nothing to tell.
+    if (governor_.governing())
+      for (; notes_said_ < governor_.notes().size(); ++notes_said_) say(governor_.notes()[notes_said_]);
     if (d.event == loop::Event::select) write_selection();
     publish(d.next);
     for (FrameRow& row : f.rows) {
@@ -165,8 +253,14 @@ class GovernorThread {
       row.budget_w = d.budget_w;
       row.est_error = d.est_error;
       row.decision = loop::event_name(d.event);
-      FrameLog::get().push(row);
     }
+    if (first.probe) {
+      held_.push_back({first.frame, std::move(f.rows)});
+      flush_held(0);
+    } else {
+      for (FrameRow& row : f.rows) FrameLog::get().push(row);
+    }
+    if (first.frame > kHoldFrames) flush_held(first.frame - kHoldFrames);
   }
 
   // Every configuration's corrected prediction and estimated error at a selection, beside the
@@ -214,12 +308,29 @@ class GovernorThread {
   std::mutex names_mu_;
   std::unordered_map<PassId, int> pass_of_program_;
   size_t notes_said_ = 0;
+  std::deque<ProbeCapture> probes_;
+  struct Held {
+    uint64_t frame = 0;
+    std::vector<FrameRow> rows;
+  };
+  static constexpr uint64_t kHoldFrames = 8;
+  std::vector<Held> held_;
+  std::unordered_map<uint64_t, double> shown_error_;  // by probe frame
+  std::unordered_map<int, double> measured_;          // e_i(lmax) by pass
+  std::atomic<int> scale_{1};  // SSIM scale; set from the render thread
+
+ public:
+  void set_probe_scale(int scale) { scale_ = scale; }
+
+ private:
   std::FILE* selections_ = nullptr;
   bool selections_failed_ = false;
 };
 
 GovernorThread* g_thread = nullptr;  // never destroyed: hooks may run during exit
-std::atomic<bool> g_governing{false};
+std::atomic<bool> g_governing{false};  // frames pass through the thread
+std::atomic<bool> g_steering{false};   // and it chooses their configuration (a budget is set)
+bool g_probe_scale_fixed = false;       // GLBUDGET_PROBE_SCALE given
 thread_local Frame t_building;
 
 }  // namespace
@@ -228,7 +339,10 @@ bool governor_start() {
   static std::once_flag once;
   std::call_once(once, [] {
     const Options& o = options();
-    if (o.power.empty() && o.error.empty()) return;
+    // Quality probes asked for without a budget: the thread measures them and logs, and
+    // changes nothing (the Governor observes).
+    const bool probes_asked = o.probe_period > 0;
+    if (o.power.empty() && o.error.empty() && !probes_asked) return;
     loop::GovernorSettings settings;
     if (!o.power.empty()) {
       std::optional<model::Budget> b = model::parse_budget(o.power);  // says why when it fails
@@ -240,28 +354,40 @@ bool governor_start() {
       if (end != o.error.c_str() && !*end && e >= 0.0 && e <= 1.0) settings.error_budget = e;
       else say("GLBUDGET_ERROR='" + o.error + "' is not an error (1 - SSIM) in [0, 1]; ignored");
     }
-    if (settings.power.kind == model::Budget::Kind::Off && !settings.error_budget) return;
+    const bool budget = settings.power.kind != model::Budget::Kind::Off || settings.error_budget;
+    if (!budget && !probes_asked) return;
     settings.select_frames = o.select_frames;
     settings.transition_s = o.transition_s;
     settings.feedback.enabled = o.feedback;
     const std::string path = default_profile_path();
     std::optional<model::PlatformProfile> profile;
-    if (!path.empty()) profile = model::load_platform_profile(path);
-    if (!profile) {
+    // Observing for the probes alone needs no profile of its own (the model is not used).
+    if (!path.empty() && (budget || std::getenv("GLBUDGET_PROFILE"))) profile = model::load_platform_profile(path);
+    if (!profile && budget) {
       say("no platform profile (" + (path.empty() ? std::string("GLBUDGET_PROFILE is unset") : path) +
           "): the budget is not kept, the app runs unchanged; `glbudget calibrate` writes one");
-      return;
+      if (!probes_asked) return;
+      settings.power = {};
+      settings.error_budget.reset();
     }
+    if (!profile) profile = model::PlatformProfile{};
     manifest::Manifest m = governed_manifest(active_manifest());
     loop::Governor governor(*profile, loop::space_from_manifest(m), loop::errors_from_manifest(m), settings);
+    const bool steering = governor.governing();
     g_thread = new GovernorThread(std::move(governor), std::move(m));
+    if (o.probe_scale) {
+      g_thread->set_probe_scale(o.probe_scale);
+      g_probe_scale_fixed = true;
+    }
     g_thread->start();
     g_governing = true;
+    g_steering = steering;
   });
   return g_governing;
 }
 
 bool governing() { return g_governing.load(std::memory_order_relaxed); }
+bool governor_steering() { return g_steering.load(std::memory_order_relaxed); }
 
 void governor_push(const FrameRow& row) {
   if (!t_building.rows.empty()) {
@@ -277,7 +403,13 @@ void governor_rows_done() {
   t_building = Frame{};
 }
 
-bool governor_levels(Levels* out) { return g_thread && g_thread->levels(out); }
+bool governor_levels(Levels* out) { return g_thread && g_steering && g_thread->levels(out); }
+
+void governor_probe(ProbeCapture&& capture) {
+  if (!g_thread) return;
+  if (!g_probe_scale_fixed) g_thread->set_probe_scale(quality::wang_rule_scale(capture.width, capture.height));
+  g_thread->push_probe(std::move(capture));
+}
 
 void governor_stop() {
   if (!g_thread || !g_governing.exchange(false)) return;

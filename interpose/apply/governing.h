@@ -13,7 +13,8 @@ namespace glbudget {
 // (after one `glbudget:` line saying why, when a budget was asked for) when it cannot govern.
 // Called once, when the first context is made current.
 bool governor_start();
-bool governing();
+bool governing();        // frame rows pass through the governor thread
+bool governor_steering();  // and it chooses the configuration (a budget is in force)
 
 // Render thread: one row of a finished frame; rows of a frame arrive together, and
 // governor_rows_done() follows the last of them.
@@ -28,5 +29,10 @@ void governor_stop();
 
 // A program of the app (by its hash in the frame log) belongs to this manifest pass.
 void note_program_pass(PassId program, int pass);
+
+// Render thread: a probe frame's images, read back (apply/probes.h). The governor thread
+// measures the errors, updates its estimates and logs the shown frame's error with its rows.
+struct ProbeCapture;
+void governor_probe(ProbeCapture&& capture);
 
 }  // namespace glbudget

@@ -98,11 +98,11 @@ void TargetScaler::set_configuration(const Levels& config) {
   apply_viewport();
 }
 
-double TargetScaler::wanted_window_scale() const {
+double TargetScaler::window_scale_for(const Levels& config) const {
   const manifest::Manifest& m = active_manifest();
   double s = 1.0;
   for (size_t q = 0; q < m.passes.size(); ++q) {
-    const int l = config_[static_cast<int>(q)];
+    const int l = config[static_cast<int>(q)];
     if (l < 0 || static_cast<size_t>(l) >= m.passes[q].levels.size()) continue;
     const manifest::Level& level = m.passes[q].levels[static_cast<size_t>(l)];
     for (const manifest::Target& t : level.targets)
@@ -289,12 +289,18 @@ void TargetScaler::bind_window_copy() {
 
 void TargetScaler::unbind_window_copy() { agl().BindFramebuffer(GL_READ_FRAMEBUFFER, window_.fbo); }
 
-double TargetScaler::wanted_scale(GLuint name, const Framebuffer& f) const {
+double TargetScaler::scale_for(GLuint app_fbo, const Levels& config) const {
+  if (app_fbo == 0) return window_scale_for(config);
+  auto it = framebuffers_.find(app_fbo);
+  return it == framebuffers_.end() ? 1.0 : scale_for(app_fbo, it->second, config);
+}
+
+double TargetScaler::scale_for(GLuint name, const Framebuffer& f, const Levels& config) const {
   const manifest::Manifest& m = active_manifest();
   double s = 1.0;
   for (size_t q = 0; q < m.passes.size(); ++q) {
     const manifest::Pass& pass = m.passes[q];
-    const int l = config_[static_cast<int>(q)];
+    const int l = config[static_cast<int>(q)];
     if (l < 0 || static_cast<size_t>(l) >= pass.levels.size()) continue;
     const manifest::Level& level = pass.levels[static_cast<size_t>(l)];
     if (level.scale == 1.0) continue;

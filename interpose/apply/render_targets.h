@@ -78,6 +78,13 @@ class TargetScaler {
   const GLint* app_scissor() const { return scissor_.data(); }
   bool active() const { return any_scaled_; }
 
+  // For quality probes (apply/probes.h): the scale `config` would give the app's framebuffer
+  // (0: the window), the scale its images are stored at now, and the window's size.
+  double scale_for(GLuint app_fbo, const Levels& config) const;
+  void stored_scale(GLuint app_fbo, double* sx, double* sy) const { scale_of(app_fbo, sx, sy); }
+  int window_width() const { return window_width_; }
+  int window_height() const { return window_height_; }
+
  private:
   struct Image {
     bool renderbuffer = false;
@@ -113,12 +120,14 @@ class TargetScaler {
     GLenum color_format = GL_RGBA8;
     bool has_depth = false, checked = false, multisampled = false;
   };
-  double wanted_window_scale() const;
+  double wanted_window_scale() const { return window_scale_for(config_); }
+  double window_scale_for(const Levels& config) const;
   void update_window();
   void release_window();
   void bind_window_copy();
   void unbind_window_copy();
-  double wanted_scale(GLuint name, const Framebuffer& f) const;
+  double wanted_scale(GLuint name, const Framebuffer& f) const { return scale_for(name, f, config_); }
+  double scale_for(GLuint name, const Framebuffer& f, const Levels& config) const;
   void learn_attachments(Framebuffer& f);
   void ensure_scale(GLuint name, Framebuffer& f, bool carry = true);
   void rescale(GLuint name, Image& image, double scale, bool carry);

@@ -15,6 +15,7 @@
 #include "context_state.h"
 #include "frame_log.h"
 #include "options.h"
+#include "probes.h"
 #include "render_targets.h"
 #include "shader_instrumentation.h"
 #include "window_size.h"
@@ -24,7 +25,12 @@ namespace glbudget {
 
 namespace {
 // When governing, rows reach the log through the governor thread, which annotates them.
-void emit_row(const FrameRow& row) {
+// The context whose rows are being emitted, for their probe flag.
+thread_local const ContextState* t_emitting = nullptr;
+
+void emit_row(const FrameRow& in) {
+  FrameRow row = in;
+  row.probe = t_emitting && t_emitting->probes && t_emitting->probes->was_probe_frame(row.frame);
   if (governing()) governor_push(row);
   else FrameLog::get().push(row);
 }
@@ -79,11 +85,13 @@ void pace(ContextState& c, double fps) {
 void flush_pending_frames(ContextState& c, FlushMode mode) {
   if (!c.counter) return;
   InFrameCode guard;
+  t_emitting = &c;
   switch (mode) {
     case FlushMode::kCollect: c.counter->collect(emit_row, PassCounter::Collect::kAvailable); break;
     case FlushMode::kWait: c.counter->collect(emit_row, PassCounter::Collect::kWait); break;
     case FlushMode::kCpuOnly: c.counter->collect(emit_row, PassCounter::Collect::kCpuOnly); break;
   }
+  t_emitting = nullptr;
   governor_rows_done();
 }
 
@@ -137,10 +145,12 @@ void swap_begin() {
   InFrameCode guard;
   const int64_t now = sensors::monotonic_now_ns();
   c->counter->end_frame(++c->frame, now, c->index, frame_energy(now));
+  if (c->probes) c->probes->before_present();
   if (c->targets) {
     c->targets->present();  // the scaled window into the real back buffer
     c->targets->end_frame();
   }
+  if (c->probes) c->probes->after_present();
 }
 
 void swap_end() {
@@ -154,6 +164,7 @@ void swap_end() {
   }
   // A new configuration starts with a frame, never in the middle of one.
   apply_configuration(*c, configuration_for_frame(c->frame + 1));
+  if (c->probes) c->probes->after_swap(c->frame + 1);
 }
 
 void final_flush() {

@@ -41,9 +41,16 @@ int format_row(const FrameRow& r, char* out, int size) {
   } else {
     snprintf(governed, sizeof governed, ",,,");
   }
-  return snprintf(out, size, "%" PRIu64 ",%" PRId64 ",%d,%s,%" PRIu64 ",%s,%s,%s,%s,%s,%" PRIu64 ",%s,%s", r.frame,
+  char probe[40] = "";
+  if (r.probe) {
+    if (std::isfinite(r.probe_error)) snprintf(probe, sizeof probe, "1,%.6f", r.probe_error);
+    else snprintf(probe, sizeof probe, "1,");
+  } else {
+    snprintf(probe, sizeof probe, ",");
+  }
+  return snprintf(out, size, "%" PRIu64 ",%" PRId64 ",%d,%s,%" PRIu64 ",%s,%s,%s,%s,%s,%" PRIu64 ",%s,%s,%s", r.frame,
                   r.time_ns, r.context, pass, r.batches, stat[0], stat[1], stat[2], stat[3], power,
-                  r.energy.dropped_samples, r.configuration.c_str(), governed);
+                  r.energy.dropped_samples, r.configuration.c_str(), governed, probe);
 }
 
 struct FrameLog::Impl {

@@ -33,6 +33,11 @@ struct FrameRow {
   double budget_w = __builtin_nan("");
   double est_error = __builtin_nan("");
   const char* decision = nullptr;
+  // A quality-probe frame (apply/probes.h): drawn a second time for the probes, so its counts
+  // and power are not the frame's own. probe_error: 1 - SSIM of what was shown against the
+  // best configuration, measured on this frame (NaN: not measured).
+  bool probe = false;
+  double probe_error = __builtin_nan("");
 };
 
 }  // namespace glbudget

@@ -50,6 +50,7 @@ struct ProgramInfo {
 };
 
 class TargetScaler;
+class ProbeFrames;
 
 struct ShareGroup {
   std::mutex mu;
@@ -81,6 +82,7 @@ struct ContextState {
   std::array<SubroutineSelection, kShaderStages> subroutines;
   Levels config;        // the configuration this context draws (changes only at its swap)
   std::unique_ptr<TargetScaler> targets;  // render-target scaling (apply/render_targets.h)
+  std::unique_ptr<ProbeFrames> probes;    // quality probes in lockstep (apply/probes.h)
   std::unordered_map<GLuint, std::array<GLuint, 6>> pipeline_stages;  // the app's, per context
   // What the driver holds in each pipeline's stages (a variant where the configuration says).
   std::unordered_map<GLuint, std::array<GLuint, 6>> pipeline_real_stages;

@@ -7,6 +7,7 @@
 #include "gl_calls.h"
 #include "options.h"
 #include "render_targets.h"
+#include "probes.h"
 #include "window_size.h"
 #include "shader_instrumentation.h"
 
@@ -59,6 +60,8 @@ void initialise(ContextState& c, Registry& r) {
   apply_configuration(c, configuration_for_frame(1));
   update_pass(c);
   frame_output_started();
+  // After the governor has started: probes are on by default when it governs.
+  if (c.targets && probe_settings().period > 0) c.probes = std::make_unique<ProbeFrames>(c);
 }
 
 void retire(Registry& r, void* handle, bool is_current_here) {
@@ -89,6 +92,7 @@ void context_made_current(void* handle, void* display, bool egl) {
   if (!handle) {
     t_ctx = nullptr;
     t_draw = nullptr;
+    t_probe = nullptr;
     return;
   }
   ContextState& c = find_or_add(r, handle, display);
@@ -101,6 +105,7 @@ void context_made_current(void* handle, void* display, bool egl) {
   }
   t_ctx = c.initialized ? &c : nullptr;
   t_draw = c.initialized ? c.counter.get() : nullptr;
+  t_probe = t_ctx && t_ctx->probes ? t_ctx->probes->drawing() : nullptr;
 }
 
 void context_will_change(void* handle) {

@@ -19,7 +19,8 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_POWER", "GLBUDGET_ERROR", "GLBUDGET_CONFIG", "GLBUDGET_SENSOR", "GLBUDGET_FPS",
     "GLBUDGET_LOG", "GLBUDGET_DUMP", "GLBUDGET_PROFILE", "GLBUDGET_SENSOR_PERIOD_MS", "GLBUDGET_SYSFS_ROOT",
     "GLBUDGET_NVML_LIBRARY", "GLBUDGET_INSTRUMENT", "GLBUDGET_FORCE", "GLBUDGET_FORCE_EVERY",
-    "GLBUDGET_PROBE_PERIOD", "GLBUDGET_SELECT_FRAMES", "GLBUDGET_TRANSITION_S",
+    "GLBUDGET_PROBE_PERIOD", "GLBUDGET_SELECT_FRAMES", "GLBUDGET_TRANSITION_S", "GLBUDGET_FEEDBACK",
+    "GLBUDGET_DUMP_PROBES", "GLBUDGET_PROBE_SCALE", "GLBUDGET_SHIM",
 };
 
 void warn(std::string* out, const std::string& text) { *out += "glbudget: " + text + "\n"; }
@@ -72,6 +73,19 @@ Options parse_options(char** env, std::string* warnings) {
         warn(warnings, "GLBUDGET_TRANSITION_S='" + value + "' is not a number of seconds in [0, 3600]; 2");
       else
         o.transition_s = t;
+    } else if (name == "GLBUDGET_PROBE_PERIOD") {
+      errno = 0;
+      char* end = nullptr;
+      const unsigned long long n = std::strtoull(value.c_str(), &end, 10);
+      if (errno || end == value.c_str() || *end != '\0' || n > 1000000 || value[0] == '-')
+        warn(warnings, "GLBUDGET_PROBE_PERIOD='" + value + "' is not a number of frames in [0, 1000000]; ignored");
+      else
+        o.probe_period = static_cast<int64_t>(n);
+    } else if (name == "GLBUDGET_DUMP_PROBES") {
+      o.dump_probes = value;
+    } else if (name == "GLBUDGET_PROBE_SCALE") {
+      if (value == "1" || value == "2" || value == "4") o.probe_scale = value[0] - '0';
+      else warn(warnings, "GLBUDGET_PROBE_SCALE='" + value + "' is not 1, 2 or 4; Wang's rule");
     } else if (name == "GLBUDGET_FEEDBACK") {
       if (value == "1" || value == "on") o.feedback = true;
       else if (value == "0" || value == "off") o.feedback = false;

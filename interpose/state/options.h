@@ -21,6 +21,11 @@ struct Options {
   std::string error;        // GLBUDGET_ERROR: the dual problem's error budget
   size_t select_frames = 200;  // GLBUDGET_SELECT_FRAMES: frames between selections
   double transition_s = 2.0;   // GLBUDGET_TRANSITION_S: the temporal filter's length
+  // GLBUDGET_PROBE_PERIOD: frames between quality-probe frames (apply/probes.h); -1: not given
+  // (10 when governing, else none); 0: none.
+  int64_t probe_period = -1;
+  std::string dump_probes;  // GLBUDGET_DUMP_PROBES: probe images as PPM files here
+  int probe_scale = 0;      // GLBUDGET_PROBE_SCALE: SSIM at 1, 2 or 4 (0: Wang's rule for the size)
   bool feedback = true;        // GLBUDGET_FEEDBACK=0: no correction from measured power (the paper's open loop)
 };
 

@@ -52,24 +52,31 @@ TEST_CASE("frame-log rows: empty fields for what was not measured", "[unit]") {
   r.primitives = 20000;
   r.gpu_ns = -1;
   format_row(r, line, sizeof line);
-  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,,,,,");
+  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,,,,,,,");
   r.configuration = "2:0:1";  // the levels that drew the frame, last
   format_row(r, line, sizeof line);
-  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,,,,");
+  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,,,,,,");
   // The governor's view of the frame: predicted power, budget, estimated error, decision.
   r.predicted_w = 21.5;
   r.budget_w = 24.0;
   r.est_error = 0.004;
   r.decision = "select";
   format_row(r, line, sizeof line);
-  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,21.5000,24.0000,0.004000,select");
+  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,21.5000,24.0000,0.004000,select,,");
   r.predicted_w = NAN;  // before the first fit
   format_row(r, line, sizeof line);
-  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,,24.0000,0.004000,select");
+  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,,24.0000,0.004000,select,,");
+  // A probe frame: flagged, with the shown frame's measured error once known.
+  r.probe = true;
+  format_row(r, line, sizeof line);
+  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,,24.0000,0.004000,select,1,");
+  r.probe_error = 0.0125;
+  format_row(r, line, sizeof line);
+  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,,24.0000,0.004000,select,1,0.012500");
   FrameRow ff;
   ff.pass = kFixedFunctionPass;
   format_row(ff, line, sizeof line);
-  CHECK(std::string(line) == "0,0,0,fixed-function,0,,,,,,,,0,,,,,");
+  CHECK(std::string(line) == "0,0,0,fixed-function,0,,,,,,,,0,,,,,,,");
   // With a sensor: power, energy, the sensor's name (estimates labelled), dropped samples.
   FrameRow powered;
   powered.energy.valid = true;

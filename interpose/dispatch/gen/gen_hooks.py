@@ -182,6 +182,7 @@ def main():
     cpp.append('#include "hook_table.h"')
     cpp.append('#include "draw_count.h"')
     cpp.append('#include "uniform_fanout.h"')
+    cpp.append('#include "probes.h"')
     cpp.append('using namespace glbudget;')
     for n in gl_hooks:
         c = commands[n]
@@ -210,8 +211,17 @@ def main():
             call = f'handle_{base.name}({cast}(real){", " if c.params else ""}{c.arg_names()})'
             cpp.append(f'  {"" if ret_void else "return "}{call};')
         else:
-            cpp.append(f'  if (!count_draw({c.batches_expr()})) {fail}')
-            cpp.append(f'  {"" if ret_void else "return "}real({c.arg_names()});')
+            if ret_void:
+                # On probe frames (apply/probes.h) the draw is issued again for each probe
+                # stream, after the app's, and the streams' targets are readied before it.
+                cpp.append(f'  const bool drawn = count_draw({c.batches_expr()});')
+                cpp.append('  ProbeFrames* probe = t_probe;')
+                cpp.append('  if (probe) [[unlikely]] probe->prepare();')
+                cpp.append(f'  if (drawn) real({c.arg_names()});')
+                cpp.append(f'  if (probe) [[unlikely]] probe_draw([&] {{ real({c.arg_names()}); }});')
+            else:
+                cpp.append(f'  if (!count_draw({c.batches_expr()})) {fail}')
+                cpp.append(f'  return real({c.arg_names()});')
         cpp.append('}')
 
     # Build-time open-addressing hash table: FNV-1a 64, linear probing, load factor <= 1/4.

@@ -1,0 +1,813 @@
+#include "probes.h"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <mutex>
+#include <unordered_map>
+
+#include "apply_gl.h"
+#include "context_state.h"
+#include "governing.h"
+#include "hook_table.h"
+#include "messages.h"
+#include "options.h"
+#include "render_targets.h"
+
+namespace glbudget {
+
+thread_local ProbeFrames* t_probe __attribute__((tls_model("initial-exec"))) = nullptr;
+
+const ProbeSettings& probe_settings() {
+  static const ProbeSettings settings = [] {
+    ProbeSettings s;
+    const Options& o = options();
+    // Probes measure what the governor chooses by: on by default only when it governs.
+    s.period = o.probe_period >= 0 ? static_cast<uint64_t>(o.probe_period) : governor_steering() ? 10 : 0;
+    s.dump_dir = o.dump_probes;
+    return s;
+  }();
+  return settings;
+}
+
+namespace {
+
+// Entry points beyond the apply layer's table, resolved to the driver.
+struct ProbeGl {
+  void(APIENTRYP ActiveTexture)(GLenum) = nullptr;
+  void(APIENTRYP GetTexLevelParameteriv)(GLenum, GLint, GLenum, GLint*) = nullptr;
+  void(APIENTRYP GetTexParameteriv)(GLenum, GLenum, GLint*) = nullptr;
+  void(APIENTRYP TexParameteri)(GLenum, GLenum, GLint) = nullptr;
+  void(APIENTRYP TexStorage2D)(GLenum, GLsizei, GLenum, GLsizei, GLsizei) = nullptr;
+  void(APIENTRYP GetRenderbufferParameteriv)(GLenum, GLenum, GLint*) = nullptr;
+  void(APIENTRYP DrawBuffers)(GLsizei, const GLenum*) = nullptr;
+  void(APIENTRYP GetQueryiv)(GLenum, GLenum, GLint*) = nullptr;
+  void(APIENTRYP GenBuffers)(GLsizei, GLuint*) = nullptr;
+  void(APIENTRYP DeleteBuffers)(GLsizei, const GLuint*) = nullptr;
+  void(APIENTRYP BindBuffer)(GLenum, GLuint) = nullptr;
+  void(APIENTRYP BufferData)(GLenum, GLsizeiptr, const void*, GLenum) = nullptr;
+  void(APIENTRYP ReadPixels)(GLint, GLint, GLsizei, GLsizei, GLenum, GLenum, void*) = nullptr;
+  void*(APIENTRYP MapBufferRange)(GLenum, GLintptr, GLsizeiptr, GLbitfield) = nullptr;
+  GLboolean(APIENTRYP UnmapBuffer)(GLenum) = nullptr;
+  GLsync(APIENTRYP FenceSync)(GLenum, GLbitfield) = nullptr;
+  GLenum(APIENTRYP ClientWaitSync)(GLsync, GLbitfield, GLuint64) = nullptr;
+  void(APIENTRYP DeleteSync)(GLsync) = nullptr;
+  void(APIENTRYP PixelStorei)(GLenum, GLint) = nullptr;
+  void(APIENTRYP GetIntegeri_v)(GLenum, GLuint, GLint*) = nullptr;
+  bool complete = false;
+};
+
+const ProbeGl& pgl() {
+  static const ProbeGl g = [] {
+    ProbeGl p;
+    auto load = [](auto& fn, const char* name) { fn = reinterpret_cast<std::remove_reference_t<decltype(fn)>>(resolve_gl(name)); };
+    load(p.ActiveTexture, "glActiveTexture");
+    load(p.GetTexLevelParameteriv, "glGetTexLevelParameteriv");
+    load(p.GetTexParameteriv, "glGetTexParameteriv");
+    load(p.TexParameteri, "glTexParameteri");
+    load(p.TexStorage2D, "glTexStorage2D");
+    load(p.GetRenderbufferParameteriv, "glGetRenderbufferParameteriv");
+    load(p.DrawBuffers, "glDrawBuffers");
+    load(p.GetQueryiv, "glGetQueryiv");
+    load(p.GenBuffers, "glGenBuffers");
+    load(p.DeleteBuffers, "glDeleteBuffers");
+    load(p.BindBuffer, "glBindBuffer");
+    load(p.BufferData, "glBufferData");
+    load(p.ReadPixels, "glReadPixels");
+    load(p.MapBufferRange, "glMapBufferRange");
+    load(p.UnmapBuffer, "glUnmapBuffer");
+    load(p.FenceSync, "glFenceSync");
+    load(p.ClientWaitSync, "glClientWaitSync");
+    load(p.DeleteSync, "glDeleteSync");
+    load(p.PixelStorei, "glPixelStorei");
+    load(p.GetIntegeri_v, "glGetIntegeri_v");
+    p.complete = p.ActiveTexture && p.GetTexLevelParameteriv && p.GetTexParameteriv && p.TexParameteri &&
+                 p.TexStorage2D && p.GetRenderbufferParameteriv && p.DrawBuffers && p.GenBuffers && p.DeleteBuffers &&
+                 p.BindBuffer && p.BufferData && p.ReadPixels && p.MapBufferRange && p.UnmapBuffer && p.FenceSync &&
+                 p.ClientWaitSync && p.DeleteSync && p.PixelStorei;
+    return p;
+  }();
+  return g;
+}
+
+constexpr int kMaxColorAttachments = 8;
+constexpr int kMaxUnits = 32;       // texture units looked at for redirection
+constexpr size_t kMaxPending = 4;   // probe read-backs in flight
+constexpr int kMaxStreams = 2;
+
+GLint get(GLenum pname) {
+  GLint v = 0;
+  agl().GetIntegerv(pname, &v);
+  return v;
+}
+
+struct ShadowImage {
+  GLenum point = 0;
+  bool renderbuffer = false;
+  GLuint app = 0;     // the app's texture or renderbuffer
+  GLuint shadow = 0;  // ours, same format, at the stream's scale
+  GLint format = 0;
+  GLsizei samples = 0;
+};
+
+struct Shadow {
+  GLuint fbo = 0;
+  int app_width = 0, app_height = 0;  // the app's size of its images
+  int width = 0, height = 0;          // the shadow's
+  std::vector<ShadowImage> images;
+  uint64_t initialized_frame = 0;  // content copied from the app's this frame
+  bool usable = false;
+};
+
+struct Stream {
+  Levels config;
+  std::unordered_map<GLuint, Shadow> shadows;   // by the app's framebuffer (0: the window)
+  std::unordered_map<GLuint, GLuint> textures;  // drawn this frame: app texture -> shadow
+  bool complete = true;
+};
+
+struct Readback {
+  ProbeCapture capture;
+  std::vector<GLuint> buffers;
+  GLsync fence = nullptr;
+};
+
+}  // namespace
+
+struct ProbeFrames::Impl {
+  ContextState& c;
+  uint64_t frame = 0;  // the probe frame being drawn (0: none)
+  uint64_t last_probe = 0;
+  int stream_count = 0;
+  Stream streams[kMaxStreams];
+  uint64_t passes_drawn = ~uint64_t{0};  // in the last probe frame (all before the first)
+  uint64_t passes_now = 0;
+  size_t next_pass = 0;  // round robin over passes for s_i^lmax
+  bool disabled = false;
+
+  // The duplicate in progress.
+  int stream = -1;
+  GLint saved_draw_fbo = 0, saved_read_fbo = 0, saved_active = 0;
+  GLint saved_viewport[4] = {}, saved_scissor[4] = {};
+  Levels saved_config;
+  GLint unit_texture[kMaxUnits] = {};
+  int units = 0;
+  bool redirected[kMaxUnits] = {};
+
+  // Capture targets: 0 the app's image, then one per stream, window-sized.
+  GLuint capture_fbo[kMaxStreams + 1] = {}, capture_color[kMaxStreams + 1] = {};
+  int capture_width = 0, capture_height = 0;
+  bool captured[kMaxStreams + 1] = {};
+  std::vector<Readback> pending;
+
+  explicit Impl(ContextState& ctx) : c(ctx) {}
+
+  TargetScaler* targets() const { return c.targets.get(); }
+  GLuint app_draw_fbo() const { return targets()->app_draw_framebuffer(); }
+
+  bool probe_possible() const { return !disabled && targets() && pgl().complete; }
+
+  void release_shadow(Shadow& s) {
+    const ApplyGl& g = agl();
+    for (ShadowImage& im : s.images) {
+      if (im.renderbuffer) g.DeleteRenderbuffers(1, &im.shadow);
+      else g.DeleteTextures(1, &im.shadow);
+    }
+    if (s.fbo) g.DeleteFramebuffers(1, &s.fbo);
+    s = Shadow{};
+  }
+
+  // The app's attachments of its framebuffer `app` (bound for drawing now), or of the window.
+  bool describe(GLuint app, double stream_scale, Shadow& out) {
+    const ApplyGl& g = agl();
+    const ProbeGl& p = pgl();
+    TargetScaler& t = *targets();
+    if (app == 0) {
+      out.app_width = t.window_width();
+      out.app_height = t.window_height();
+      if (out.app_width <= 0 || out.app_height <= 0) return false;
+      out.images = {{GL_COLOR_ATTACHMENT0, true, 0, 0, GL_RGBA8, 0},
+                    {GL_DEPTH_STENCIL_ATTACHMENT, true, 0, 0, GL_DEPTH24_STENCIL8, 0}};
+    } else {
+      double sx = 1.0, sy = 1.0;
+      t.stored_scale(app, &sx, &sy);
+      int stored_w = 0, stored_h = 0;
+      std::vector<GLenum> points;
+      for (int i = 0; i < kMaxColorAttachments; ++i) points.push_back(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i));
+      points.push_back(GL_DEPTH_ATTACHMENT);
+      points.push_back(GL_STENCIL_ATTACHMENT);
+      for (GLenum point : points) {
+        GLint type = GL_NONE, name = 0;
+        g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+        if (type == GL_NONE) continue;
+        g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &name);
+        ShadowImage im;
+        im.point = point;
+        im.app = static_cast<GLuint>(name);
+        im.renderbuffer = type == GL_RENDERBUFFER;
+        if (point == GL_STENCIL_ATTACHMENT) {
+          bool shared = false;
+          for (ShadowImage& other : out.images)
+            if (other.point == GL_DEPTH_ATTACHMENT && other.app == im.app && other.renderbuffer == im.renderbuffer) {
+              other.point = GL_DEPTH_STENCIL_ATTACHMENT;
+              shared = true;
+            }
+          if (shared) continue;
+        }
+        GLint w = 0, h = 0;
+        if (im.renderbuffer) {
+          const GLint bound = get(GL_RENDERBUFFER_BINDING);
+          g.BindRenderbuffer(GL_RENDERBUFFER, im.app);
+          p.GetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_INTERNAL_FORMAT, &im.format);
+          p.GetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_WIDTH, &w);
+          p.GetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_HEIGHT, &h);
+          p.GetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_SAMPLES, &im.samples);
+          g.BindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(bound));
+        } else {
+          GLint level = 0, layered = GL_FALSE, face = 0;
+          g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL, &level);
+          g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_CUBE_MAP_FACE, &face);
+          if (!c.caps.gles)
+            g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_LAYERED, &layered);
+          if (level != 0 || layered || face != 0) return false;
+          // Read through the 2D binding of the active unit: a texture of another target
+          // fails to bind there (GL_INVALID_OPERATION) and is not probed.
+          const GLint bound = get(GL_TEXTURE_BINDING_2D);
+          while (glGetErrorReal() != GL_NO_ERROR) {
+          }
+          g.BindTexture(GL_TEXTURE_2D, im.app);
+          const bool is_2d = glGetErrorReal() == GL_NO_ERROR;
+          if (is_2d) {
+            p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &im.format);
+            p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &w);
+            p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &h);
+          }
+          g.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(bound));
+          if (!is_2d) return false;
+        }
+        if (w <= 0 || h <= 0 || im.format == 0) return false;
+        if (stored_w == 0) stored_w = w, stored_h = h;
+        out.images.push_back(im);
+      }
+      if (out.images.empty()) return false;
+      out.app_width = static_cast<int>(stored_w / sx + 0.5);
+      out.app_height = static_cast<int>(stored_h / sy + 0.5);
+    }
+    out.width = std::max(1, static_cast<int>(out.app_width * stream_scale + 0.5));
+    out.height = std::max(1, static_cast<int>(out.app_height * stream_scale + 0.5));
+    return true;
+  }
+
+  static GLenum glGetErrorReal() {
+    static auto fn = reinterpret_cast<GLenum(APIENTRYP)(void)>(resolve_gl("glGetError"));
+    return fn ? fn() : GL_NO_ERROR;
+  }
+
+  // Creates the shadow's images and framebuffer (the app's framebuffer is bound for drawing).
+  bool build(GLuint app, Shadow& s) {
+    const ApplyGl& g = agl();
+    const ProbeGl& p = pgl();
+    const GLint texture = get(GL_TEXTURE_BINDING_2D), renderbuffer = get(GL_RENDERBUFFER_BINDING);
+    GLenum draw_buffers[kMaxColorAttachments];
+    GLsizei draw_count = 0;
+    if (app == 0) {
+      draw_buffers[draw_count++] = GL_COLOR_ATTACHMENT0;
+    } else {
+      for (int i = 0; i < kMaxColorAttachments; ++i) draw_buffers[draw_count++] = static_cast<GLenum>(get(GL_DRAW_BUFFER0 + i));
+    }
+    g.GenFramebuffers(1, &s.fbo);
+    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, s.fbo);
+    for (ShadowImage& im : s.images) {
+      if (im.renderbuffer) {
+        g.GenRenderbuffers(1, &im.shadow);
+        g.BindRenderbuffer(GL_RENDERBUFFER, im.shadow);
+        g.RenderbufferStorageMultisample(GL_RENDERBUFFER, im.samples, static_cast<GLenum>(im.format), s.width, s.height);
+        g.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, im.point, GL_RENDERBUFFER, im.shadow);
+      } else {
+        g.GenTextures(1, &im.shadow);
+        g.BindTexture(GL_TEXTURE_2D, im.shadow);
+        p.TexStorage2D(GL_TEXTURE_2D, 1, static_cast<GLenum>(im.format), s.width, s.height);
+        // Sampled as the app's texture is: its filtering, wrapping and depth comparison.
+        static const GLenum kParams[] = {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER, GL_TEXTURE_WRAP_S,
+                                         GL_TEXTURE_WRAP_T, GL_TEXTURE_COMPARE_MODE, GL_TEXTURE_COMPARE_FUNC};
+        for (GLenum param : kParams) {
+          GLint v = 0;
+          g.BindTexture(GL_TEXTURE_2D, im.app);
+          p.GetTexParameteriv(GL_TEXTURE_2D, param, &v);
+          g.BindTexture(GL_TEXTURE_2D, im.shadow);
+          p.TexParameteri(GL_TEXTURE_2D, param, v);
+        }
+        g.FramebufferTexture2D(GL_DRAW_FRAMEBUFFER, im.point, GL_TEXTURE_2D, im.shadow, 0);
+      }
+    }
+    p.DrawBuffers(draw_count, draw_buffers);
+    g.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(texture));
+    g.BindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(renderbuffer));
+    s.usable = true;
+    return true;
+  }
+
+  // The app's framebuffer's content now, before this frame's first draw to it, into the
+  // shadow: what the app kept from before (or cleared to) is where both streams start.
+  void copy_in(GLuint app, Shadow& s) {
+    const ApplyGl& g = agl();
+    const ProbeGl& p = pgl();
+    const GLuint real = targets()->real_framebuffer(app);
+    g.BindFramebuffer(GL_READ_FRAMEBUFFER, real);
+    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, s.fbo);
+    int src_w = s.app_width, src_h = s.app_height;
+    double sx = 1.0, sy = 1.0;
+    targets()->stored_scale(app, &sx, &sy);
+    src_w = static_cast<int>(src_w * sx + 0.5);
+    src_h = static_cast<int>(src_h * sy + 0.5);
+    const GLint read_buffer = get(GL_READ_BUFFER);
+    GLbitfield depth_stencil = 0;
+    for (const ShadowImage& im : s.images) {
+      if (im.point == GL_DEPTH_ATTACHMENT) depth_stencil |= GL_DEPTH_BUFFER_BIT;
+      else if (im.point == GL_STENCIL_ATTACHMENT) depth_stencil |= GL_STENCIL_BUFFER_BIT;
+      else if (im.point == GL_DEPTH_STENCIL_ATTACHMENT) depth_stencil |= GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT;
+      else {
+        const GLenum source = app == 0 && !targets()->window_scaled() ? GL_BACK : im.point;
+        g.ReadBuffer(source);
+        const GLenum target = im.point;
+        p.DrawBuffers(1, &target);
+        g.BlitFramebuffer(0, 0, src_w, src_h, 0, 0, s.width, s.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+      }
+    }
+    // The window without a depth buffer of its own leaves the shadow's undefined: cleared
+    // by the app, as it clears the window.
+    if (depth_stencil && !(app == 0 && !targets()->window_scaled() && get_window_depth_bits() == 0))
+      g.BlitFramebuffer(0, 0, src_w, src_h, 0, 0, s.width, s.height, depth_stencil, GL_NEAREST);
+    g.ReadBuffer(static_cast<GLenum>(read_buffer));
+    // The app's draw buffers again (the copy set one at a time).
+    GLenum draw_buffers[kMaxColorAttachments];
+    GLsizei count = 0;
+    if (app == 0) {
+      draw_buffers[count++] = GL_COLOR_ATTACHMENT0;
+    } else {
+      g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, real);
+      for (int i = 0; i < kMaxColorAttachments; ++i) draw_buffers[count++] = static_cast<GLenum>(get(GL_DRAW_BUFFER0 + i));
+      g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, s.fbo);
+    }
+    p.DrawBuffers(count, draw_buffers);
+  }
+
+  GLint get_window_depth_bits() {
+    GLint bits = 0;
+    if (c.caps.gles || c.caps.major >= 3) {
+      const GLint draw = get(GL_DRAW_FRAMEBUFFER_BINDING);
+      agl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+      agl().GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH,
+                                                GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE, &bits);
+      agl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
+    }
+    return bits;
+  }
+
+  // The stream's shadow of the app's framebuffer, made and filled for this frame if needed.
+  // The caller saved the draw and read bindings; both may change.
+  Shadow* shadow(Stream& st, GLuint app) {
+    auto [it, fresh] = st.shadows.try_emplace(app);
+    Shadow& s = it->second;
+    if (s.initialized_frame == frame) return s.usable ? &s : nullptr;
+    // The app's framebuffer must be bound for drawing to be described.
+    agl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, targets()->real_framebuffer(app));
+    Shadow wanted;
+    const bool ok = describe(app, targets()->scale_for(app, st.config), wanted);
+    bool same = !fresh && ok && s.usable && wanted.width == s.width && wanted.height == s.height &&
+                wanted.images.size() == s.images.size();
+    for (size_t i = 0; same && i < wanted.images.size(); ++i)
+      same = wanted.images[i].app == s.images[i].app && wanted.images[i].format == s.images[i].format &&
+             wanted.images[i].point == s.images[i].point;
+    if (!same) {
+      release_shadow(s);
+      if (ok) {
+        s = wanted;
+        build(app, s);
+        agl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, targets()->real_framebuffer(app));
+      }
+    }
+    s.initialized_frame = frame;
+    if (!ok) {
+      st.complete = app != 0 && st.complete;  // the window matters; other targets: drawn as the app's
+      return nullptr;
+    }
+    copy_in(app, s);
+    for (const ShadowImage& im : s.images)
+      if (!im.renderbuffer) st.textures[im.app] = im.shadow;
+    return &s;
+  }
+
+  // Before the app's draw, clear or blit into its bound framebuffer: every stream's shadow of
+  // it holds the app's content from before the call.
+  void prepare() {
+    const GLuint app = app_draw_fbo();
+    const GLint draw = get(GL_DRAW_FRAMEBUFFER_BINDING), read = get(GL_READ_FRAMEBUFFER_BINDING);
+    bool touched = false;
+    for (int s = 0; s < stream_count; ++s) {
+      auto it = streams[s].shadows.find(app);
+      if (it != streams[s].shadows.end() && it->second.initialized_frame == frame) continue;
+      shadow(streams[s], app);
+      touched = true;
+    }
+    if (touched) {
+      agl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
+      agl().BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read));
+    }
+  }
+
+  // A program whose draws write buffers or count atomically: a duplicate would write twice.
+  std::unordered_map<GLuint, bool> side_effects;
+  bool has_side_effects(GLuint program) {
+    if (!program) return false;
+    auto it = side_effects.find(program);
+    if (it != side_effects.end()) return it->second;
+    const ApplyGl& g = agl();
+    GLint blocks = 0, atomics = 0;
+    if (g.GetProgramInterfaceiv && (c.caps.gles ? c.caps.major * 10 + c.caps.minor >= 31 : c.caps.major * 10 + c.caps.minor >= 43))
+      g.GetProgramInterfaceiv(program, GL_SHADER_STORAGE_BLOCK, GL_ACTIVE_RESOURCES, &blocks);
+    if (c.caps.gles ? c.caps.major * 10 + c.caps.minor >= 31 : c.caps.major * 10 + c.caps.minor >= 42)
+      g.GetProgramiv(program, GL_ACTIVE_ATOMIC_COUNTER_BUFFERS, &atomics);
+    return side_effects[program] = blocks > 0 || atomics > 0;
+  }
+
+  bool duplicate_allowed() {
+    if (c.list_compile_only) return false;
+    if (has_side_effects(c.real_program)) return false;
+    if (!c.caps.gles && get(GL_TRANSFORM_FEEDBACK_ACTIVE)) return false;
+    if (c.caps.gles && c.caps.major >= 3 && get(GL_TRANSFORM_FEEDBACK_ACTIVE)) return false;
+    if (pgl().GetQueryiv) {
+      for (GLenum target : {GL_SAMPLES_PASSED, GL_ANY_SAMPLES_PASSED, GL_ANY_SAMPLES_PASSED_CONSERVATIVE}) {
+        if (c.caps.gles && target == GL_SAMPLES_PASSED) continue;
+        GLint current = 0;
+        pgl().GetQueryiv(target, GL_CURRENT_QUERY, &current);
+        if (current) return false;
+      }
+    }
+    return true;
+  }
+
+  bool set_up(int s) {
+    Stream& st = streams[s];
+    if (!st.complete) return false;
+    const GLuint app = app_draw_fbo();
+    auto it = st.shadows.find(app);
+    if (it == st.shadows.end() || !it->second.usable || it->second.initialized_frame != frame) return false;
+    const Shadow& sh = it->second;
+    // The stream's variant of the app's program (its draws may be skipped at its level).
+    c.config = st.config;
+    if (c.bound_variants) {
+      bind_program(c);
+      if (!c.bound_variants->at(st.config).draws) return false;
+    } else if (c.pipeline && !c.program) {
+      bind_pipeline_stages(c);
+    }
+    const ApplyGl& g = agl();
+    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, sh.fbo);
+    const double sx = static_cast<double>(sh.width) / sh.app_width, sy = static_cast<double>(sh.height) / sh.app_height;
+    const GLint* v = targets()->app_viewport();
+    const GLint* b = targets()->app_scissor();
+    auto scaled = [](GLint x, double k) { return static_cast<GLint>(x * k + (x >= 0 ? 0.5 : -0.5)); };
+    g.Viewport(scaled(v[0], sx), scaled(v[1], sy), scaled(v[2], sx), scaled(v[3], sy));
+    g.Scissor(scaled(b[0], sx), scaled(b[1], sy), scaled(b[2], sx), scaled(b[3], sy));
+    for (int u = 0; u < units; ++u) {
+      auto t = st.textures.find(static_cast<GLuint>(unit_texture[u]));
+      const bool want = t != st.textures.end();
+      if (!want && !redirected[u]) continue;
+      pgl().ActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(u));
+      g.BindTexture(GL_TEXTURE_2D, want ? t->second : static_cast<GLuint>(unit_texture[u]));
+      redirected[u] = want;
+    }
+    if (c.manifest_pass >= 0 && c.manifest_pass < 64) passes_now |= uint64_t{1} << c.manifest_pass;
+    return true;
+  }
+
+  bool begin_duplicate() {
+    if (!frame || !duplicate_allowed()) return false;
+    saved_draw_fbo = get(GL_DRAW_FRAMEBUFFER_BINDING);
+    agl().GetIntegerv(GL_VIEWPORT, saved_viewport);
+    agl().GetIntegerv(GL_SCISSOR_BOX, saved_scissor);
+    saved_active = get(GL_ACTIVE_TEXTURE);
+    saved_config = c.config;
+    for (int u = 0; u < units; ++u) {
+      pgl().ActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(u));
+      unit_texture[u] = get(GL_TEXTURE_BINDING_2D);
+      redirected[u] = false;
+    }
+    stream = -1;
+    return true;
+  }
+
+  bool advance() {
+    while (++stream < stream_count)
+      if (set_up(stream)) return true;
+    return false;
+  }
+
+  void end_duplicate() {
+    const ApplyGl& g = agl();
+    for (int u = 0; u < units; ++u) {
+      if (!redirected[u]) continue;
+      pgl().ActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(u));
+      g.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(unit_texture[u]));
+      redirected[u] = false;
+    }
+    pgl().ActiveTexture(static_cast<GLenum>(saved_active));
+    c.config = saved_config;
+    if (c.bound_variants) bind_program(c);
+    else if (c.pipeline && !c.program) bind_pipeline_stages(c);
+    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(saved_draw_fbo));
+    g.Viewport(saved_viewport[0], saved_viewport[1], saved_viewport[2], saved_viewport[3]);
+    g.Scissor(saved_scissor[0], saved_scissor[1], saved_scissor[2], saved_scissor[3]);
+    stream = -1;
+  }
+
+  // --- The swap ---------------------------------------------------------------------------
+
+  void ensure_captures(int width, int height) {
+    const ApplyGl& g = agl();
+    if (capture_width == width && capture_height == height && capture_fbo[0]) return;
+    for (int i = 0; i <= kMaxStreams; ++i) {
+      if (capture_fbo[i]) g.DeleteFramebuffers(1, &capture_fbo[i]);
+      if (capture_color[i]) g.DeleteRenderbuffers(1, &capture_color[i]);
+    }
+    const GLint renderbuffer = get(GL_RENDERBUFFER_BINDING);
+    for (int i = 0; i <= kMaxStreams; ++i) {
+      g.GenFramebuffers(1, &capture_fbo[i]);
+      g.GenRenderbuffers(1, &capture_color[i]);
+      g.BindRenderbuffer(GL_RENDERBUFFER, capture_color[i]);
+      g.RenderbufferStorageMultisample(GL_RENDERBUFFER, 0, GL_RGBA8, width, height);
+      g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, capture_fbo[i]);
+      g.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, capture_color[i]);
+    }
+    g.BindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(renderbuffer));
+    capture_width = width;
+    capture_height = height;
+  }
+
+  struct SavedFramebuffers {
+    GLint draw = get(GL_DRAW_FRAMEBUFFER_BINDING), read = get(GL_READ_FRAMEBUFFER_BINDING);
+    GLint read_buffer = get(GL_READ_BUFFER);
+    GLboolean scissor = agl().IsEnabled(GL_SCISSOR_TEST);
+    ~SavedFramebuffers() {
+      const ApplyGl& g = agl();
+      g.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read));
+      g.ReadBuffer(static_cast<GLenum>(read_buffer));
+      g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
+      if (scissor) g.Enable(GL_SCISSOR_TEST);
+    }
+  };
+
+  void before_present() {
+    if (!frame) return;
+    TargetScaler& t = *targets();
+    const int w = t.window_width(), h = t.window_height();
+    if (w <= 0 || h <= 0) return;
+    SavedFramebuffers saved;
+    const ApplyGl& g = agl();
+    g.Disable(GL_SCISSOR_TEST);
+    ensure_captures(w, h);
+    for (int s = 0; s < stream_count; ++s) {
+      captured[s + 1] = false;
+      auto it = streams[s].shadows.find(0);
+      if (!streams[s].complete || it == streams[s].shadows.end() || !it->second.usable ||
+          it->second.initialized_frame != frame)
+        continue;
+      g.BindFramebuffer(GL_READ_FRAMEBUFFER, it->second.fbo);
+      g.ReadBuffer(GL_COLOR_ATTACHMENT0);
+      g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, capture_fbo[s + 1]);
+      g.BlitFramebuffer(0, 0, it->second.width, it->second.height, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+      captured[s + 1] = true;
+    }
+  }
+
+  void after_present() {
+    if (!frame) return;
+    const ProbeGl& p = pgl();
+    const ApplyGl& g = agl();
+    const int w = capture_width, h = capture_height;
+    if (w <= 0 || h <= 0) return end_frame();
+    {
+      SavedFramebuffers saved;
+      g.Disable(GL_SCISSOR_TEST);
+      g.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+      g.ReadBuffer(GL_BACK);
+      g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, capture_fbo[0]);
+      g.BlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+      captured[0] = true;
+
+      Readback r;
+      r.capture.frame = frame;
+      r.capture.context = c.index;
+      r.capture.width = w;
+      r.capture.height = h;
+      r.capture.shown = saved_config_for_frame;
+      bool all = true;
+      for (int s = 0; s < stream_count; ++s) all = all && captured[s + 1];
+      if (all && pending.size() < kMaxPending) {
+        const GLint pack = get(GL_PIXEL_PACK_BUFFER_BINDING), alignment = get(GL_PACK_ALIGNMENT);
+        const GLint row_length = c.caps.gles && c.caps.major < 3 ? 0 : get(GL_PACK_ROW_LENGTH);
+        p.PixelStorei(GL_PACK_ALIGNMENT, 4);
+        if (row_length) p.PixelStorei(GL_PACK_ROW_LENGTH, 0);
+        for (int i = 0; i <= stream_count; ++i) {
+          if (i > 0) r.capture.streams.push_back(streams[i - 1].config);
+          GLuint buffer = 0;
+          p.GenBuffers(1, &buffer);
+          p.BindBuffer(GL_PIXEL_PACK_BUFFER, buffer);
+          p.BufferData(GL_PIXEL_PACK_BUFFER, static_cast<GLsizeiptr>(w) * h * 4, nullptr, GL_STREAM_READ);
+          g.BindFramebuffer(GL_READ_FRAMEBUFFER, capture_fbo[i]);
+          g.ReadBuffer(GL_COLOR_ATTACHMENT0);
+          p.ReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+          r.buffers.push_back(buffer);
+        }
+        r.fence = p.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+        p.BindBuffer(GL_PIXEL_PACK_BUFFER, static_cast<GLuint>(pack));
+        p.PixelStorei(GL_PACK_ALIGNMENT, alignment);
+        if (row_length) p.PixelStorei(GL_PACK_ROW_LENGTH, row_length);
+        pending.push_back(std::move(r));
+      }
+    }
+    end_frame();
+  }
+
+  Levels saved_config_for_frame;
+
+  void end_frame() {
+    passes_drawn = passes_now;
+    frame = 0;
+    t_probe = nullptr;
+  }
+
+  void collect() {
+    const ProbeGl& p = pgl();
+    while (!pending.empty()) {
+      Readback& r = pending.front();
+      const GLenum status = p.ClientWaitSync(r.fence, 0, 0);
+      if (status != GL_ALREADY_SIGNALED && status != GL_CONDITION_SATISFIED) return;
+      p.DeleteSync(r.fence);
+      const GLint pack = get(GL_PIXEL_PACK_BUFFER_BINDING);
+      const size_t bytes = static_cast<size_t>(r.capture.width) * r.capture.height * 4;
+      for (GLuint buffer : r.buffers) {
+        p.BindBuffer(GL_PIXEL_PACK_BUFFER, buffer);
+        const void* data = p.MapBufferRange(GL_PIXEL_PACK_BUFFER, 0, static_cast<GLsizeiptr>(bytes), GL_MAP_READ_BIT);
+        std::vector<uint8_t> image(bytes);
+        if (data) std::memcpy(image.data(), data, bytes);
+        p.UnmapBuffer(GL_PIXEL_PACK_BUFFER);
+        r.capture.images.push_back(std::move(image));
+      }
+      p.BindBuffer(GL_PIXEL_PACK_BUFFER, static_cast<GLuint>(pack));
+      p.DeleteBuffers(static_cast<GLsizei>(r.buffers.size()), r.buffers.data());
+      if (!probe_settings().dump_dir.empty()) dump(r.capture);
+      governor_probe(std::move(r.capture));
+      pending.erase(pending.begin());
+    }
+  }
+
+  static void dump(const ProbeCapture& capture) {
+    for (size_t i = 0; i < capture.images.size(); ++i) {
+      const std::string name = probe_settings().dump_dir + "/probe_c" + std::to_string(capture.context) + "_f" +
+                               std::to_string(capture.frame) + "_" +
+                               (i == 0 ? std::string("shown_") + format_levels(capture.shown)
+                                       : "s" + std::to_string(i) + "_" + format_levels(capture.streams[i - 1])) +
+                               ".ppm";
+      std::FILE* f = std::fopen(name.c_str(), "wb");
+      if (!f) {
+        say_once("probe-dump", "cannot write probe images to " + probe_settings().dump_dir);
+        return;
+      }
+      std::fprintf(f, "P6\n%d %d\n255\n", capture.width, capture.height);
+      std::vector<uint8_t> row(static_cast<size_t>(capture.width) * 3);
+      for (int y = capture.height - 1; y >= 0; --y) {  // GL rows are bottom-up
+        const uint8_t* src = capture.images[i].data() + static_cast<size_t>(y) * capture.width * 4;
+        for (int x = 0; x < capture.width; ++x)
+          for (int k = 0; k < 3; ++k) row[static_cast<size_t>(x) * 3 + k] = src[x * 4 + k];
+        std::fwrite(row.data(), 1, row.size(), f);
+      }
+      std::fclose(f);
+    }
+  }
+
+  // The streams of a probe frame: s0, unless the frame is drawn in it, and s_i^lmax for the
+  // next pass in turn that has levels and drew in the last probe frame.
+  void plan(uint64_t next) {
+    const manifest::Manifest& m = active_manifest();
+    const int passes = std::min<int>(static_cast<int>(m.passes.size()), kMaxPasses);
+    stream_count = 0;
+    Levels best;
+    best.count = passes;
+    if (!(c.config == best)) streams[stream_count++].config = best;
+    for (size_t tries = 0; tries < m.passes.size(); ++tries) {
+      const size_t i = next_pass++ % m.passes.size();
+      if (static_cast<int>(i) >= passes || m.passes[i].levels.size() < 2) continue;
+      const bool scales = [&] {
+        for (const manifest::Level& l : m.passes[i].levels)
+          if (!l.targets.empty()) return true;
+        return false;
+      }();
+      if (!scales && i < 64 && !((passes_drawn >> i) & 1)) continue;
+      Levels worst = best;
+      worst.level[i] = static_cast<int8_t>(m.passes[i].levels.size() - 1);
+      if (!(worst == c.config)) streams[stream_count++].config = worst;
+      break;
+    }
+    if (stream_count == 0) return;
+    for (int s = 0; s < stream_count; ++s) {
+      streams[s].textures.clear();
+      streams[s].complete = true;
+    }
+    frame = next;
+    recent[recent_at++ % 16] = next;
+    passes_now = 0;
+    saved_config_for_frame = c.config;
+    units = std::min<int>(kMaxUnits, std::max<int>(1, get(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS)));
+    t_probe = owner;
+  }
+
+  ProbeFrames* owner = nullptr;
+  uint64_t recent[16] = {};
+  size_t recent_at = 0;
+};
+
+ProbeFrames::ProbeFrames(ContextState& c) : impl_(std::make_unique<Impl>(c)) { impl_->owner = this; }
+ProbeFrames::~ProbeFrames() {
+  if (t_probe == this) t_probe = nullptr;
+}
+
+void ProbeFrames::before_present() { impl_->before_present(); }
+void ProbeFrames::after_present() { impl_->after_present(); }
+
+void ProbeFrames::after_swap(uint64_t next) {
+  Impl& p = *impl_;
+  if (!p.probe_possible()) return;
+  p.collect();
+  const uint64_t period = probe_settings().period;
+  // Not the first frames: the app may still be setting up what it draws.
+  if (period == 0 || next < 3 || next % period != 0) return;
+  p.plan(next);
+}
+
+bool ProbeFrames::is_probe_frame(uint64_t frame) const { return frame && frame == impl_->frame; }
+uint64_t ProbeFrames::frame_now() const { return impl_->frame; }
+bool ProbeFrames::was_probe_frame(uint64_t frame) const {
+  for (uint64_t f : impl_->recent)
+    if (f == frame && f) return true;
+  return false;
+}
+
+void ProbeFrames::prepare() {
+  if (impl_->frame) impl_->prepare();
+}
+
+bool ProbeFrames::first() {
+  Impl& p = *impl_;
+  if (!p.begin_duplicate()) return false;
+  if (p.advance()) return true;
+  p.end_duplicate();
+  return false;
+}
+
+bool ProbeFrames::next() { return impl_->advance(); }
+void ProbeFrames::end() { impl_->end_duplicate(); }
+
+bool ProbeFrames::begin_clear() { return first(); }
+bool ProbeFrames::next_clear() { return next(); }
+void ProbeFrames::end_clear() { end(); }
+
+void ProbeFrames::blit(const GLint* src, const GLint* dst, GLbitfield mask, GLenum filter) {
+  Impl& p = *impl_;
+  if (!p.frame) return;
+  const ApplyGl& g = agl();
+  TargetScaler& t = *p.targets();
+  const GLuint app_read = t.app_read_framebuffer(), app_draw = t.app_draw_framebuffer();
+  const GLint draw = get(GL_DRAW_FRAMEBUFFER_BINDING), read = get(GL_READ_FRAMEBUFFER_BINDING);
+  const GLint scissor = g.IsEnabled(GL_SCISSOR_TEST);
+  for (int s = 0; s < p.stream_count; ++s) {
+    Stream& st = p.streams[s];
+    auto to = st.shadows.find(app_draw);
+    if (!st.complete || to == st.shadows.end() || !to->second.usable || to->second.initialized_frame != p.frame) continue;
+    const Shadow& d = to->second;
+    // From the stream's own image of the source when the frame drew it, else the app's.
+    GLuint from = t.real_framebuffer(app_read);
+    double rx = 1.0, ry = 1.0;
+    t.stored_scale(app_read, &rx, &ry);
+    auto source = st.shadows.find(app_read);
+    if (source != st.shadows.end() && source->second.usable && source->second.initialized_frame == p.frame) {
+      from = source->second.fbo;
+      rx = static_cast<double>(source->second.width) / source->second.app_width;
+      ry = static_cast<double>(source->second.height) / source->second.app_height;
+    }
+    const double dx = static_cast<double>(d.width) / d.app_width, dy = static_cast<double>(d.height) / d.app_height;
+    auto k = [](GLint v, double f) { return static_cast<GLint>(v * f + (v >= 0 ? 0.5 : -0.5)); };
+    g.BindFramebuffer(GL_READ_FRAMEBUFFER, from);
+    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, d.fbo);
+    if (scissor) g.Disable(GL_SCISSOR_TEST);  // the app's scissor box is in its own sizes
+    g.BlitFramebuffer(k(src[0], rx), k(src[1], ry), k(src[2], rx), k(src[3], ry), k(dst[0], dx), k(dst[1], dy),
+                      k(dst[2], dx), k(dst[3], dy), mask, filter);
+    if (scissor) g.Enable(GL_SCISSOR_TEST);
+  }
+  g.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read));
+  g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
+}
+
+}  // namespace glbudget
