@@ -1,6 +1,6 @@
 #pragma once
 // Private to the parser: where in the manifest a toml++ node is, and the problems found.
-#include <toml++/toml.h>
+#include "toml.hpp"
 
 #include <filesystem>
 #include <initializer_list>

@@ -1,7 +1,7 @@
 #pragma once
 // Private to the parser: the manifest's value types, checked and converted. Each returns
 // nullopt for a value it cannot take; the caller reports where.
-#include <toml++/toml.h>
+#include "toml.hpp"
 
 #include <optional>
 #include <string>

@@ -122,7 +122,9 @@ std::optional<FrameLog> read_frame_log(std::istream& in, const std::string& sour
         const double power_w = row.number(columns.power_w, "power_w");
         const double energy_j = row.number(columns.energy_j, "energy_j");
         std::string problem = row.problem();
-        if (problem.empty() && !(frame_number >= 0.0 && frame_number == std::floor(frame_number))) {
+        // Below 2^64: a larger frame number (1e300, inf) does not fit the uint64_t it becomes.
+        if (problem.empty() &&
+            !(frame_number >= 0.0 && frame_number < 0x1p64 && frame_number == std::floor(frame_number))) {
             problem = "bad frame number";
         }
         if (problem.empty() && pass.pass.empty()) problem = "empty pass";
