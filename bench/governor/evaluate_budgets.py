@@ -50,6 +50,9 @@ def main():
     ap.add_argument("--fps", type=float, default=10.0)
     ap.add_argument("--size", default="320x180")
     ap.add_argument("--every", type=int, default=10, help="dump every K-th frame for the true error")
+    ap.add_argument("--feedback", default="1", choices=["0", "1"],
+                    help="GLBUDGET_FEEDBACK: 0 is the paper's open loop (no correction from measured power)")
+    ap.add_argument("--probe-period", default="", help="GLBUDGET_PROBE_PERIOD (default: the shim's)")
     a = ap.parse_args()
     demo = os.path.join(a.build, "testapps/demo/demo")
     glbudget = os.path.join(a.build, "cli/glbudget")
@@ -57,21 +60,27 @@ def main():
     manifest = os.path.join(ROOT, "testapps/demo/glbudget.toml")
     w, h = a.size.split("x")
     env = {k: v for k, v in os.environ.items() if not k.startswith("GLBUDGET_") and k != "LD_PRELOAD"}
-    env.update(GLBUDGET_SENSOR="cpu", GLBUDGET_SELECT_FRAMES="60", GLBUDGET_TRANSITION_S="1")
+    env.update(GLBUDGET_SENSOR="cpu", GLBUDGET_SELECT_FRAMES="60", GLBUDGET_TRANSITION_S="1",
+               GLBUDGET_FEEDBACK=a.feedback)
+    governed_env = dict(env)
+    env["GLBUDGET_PROBE_PERIOD"] = "0"  # the reference runs draw no probes
+    if a.probe_period:
+        governed_env["GLBUDGET_PROBE_PERIOD"] = a.probe_period
     print(f"demo at {a.size}, detail 0.2, {a.frames} frames paced at {a.fps:g} fps, cpu sensor (estimate); "
-          f"select every 60 frames, 1-s transitions")
+          f"select every 60 frames, 1-s transitions; feedback {'on' if a.feedback == '1' else 'off'}")
     print(f"{'scene':<8}{'budget':>7}{'windows in':>11}{'mean W':>8}{'best W':>8}{'cheapest W':>11}"
           f"{'saved':>7}{'true err':>10}{'max err':>9}  final configuration")
     with tempfile.TemporaryDirectory() as tmp:
         for scene in a.scenes.split(","):
             common = [demo, "--scene", scene, "--detail", "0.2", "--width", w, "--height", h, "--frames", str(a.frames)]
 
-            def run(name, extra, dump=None):
+            def run(name, extra, dump=None, governed=False):
                 log = os.path.join(tmp, f"{scene}_{name}.csv")
                 cmd = [glbudget, "run", "--fps", str(a.fps), "--log", log] + extra + ["--"] + common
                 if dump:
                     cmd += ["--dump", dump, "--dump-every", str(a.every)]
-                subprocess.run(cmd, env=env, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                subprocess.run(cmd, env=governed_env if governed else env, check=True, stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL)
                 return read_frames(log)
 
             best = run("best", ["--force", "0,0,0,0,0,0", "--config", manifest])
@@ -84,7 +93,8 @@ def main():
                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
             for budget in a.budgets.split(","):
                 shown = os.path.join(tmp, f"{scene}_{budget}_shown")
-                frames = run(f"p{budget}", ["--power", f"{budget}%", "--profile", profile, "--config", manifest], shown)
+                frames = run(f"p{budget}", ["--power", f"{budget}%", "--profile", profile, "--config", manifest], shown,
+                             governed=True)
                 selected = [f for f, r in frames.items() if r["decision"] == "select"]
                 start = (selected[0] if selected else a.frames) + int(a.fps * 1.0) + 1
                 windows = within = 0

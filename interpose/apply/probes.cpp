@@ -25,6 +25,7 @@ const ProbeSettings& probe_settings() {
     const Options& o = options();
     // Probes measure what the governor chooses by: on by default only when it governs.
     s.period = o.probe_period >= 0 ? static_cast<uint64_t>(o.probe_period) : governor_steering() ? 10 : 0;
+    s.settled_factor = o.probe_period >= 0 ? 1 : 6;
     s.dump_dir = o.dump_probes;
     return s;
   }();
@@ -55,6 +56,7 @@ struct ProbeGl {
   void(APIENTRYP DeleteSync)(GLsync) = nullptr;
   void(APIENTRYP PixelStorei)(GLenum, GLint) = nullptr;
   void(APIENTRYP GetIntegeri_v)(GLenum, GLuint, GLint*) = nullptr;
+  void(APIENTRYP GetTextureParameteriv)(GLuint, GLenum, GLint*) = nullptr;  // GL 4.5
   bool complete = false;
 };
 
@@ -82,6 +84,7 @@ const ProbeGl& pgl() {
     load(p.DeleteSync, "glDeleteSync");
     load(p.PixelStorei, "glPixelStorei");
     load(p.GetIntegeri_v, "glGetIntegeri_v");
+    load(p.GetTextureParameteriv, "glGetTextureParameteriv");
     p.complete = p.ActiveTexture && p.GetTexLevelParameteriv && p.GetTexParameteriv && p.TexParameteri &&
                  p.TexStorage2D && p.GetRenderbufferParameteriv && p.DrawBuffers && p.GenBuffers && p.DeleteBuffers &&
                  p.BindBuffer && p.BufferData && p.ReadPixels && p.MapBufferRange && p.UnmapBuffer && p.FenceSync &&
@@ -166,7 +169,8 @@ struct ProbeFrames::Impl {
   TargetScaler* targets() const { return c.targets.get(); }
   GLuint app_draw_fbo() const { return targets()->app_draw_framebuffer(); }
 
-  bool probe_possible() const { return !disabled && targets() && pgl().complete; }
+  // GL 4.2 / GLES 3.1: immutable storage for the shadows, texture-level queries.
+  bool probe_possible() const { return !disabled && targets() && pgl().complete && at_least(4, 2, 3, 1); }
 
   void release_shadow(Shadow& s) {
     const ApplyGl& g = agl();
@@ -225,26 +229,26 @@ struct ProbeFrames::Impl {
           p.GetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_SAMPLES, &im.samples);
           g.BindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(bound));
         } else {
-          GLint level = 0, layered = GL_FALSE, face = 0;
+          // Only 2D textures, level 0. Nothing here may raise a GL error: the app would read
+          // it from glGetError.
+          GLint level = 0, layered = GL_FALSE, face = 0, layer = 0;
           g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL, &level);
           g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_CUBE_MAP_FACE, &face);
-          if (!c.caps.gles)
+          g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LAYER, &layer);
+          if (at_least(3, 2, 3, 2))
             g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_LAYERED, &layered);
-          if (level != 0 || layered || face != 0) return false;
-          // Read through the 2D binding of the active unit: a texture of another target
-          // fails to bind there (GL_INVALID_OPERATION) and is not probed.
+          if (level != 0 || layered || face != 0 || layer != 0) return false;
+          if (p.GetTextureParameteriv && at_least(4, 5, 99, 0)) {
+            GLint target = 0;
+            p.GetTextureParameteriv(im.app, GL_TEXTURE_TARGET, &target);
+            if (target != GL_TEXTURE_2D) return false;
+          }
           const GLint bound = get(GL_TEXTURE_BINDING_2D);
-          while (glGetErrorReal() != GL_NO_ERROR) {
-          }
           g.BindTexture(GL_TEXTURE_2D, im.app);
-          const bool is_2d = glGetErrorReal() == GL_NO_ERROR;
-          if (is_2d) {
-            p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &im.format);
-            p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &w);
-            p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &h);
-          }
+          p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &im.format);
+          p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &w);
+          p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &h);
           g.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(bound));
-          if (!is_2d) return false;
         }
         if (w <= 0 || h <= 0 || im.format == 0) return false;
         if (stored_w == 0) stored_w = w, stored_h = h;
@@ -259,9 +263,10 @@ struct ProbeFrames::Impl {
     return true;
   }
 
-  static GLenum glGetErrorReal() {
-    static auto fn = reinterpret_cast<GLenum(APIENTRYP)(void)>(resolve_gl("glGetError"));
-    return fn ? fn() : GL_NO_ERROR;
+  // The context is at least desktop GL major.minor, or GLES es_major.es_minor.
+  bool at_least(int major, int minor, int es_major, int es_minor) const {
+    const int have = c.caps.major * 10 + c.caps.minor;
+    return c.caps.gles ? have >= es_major * 10 + es_minor : have >= major * 10 + minor;
   }
 
   // Creates the shadow's images and framebuffer (the app's framebuffer is bound for drawing).
@@ -354,15 +359,13 @@ struct ProbeFrames::Impl {
   }
 
   GLint get_window_depth_bits() {
-    GLint bits = 0;
-    if (c.caps.gles || c.caps.major >= 3) {
-      const GLint draw = get(GL_DRAW_FRAMEBUFFER_BINDING);
-      agl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-      agl().GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH,
-                                                GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE, &bits);
-      agl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
-    }
-    return bits;
+    GLint type = GL_NONE;
+    const GLint draw = get(GL_DRAW_FRAMEBUFFER_BINDING);
+    agl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    // Any other parameter of an absent buffer is an error the app would see.
+    agl().GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+    agl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
+    return type == GL_NONE ? 0 : 1;
   }
 
   // The stream's shadow of the app's framebuffer, made and filled for this frame if needed.
@@ -435,13 +438,19 @@ struct ProbeFrames::Impl {
   bool duplicate_allowed() {
     if (c.list_compile_only) return false;
     if (has_side_effects(c.real_program)) return false;
-    if (!c.caps.gles && get(GL_TRANSFORM_FEEDBACK_ACTIVE)) return false;
-    if (c.caps.gles && c.caps.major >= 3 && get(GL_TRANSFORM_FEEDBACK_ACTIVE)) return false;
+    // Each query only where the context knows the enum (an error would reach the app).
+    if (at_least(4, 0, 3, 0) && get(GL_TRANSFORM_FEEDBACK_ACTIVE)) return false;
     if (pgl().GetQueryiv) {
-      for (GLenum target : {GL_SAMPLES_PASSED, GL_ANY_SAMPLES_PASSED, GL_ANY_SAMPLES_PASSED_CONSERVATIVE}) {
-        if (c.caps.gles && target == GL_SAMPLES_PASSED) continue;
+      const struct {
+        GLenum target;
+        bool known;
+      } queries[] = {{GL_SAMPLES_PASSED, !c.caps.gles},
+                     {GL_ANY_SAMPLES_PASSED, at_least(3, 3, 3, 0)},
+                     {GL_ANY_SAMPLES_PASSED_CONSERVATIVE, at_least(4, 3, 3, 0)}};
+      for (const auto& q : queries) {
+        if (!q.known) continue;
         GLint current = 0;
-        pgl().GetQueryiv(target, GL_CURRENT_QUERY, &current);
+        pgl().GetQueryiv(q.target, GL_CURRENT_QUERY, &current);
         if (current) return false;
       }
     }
@@ -699,7 +708,7 @@ struct ProbeFrames::Impl {
     if (!(c.config == best)) streams[stream_count++].config = best;
     for (size_t tries = 0; tries < m.passes.size(); ++tries) {
       const size_t i = next_pass++ % m.passes.size();
-      if (static_cast<int>(i) >= passes || m.passes[i].levels.size() < 2) continue;
+      if (i >= static_cast<size_t>(kMaxPasses) || static_cast<int>(i) >= passes || m.passes[i].levels.size() < 2) continue;
       const bool scales = [&] {
         for (const manifest::Level& l : m.passes[i].levels)
           if (!l.targets.empty()) return true;
@@ -708,6 +717,7 @@ struct ProbeFrames::Impl {
       if (!scales && i < 64 && !((passes_drawn >> i) & 1)) continue;
       Levels worst = best;
       worst.level[i] = static_cast<int8_t>(m.passes[i].levels.size() - 1);
+      if (i < 64) passes_probed |= uint64_t{1} << i;
       if (!(worst == c.config)) streams[stream_count++].config = worst;
       break;
     }
@@ -722,6 +732,15 @@ struct ProbeFrames::Impl {
     saved_config_for_frame = c.config;
     units = std::min<int>(kMaxUnits, std::max<int>(1, get(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS)));
     t_probe = owner;
+  }
+
+  // Passes probed at their cheapest level so far; every pass with levels: settled.
+  uint64_t passes_probed = 0;
+  bool settled() const {
+    const manifest::Manifest& m = active_manifest();
+    for (size_t i = 0; i < m.passes.size() && i < 64; ++i)
+      if (m.passes[i].levels.size() > 1 && ((passes_drawn >> i) & 1) && !((passes_probed >> i) & 1)) return false;
+    return true;
   }
 
   ProbeFrames* owner = nullptr;
@@ -741,7 +760,8 @@ void ProbeFrames::after_swap(uint64_t next) {
   Impl& p = *impl_;
   if (!p.probe_possible()) return;
   p.collect();
-  const uint64_t period = probe_settings().period;
+  uint64_t period = probe_settings().period;
+  if (p.settled()) period *= probe_settings().settled_factor;
   // Not the first frames: the app may still be setting up what it draws.
   if (period == 0 || next < 3 || next % period != 0) return;
   p.plan(next);

@@ -15,8 +15,8 @@
 // Left out of the duplicate (the probe still runs; what they draw is the app's): draws with
 // transform feedback active, draws of programs with storage blocks or atomic counters (side
 // effects), draws inside the app's occlusion queries, compute dispatches, glCopyTex*,
-// glGenerateMipmap. Framebuffers with layered, cube-map or array attachments, and contexts
-// without glTexStorage2D, are not probed.
+// glGenerateMipmap. Framebuffers with layered, cube-map or array attachments are not
+// shadowed; contexts before GL 4.2 / GLES 3.1 are not probed.
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -107,6 +107,9 @@ inline void probe_draw(F&& draw) {
 // GLBUDGET_PROBE_PERIOD and GLBUDGET_DUMP_PROBES, for the governor thread.
 struct ProbeSettings {
   uint64_t period = 0;    // frames between probe frames; 0: no probes
+  // By default (GLBUDGET_PROBE_PERIOD not given) probes are that frequent only until every
+  // pass has been probed once, then this many times rarer: a probe frame costs several frames.
+  uint64_t settled_factor = 1;
   std::string dump_dir;   // where probe images go as PPM files ("" : nowhere)
 };
 const ProbeSettings& probe_settings();

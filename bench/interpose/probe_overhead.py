@@ -1,0 +1,85 @@
+#!/usr/bin/env python3
+"""What quality probes cost (issue 14), each figure against a baseline in the same run.
+
+The demo under the shim with its manifest, forced to a middle configuration (so that probe
+frames draw two streams, s0 and one s_i^lmax), unpaced, with probes every PERIOD frames and
+without. Per-frame time comes from the difference of a long and a short run (start-up
+cancels); the probe frame's own time from the log's time_ns (the swap-to-swap interval of a
+probe frame against the median of the others). Runs are interleaved (rounds) so drift in the
+machine's load hits every case alike.
+Usage: probe_overhead.py BUILD_DIR [--rounds N] [--scene S] [--size WxH] [--periods 10,30]
+"""
+import argparse
+import csv
+import os
+import statistics
+import subprocess
+import tempfile
+import time
+
+
+def run(cmd, env):
+    start = time.perf_counter()
+    subprocess.run(cmd, env=env, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    return time.perf_counter() - start
+
+
+def frame_intervals(log):
+    """Swap-to-swap interval (s) and probe flag per frame, from the shim's log."""
+    times, probe = {}, {}
+    with open(log) as f:
+        for row in csv.DictReader(f):
+            frame = int(row["frame"])
+            times[frame] = int(row["time_ns"])
+            probe[frame] = row.get("probe") == "1"
+    frames = sorted(times)
+    return [((times[b] - times[a]) * 1e-9, probe[b]) for a, b in zip(frames, frames[1:])]
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("build")
+    ap.add_argument("--rounds", type=int, default=3)
+    ap.add_argument("--scene", default="hall")
+    ap.add_argument("--size", default="320x180")
+    ap.add_argument("--frames", type=int, default=60)
+    ap.add_argument("--periods", default="10,30")
+    ap.add_argument("--config", default="1,0,0,1,0,0")
+    a = ap.parse_args()
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    demo = os.path.join(a.build, "testapps/demo/demo")
+    shim = os.path.join(a.build, "interpose/libglbudget.so")
+    manifest = os.path.join(root, "testapps/demo/glbudget.toml")
+    w, h = a.size.split("x")
+    base = {k: v for k, v in os.environ.items() if k != "LD_PRELOAD" and not k.startswith("GLBUDGET_")}
+    shimmed = dict(base, LD_PRELOAD=shim, GLBUDGET_SENSOR="cpu", GLBUDGET_CONFIG=manifest, GLBUDGET_FORCE=a.config)
+    periods = [int(p) for p in a.periods.split(",")]
+    cases = {"no probes": dict(shimmed, GLBUDGET_PROBE_PERIOD="0")}
+    for p in periods:
+        cases[f"probes every {p}"] = dict(shimmed, GLBUDGET_PROBE_PERIOD=str(p))
+    args = [demo, "--scene", a.scene, "--detail", "0.2", "--width", w, "--height", h]
+    per_frame = {name: [] for name in cases}
+    probe_ratio = {name: [] for name in cases}
+    with tempfile.TemporaryDirectory() as tmp:
+        for _ in range(a.rounds):
+            for name, env in cases.items():
+                log = os.path.join(tmp, "log.csv")
+                long = run(args + ["--frames", str(a.frames)], dict(env, GLBUDGET_LOG=log))
+                short = run(args + ["--frames", "5"], env)
+                per_frame[name].append((long - short) / (a.frames - 5))
+                intervals = frame_intervals(log)[5:]
+                plain = [t for t, p in intervals if not p]
+                probes = [t for t, p in intervals if p]
+                if plain and probes:
+                    probe_ratio[name].append(statistics.median(probes) / statistics.median(plain))
+    baseline = statistics.median(per_frame["no probes"])
+    print(f"demo {a.scene} {a.size}, detail 0.2, forced {a.config}, {a.frames} frames unpaced, {a.rounds} rounds")
+    print(f"{'case':<18}{'ms/frame':>10}{'vs none':>9}{'probe frame / other':>21}")
+    for name in cases:
+        ms = statistics.median(per_frame[name]) * 1e3
+        ratio = statistics.median(probe_ratio[name]) if probe_ratio[name] else float("nan")
+        print(f"{name:<18}{ms:>10.1f}{ms / (baseline * 1e3):>9.2f}{ratio:>21.2f}")
+
+
+if __name__ == "__main__":
+    main()
