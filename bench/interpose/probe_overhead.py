@@ -7,7 +7,9 @@ without. Per-frame time comes from the difference of a long and a short run (sta
 cancels); the probe frame's own time from the log's time_ns (the swap-to-swap interval of a
 probe frame against the median of the others). Runs are interleaved (rounds) so drift in the
 machine's load hits every case alike.
-Usage: probe_overhead.py BUILD_DIR [--rounds N] [--scene S] [--size WxH] [--periods 10,30]
+"default" in --periods leaves GLBUDGET_PROBE_PERIOD unset with a budget in force (probes every
+10 frames until every pass has been probed, then every 60), the configuration still forced.
+Usage: probe_overhead.py BUILD_DIR [--rounds N] [--scene S] [--size WxH] [--periods 10,30,default]
 """
 import argparse
 import csv
@@ -53,10 +55,17 @@ def main():
     w, h = a.size.split("x")
     base = {k: v for k, v in os.environ.items() if k != "LD_PRELOAD" and not k.startswith("GLBUDGET_")}
     shimmed = dict(base, LD_PRELOAD=shim, GLBUDGET_SENSOR="cpu", GLBUDGET_CONFIG=manifest, GLBUDGET_FORCE=a.config)
-    periods = [int(p) for p in a.periods.split(",")]
     cases = {"no probes": dict(shimmed, GLBUDGET_PROBE_PERIOD="0")}
-    for p in periods:
-        cases[f"probes every {p}"] = dict(shimmed, GLBUDGET_PROBE_PERIOD=str(p))
+    for p in a.periods.split(","):
+        if p == "default":
+            # A budget starts the governor and so the default probes; at 100 % it draws the best
+            # configuration (one probe stream), so its baseline is the same run without probes.
+            governed = dict(shimmed, GLBUDGET_POWER="100%",
+                            GLBUDGET_PROFILE=os.path.join(root, "tests/data/logs/demo_cpu.profile.json"))
+            cases["governed, none"] = dict(governed, GLBUDGET_PROBE_PERIOD="0")
+            cases["governed, default"] = governed
+        else:
+            cases[f"probes every {p}"] = dict(shimmed, GLBUDGET_PROBE_PERIOD=p)
     args = [demo, "--scene", a.scene, "--detail", "0.2", "--width", w, "--height", h]
     per_frame = {name: [] for name in cases}
     probe_ratio = {name: [] for name in cases}
@@ -72,13 +81,14 @@ def main():
                 probes = [t for t, p in intervals if p]
                 if plain and probes:
                     probe_ratio[name].append(statistics.median(probes) / statistics.median(plain))
-    baseline = statistics.median(per_frame["no probes"])
+    def baseline_of(name):
+        return statistics.median(per_frame["governed, none" if name.startswith("governed") else "no probes"])
     print(f"demo {a.scene} {a.size}, detail 0.2, forced {a.config}, {a.frames} frames unpaced, {a.rounds} rounds")
     print(f"{'case':<18}{'ms/frame':>10}{'vs none':>9}{'probe frame / other':>21}")
     for name in cases:
         ms = statistics.median(per_frame[name]) * 1e3
         ratio = statistics.median(probe_ratio[name]) if probe_ratio[name] else float("nan")
-        print(f"{name:<18}{ms:>10.1f}{ms / (baseline * 1e3):>9.2f}{ratio:>21.2f}")
+        print(f"{name:<18}{ms:>10.1f}{ms / (baseline_of(name) * 1e3):>9.2f}{ratio:>21.2f}")
 
 
 if __name__ == "__main__":
