@@ -72,28 +72,9 @@ class GovernorThread {
 
   void start() { pthread_create(&thread_, nullptr, &GovernorThread::main, this); }
 
-  // Render thread: never waits. A frame that finds the queue locked is kept for the next try.
-  void push(Frame&& frame) {
-    thread_local std::vector<Frame> waiting;
-    waiting.push_back(std::move(frame));
-    std::unique_lock lock(mu_, std::try_to_lock);
-    if (!lock.owns_lock()) return;
-    for (Frame& f : waiting) queue_.push_back(std::move(f));
-    waiting.clear();
-    lock.unlock();
-    wake_.notify_one();
-  }
-
-  void push_probe(ProbeCapture&& capture) {
-    thread_local std::vector<ProbeCapture> waiting;
-    waiting.push_back(std::move(capture));
-    std::unique_lock lock(mu_, std::try_to_lock);
-    if (!lock.owns_lock()) return;
-    for (ProbeCapture& c : waiting) probes_.push_back(std::move(c));
-    waiting.clear();
-    lock.unlock();
-    wake_.notify_one();
-  }
+  // Render thread: never waits. What finds the queue locked is kept for the next try.
+  void push(Frame&& frame) { hand_over(std::move(frame), queue_); }
+  void push_probe(ProbeCapture&& capture) { hand_over(std::move(capture), probes_); }
 
   bool levels(Levels* out) const {
     const uint64_t packed = decision_.load(std::memory_order_acquire);
@@ -121,6 +102,18 @@ class GovernorThread {
   static void* main(void* self) {
     static_cast<GovernorThread*>(self)->run();
     return nullptr;
+  }
+
+  template <typename T>
+  void hand_over(T&& item, std::deque<T>& queue) {
+    thread_local std::vector<T> waiting;
+    waiting.push_back(std::move(item));
+    std::unique_lock lock(mu_, std::try_to_lock);
+    if (!lock.owns_lock()) return;
+    for (T& w : waiting) queue.push_back(std::move(w));
+    waiting.clear();
+    lock.unlock();
+    wake_.notify_one();
   }
 
   void run() {
