@@ -67,8 +67,8 @@ struct Frame {
 
 class GovernorThread {
  public:
-  GovernorThread(loop::Governor governor, manifest::Manifest manifest)
-      : governor_(std::move(governor)), manifest_(std::move(manifest)) {}
+  GovernorThread(loop::Governor governor, manifest::Manifest manifest, int probe_scale)
+      : governor_(std::move(governor)), manifest_(std::move(manifest)), fixed_scale_(probe_scale) {}
 
   void start() { pthread_create(&thread_, nullptr, &GovernorThread::main, this); }
 
@@ -148,7 +148,7 @@ class GovernorThread {
       luma.push_back(quality::luma_from_8bit(image.data(), p.width, p.height, 4));
     }
     quality::SsimOptions options;
-    options.scale = scale_.load(std::memory_order_relaxed);
+    options.scale = fixed_scale_ ? fixed_scale_ : quality::wang_rule_scale(p.width, p.height);
     options.threads = 1;  // beside the app's render threads
     auto error = [&](size_t a, size_t b) { return 1.0 - quality::ssim(luma[a].view(), luma[b].view(), options); };
     size_t best = 0;  // the image of s0: the shown one unless a stream drew it
@@ -310,12 +310,7 @@ class GovernorThread {
   std::vector<Held> held_;
   std::unordered_map<uint64_t, double> shown_error_;  // by probe frame
   std::unordered_map<int, double> measured_;          // e_i(lmax) by pass
-  std::atomic<int> scale_{1};  // SSIM scale; set from the render thread
-
- public:
-  void set_probe_scale(int scale) { scale_ = scale; }
-
- private:
+  int fixed_scale_ = 0;  // GLBUDGET_PROBE_SCALE; 0: Wang's rule for each capture's size
   std::FILE* selections_ = nullptr;
   bool selections_failed_ = false;
 };
@@ -323,7 +318,6 @@ class GovernorThread {
 GovernorThread* g_thread = nullptr;  // never destroyed: hooks may run during exit
 std::atomic<bool> g_governing{false};  // frames pass through the thread
 std::atomic<bool> g_steering{false};   // and it chooses their configuration (a budget is set)
-bool g_probe_scale_fixed = false;       // GLBUDGET_PROBE_SCALE given
 thread_local Frame t_building;
 
 }  // namespace
@@ -367,11 +361,7 @@ bool governor_start() {
     manifest::Manifest m = governed_manifest(active_manifest());
     loop::Governor governor(*profile, loop::space_from_manifest(m), loop::errors_from_manifest(m), settings);
     const bool steering = governor.governing();
-    g_thread = new GovernorThread(std::move(governor), std::move(m));
-    if (o.probe_scale) {
-      g_thread->set_probe_scale(o.probe_scale);
-      g_probe_scale_fixed = true;
-    }
+    g_thread = new GovernorThread(std::move(governor), std::move(m), o.probe_scale);
     g_thread->start();
     g_governing = true;
     g_steering = steering;
@@ -399,9 +389,7 @@ void governor_rows_done() {
 bool governor_levels(Levels* out) { return g_thread && g_steering && g_thread->levels(out); }
 
 void governor_probe(ProbeCapture&& capture) {
-  if (!g_thread) return;
-  if (!g_probe_scale_fixed) g_thread->set_probe_scale(quality::wang_rule_scale(capture.width, capture.height));
-  g_thread->push_probe(std::move(capture));
+  if (g_thread) g_thread->push_probe(std::move(capture));
 }
 
 void governor_stop() {

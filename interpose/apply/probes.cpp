@@ -342,7 +342,7 @@ struct ProbeFrames::Impl {
     }
     // The window without a depth buffer of its own leaves the shadow's undefined: cleared
     // by the app, as it clears the window.
-    if (depth_stencil && !(app == 0 && !targets()->window_scaled() && get_window_depth_bits() == 0))
+    if (depth_stencil && !(app == 0 && !targets()->window_scaled() && !window_has_depth()))
       g.BlitFramebuffer(0, 0, src_w, src_h, 0, 0, s.width, s.height, depth_stencil, GL_NEAREST);
     g.ReadBuffer(static_cast<GLenum>(read_buffer));
     // The app's draw buffers again (the copy set one at a time).
@@ -358,14 +358,14 @@ struct ProbeFrames::Impl {
     p.DrawBuffers(count, draw_buffers);
   }
 
-  GLint get_window_depth_bits() {
+  bool window_has_depth() {
     GLint type = GL_NONE;
     const GLint draw = get(GL_DRAW_FRAMEBUFFER_BINDING);
     agl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
     // Any other parameter of an absent buffer is an error the app would see.
     agl().GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
     agl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
-    return type == GL_NONE ? 0 : 1;
+    return type != GL_NONE;
   }
 
   // The stream's shadow of the app's framebuffer, made and filled for this frame if needed.
@@ -477,9 +477,11 @@ struct ProbeFrames::Impl {
     const double sx = static_cast<double>(sh.width) / sh.app_width, sy = static_cast<double>(sh.height) / sh.app_height;
     const GLint* v = targets()->app_viewport();
     const GLint* b = targets()->app_scissor();
-    auto scaled = [](GLint x, double k) { return static_cast<GLint>(x * k + (x >= 0 ? 0.5 : -0.5)); };
-    g.Viewport(scaled(v[0], sx), scaled(v[1], sy), scaled(v[2], sx), scaled(v[3], sy));
-    g.Scissor(scaled(b[0], sx), scaled(b[1], sy), scaled(b[2], sx), scaled(b[3], sy));
+    GLint viewport[4], scissor[4];
+    scale_box(v, sx, sy, viewport);  // as the app's own scaled targets get them
+    scale_box(b, sx, sy, scissor);
+    g.Viewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+    g.Scissor(scissor[0], scissor[1], scissor[2], scissor[3]);
     for (int u = 0; u < units; ++u) {
       auto t = st.textures.find(static_cast<GLuint>(unit_texture[u]));
       const bool want = t != st.textures.end();
@@ -790,9 +792,6 @@ bool ProbeFrames::first() {
 bool ProbeFrames::next() { return impl_->advance(); }
 void ProbeFrames::end() { impl_->end_duplicate(); }
 
-bool ProbeFrames::begin_clear() { return first(); }
-bool ProbeFrames::next_clear() { return next(); }
-void ProbeFrames::end_clear() { end(); }
 
 void ProbeFrames::blit(const GLint* src, const GLint* dst, GLbitfield mask, GLenum filter) {
   Impl& p = *impl_;
@@ -818,12 +817,14 @@ void ProbeFrames::blit(const GLint* src, const GLint* dst, GLbitfield mask, GLen
       ry = static_cast<double>(source->second.height) / source->second.app_height;
     }
     const double dx = static_cast<double>(d.width) / d.app_width, dy = static_cast<double>(d.height) / d.app_height;
-    auto k = [](GLint v, double f) { return static_cast<GLint>(v * f + (v >= 0 ? 0.5 : -0.5)); };
+    GLint from_rect[4], to_rect[4];
+    scale_corners(src, rx, ry, from_rect);
+    scale_corners(dst, dx, dy, to_rect);
     g.BindFramebuffer(GL_READ_FRAMEBUFFER, from);
     g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, d.fbo);
     if (scissor) g.Disable(GL_SCISSOR_TEST);  // the app's scissor box is in its own sizes
-    g.BlitFramebuffer(k(src[0], rx), k(src[1], ry), k(src[2], rx), k(src[3], ry), k(dst[0], dx), k(dst[1], dy),
-                      k(dst[2], dx), k(dst[3], dy), mask, filter);
+    g.BlitFramebuffer(from_rect[0], from_rect[1], from_rect[2], from_rect[3], to_rect[0], to_rect[1], to_rect[2],
+                      to_rect[3], mask, filter);
     if (scissor) g.Enable(GL_SCISSOR_TEST);
   }
   g.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read));

@@ -78,9 +78,6 @@ class ProbeFrames {
   uint64_t frame_now() const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
-  bool begin_clear();
-  bool next_clear();
-  void end_clear();
 };
 
 // Set while the context current on this thread draws a probe frame.
@@ -88,10 +85,10 @@ extern thread_local ProbeFrames* t_probe __attribute__((tls_model("initial-exec"
 
 template <typename F>
 void ProbeFrames::clear(F&& call) {
-  if (!begin_clear()) return;
+  if (!first()) return;
   do call();
-  while (next_clear());
-  end_clear();
+  while (next());
+  end();
 }
 
 // Called by every generated draw wrapper after the app's draw, on probe frames only.

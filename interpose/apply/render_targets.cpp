@@ -488,7 +488,6 @@ void TargetScaler::scale_of(GLuint fbo, double* sx, double* sy) const {
   }
 }
 
-namespace {
 void scale_box(const GLint* in, double sx, double sy, GLint* out) {
   const auto x0 = std::lround(in[0] * sx), y0 = std::lround(in[1] * sy);
   out[0] = static_cast<GLint>(x0);
@@ -496,7 +495,10 @@ void scale_box(const GLint* in, double sx, double sy, GLint* out) {
   out[2] = static_cast<GLint>(std::lround((in[0] + in[2]) * sx) - x0);
   out[3] = static_cast<GLint>(std::lround((in[1] + in[3]) * sy) - y0);
 }
-}  // namespace
+
+void scale_corners(const GLint* in, double sx, double sy, GLint* out) {
+  for (int i = 0; i < 4; ++i) out[i] = static_cast<GLint>(std::lround(in[i] * (i % 2 ? sy : sx)));
+}
 
 void TargetScaler::apply_viewport() {
   double sx, sy;
@@ -598,9 +600,9 @@ void TargetScaler::renderbuffer_storage(GLsizei samples, GLenum internal_format,
 void TargetScaler::blit_rectangles(GLuint read, GLuint draw, GLint* src, GLint* dst) const {
   double sx, sy;
   scale_of(read, &sx, &sy);
-  for (int i = 0; i < 4; ++i) src[i] = static_cast<GLint>(std::lround(src[i] * (i % 2 ? sy : sx)));
+  scale_corners(src, sx, sy, src);
   scale_of(draw, &sx, &sy);
-  for (int i = 0; i < 4; ++i) dst[i] = static_cast<GLint>(std::lround(dst[i] * (i % 2 ? sy : sx)));
+  scale_corners(dst, sx, sy, dst);
 }
 
 bool TargetScaler::texture_size(GLint level, GLenum pname, GLint* value) const {

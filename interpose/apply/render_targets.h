@@ -22,6 +22,11 @@
 
 namespace glbudget {
 
+// A viewport or scissor box (x, y, width, height) scaled by its edges, as the driver is given it.
+void scale_box(const GLint* in, double sx, double sy, GLint* out);
+// A blit rectangle's corners (x0, y0, x1, y1) scaled; `out` may be `in`.
+void scale_corners(const GLint* in, double sx, double sy, GLint* out);
+
 class TargetScaler {
  public:
   explicit TargetScaler(bool gles);  // reads the viewport and scissor the context starts with
