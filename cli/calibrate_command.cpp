@@ -12,6 +12,7 @@
 #include <fstream>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "calibration_session.hpp"
@@ -25,6 +26,8 @@
 
 namespace glbudget::cli {
 
+int calibrate_app_main(std::span<char* const> args);  // calibrate_app.cpp
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -32,7 +35,7 @@ namespace fs = std::filesystem;
 void print_help() {
   std::printf(
       "usage: glbudget calibrate [--sensor S] [--output PATH] [--fps R] [--quick] [--verbose]\n"
-      "       glbudget calibrate --app -- APP [ARGS...]   (not yet)\n\n"
+      "       glbudget calibrate --app [--config MANIFEST] [--frames N] [--output PATH] -- APP [ARGS...]\n\n"
       "Measures the platform profile the power model needs, once per machine and sensor: P_m (frames\n"
       "that draw nothing), then power against batches, vertices and fragments per frame, each swept\n"
       "in doubling steps at R frames per second (default 30) until power stops rising: P_M is the\n"
@@ -40,7 +43,8 @@ void print_help() {
       "minute (--quick: a few seconds, coarser). Ctrl-C writes what was measured so far, with\n"
       "defaults for the rest. The profile goes to --output, else $GLBUDGET_PROFILE, else\n"
       "$XDG_CACHE_HOME/glbudget/<sensor>.json. --sensor: as GLBUDGET_SENSOR (default: it, or auto).\n"
-      "--verbose prints every step.\n");
+      "--verbose prints every step.\n"
+      "--app measures an app's manifest levels instead (glbudget calibrate --app --help).\n");
 }
 
 struct Options {
@@ -68,9 +72,6 @@ std::optional<Options> parse(std::span<char* const> args, int& exit_status) {
     if (arg == "--help" || arg == "-h") {
       print_help();
       exit_status = 0;
-      return std::nullopt;
-    } else if (arg == "--app") {
-      std::fprintf(stderr, "glbudget: calibrate: --app (measuring an app's variants) is not yet supported\n");
       return std::nullopt;
     } else if (arg == "--quick") {
       o.quick = true;
@@ -186,6 +187,10 @@ void print_result(const model::CalibrationResult& r, const CalibrationSession& s
 }  // namespace
 
 int calibrate_main(std::span<char* const> args) {
+  for (char* arg : args) {
+    if (std::string_view(arg) == "--") break;
+    if (std::string_view(arg) == "--app") return calibrate_app_main(args);
+  }
   int status = 0;
   const std::optional<Options> options = parse(args, status);
   if (!options) return status;

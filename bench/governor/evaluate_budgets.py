@@ -55,6 +55,9 @@ def main():
     ap.add_argument("--feedback", default="1", choices=["0", "1"],
                     help="GLBUDGET_FEEDBACK: 0 is the paper's open loop (no correction from measured power)")
     ap.add_argument("--probe-period", default="", help="GLBUDGET_PROBE_PERIOD (default: the shim's)")
+    ap.add_argument("--costs", default="measure",
+                    help="the levels' measured costs: 'measure' (glbudget calibrate --app on each scene first, "
+                         "the default), 'off' (none: only scales and skipped passes predict savings), or a path")
     a = ap.parse_args()
     demo = os.path.join(a.build, "testapps/demo/demo")
     glbudget = os.path.join(a.build, "cli/glbudget")
@@ -69,7 +72,8 @@ def main():
     if a.probe_period:
         governed_env["GLBUDGET_PROBE_PERIOD"] = a.probe_period
     print(f"demo at {a.size}, detail 0.2, {a.frames} frames paced at {a.fps:g} fps, cpu sensor (estimate); "
-          f"select every 60 frames, 1-s transitions; feedback {'on' if a.feedback == '1' else 'off'}")
+          f"select every 60 frames, 1-s transitions; feedback {'on' if a.feedback == '1' else 'off'}; "
+          f"level costs: {a.costs}")
     print(f"{'scene':<8}{'budget':>7}{'windows in':>11}{'in true':>9}{'true W':>8}{'mean W':>8}{'best W':>8}{'cheapest W':>11}"
           f"{'saved':>7}{'true err':>10}{'max err':>9}  final configuration")
     with tempfile.TemporaryDirectory() as tmp:
@@ -85,6 +89,14 @@ def main():
                                stderr=subprocess.DEVNULL)
                 return read_frames(log)
 
+            if a.costs == "measure":
+                costs = os.path.join(tmp, f"{scene}.variants.json")
+                subprocess.run([glbudget, "calibrate", "--app", "--config", manifest, "--frames", "20", "--output", costs,
+                                "--"] + common[:-1] + ["100000"], env=env, check=True, stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL)
+                governed_env["GLBUDGET_COSTS"] = costs
+            else:
+                governed_env["GLBUDGET_COSTS"] = a.costs
             best = run("best", ["--force", "0,0,0,0,0,0", "--config", manifest])
             cheapest = run("cheapest", ["--force", "2,2,2,2,2,2", "--config", manifest])
             tail = lambda frames: [power(r) for f, r in frames.items() if f > a.frames // 2]

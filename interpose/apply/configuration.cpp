@@ -14,8 +14,6 @@
 
 namespace glbudget {
 
-namespace {
-
 std::string executable_name() {
   char path[4096];
   const ssize_t n = readlink("/proc/self/exe", path, sizeof path - 1);
@@ -24,18 +22,13 @@ std::string executable_name() {
   return std::filesystem::path(path).filename().string();
 }
 
+namespace {
+
 // GLBUDGET_CONFIG, else $XDG_CONFIG_HOME/glbudget/<exe>.toml if it exists (~/.config when unset).
 std::string manifest_path() {
   const Options& o = options();
   if (!o.config_path.empty()) return o.config_path;
-  std::string base;
-  if (const char* xdg = std::getenv("XDG_CONFIG_HOME"); xdg && *xdg) base = xdg;
-  else if (const char* home = std::getenv("HOME"); home && *home) base = std::string(home) + "/.config";
-  const std::string exe = executable_name();
-  if (base.empty() || exe.empty()) return {};
-  const std::string path = base + "/glbudget/" + exe + ".toml";
-  std::error_code ec;
-  return std::filesystem::is_regular_file(path, ec) ? path : std::string();
+  return manifest::default_manifest_path(executable_name());
 }
 
 struct State {

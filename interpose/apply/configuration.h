@@ -32,6 +32,9 @@ struct Levels {
 std::string format_levels(const Levels& levels);
 int format_levels(const Levels& levels, char* out, int size);
 
+// This process's program file name (for the default manifest and variant-table paths).
+std::string executable_name();
+
 // The manifest in force (the built-in render-scale pass alone when there is none). Loaded
 // once, at the first make-current; problems are reported then.
 const manifest::Manifest& active_manifest();

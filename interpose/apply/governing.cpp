@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <deque>
+#include <filesystem>
 #include <mutex>
 #include <string>
 #include <unordered_map>
@@ -21,6 +22,7 @@
 #include "glbudget/loop/governor.hpp"
 #include "glbudget/model/platform_profile.hpp"
 #include "glbudget/model/selection.hpp"
+#include "glbudget/model/variant_table.hpp"
 #include "glbudget/sensors/profile_path.hpp"
 #include "options.h"
 #include "probes.h"
@@ -53,6 +55,33 @@ manifest::Manifest governed_manifest(const manifest::Manifest& m) {
     }
   }
   return out;
+}
+
+// The levels' instruction and texel costs `glbudget calibrate --app` measured for this app:
+// GLBUDGET_COSTS, else the default path by executable name if that file exists. Without them
+// the model predicts savings only from levels that change how much is drawn (scales, skipped
+// passes), not from levels that change what each fragment costs.
+model::ConfigurationSpace measured_space(const manifest::Manifest& m, bool budget) {
+  const std::string& named = options().costs_path;
+  if (named == "off") return loop::space_from_manifest(m);
+  std::string path = named.empty() ? model::default_variant_table_path(executable_name()) : named;
+  std::error_code ec;
+  if (named.empty() && (path.empty() || !std::filesystem::is_regular_file(path, ec))) {
+    const bool has_programs = std::any_of(m.passes.begin(), m.passes.end(), [](const manifest::Pass& p) {
+      return std::any_of(p.levels.begin(), p.levels.end(), [](const manifest::Level& l) { return l.changes_program(); });
+    });
+    if (budget && has_programs)
+      say("no measured costs of the manifest's shader levels (" + (path.empty() ? std::string("no cache directory") : path) +
+          "): the model predicts savings from render scales and skipped passes only; "
+          "`glbudget calibrate --app -- APP` measures them");
+    return loop::space_from_manifest(m);
+  }
+  const std::optional<model::VariantTable> table = model::load_variant_table(path);  // says why when it fails
+  if (!table) return loop::space_from_manifest(m);
+  std::vector<std::string> problems;
+  model::ConfigurationSpace space = loop::space_from_manifest(m, *table, problems);
+  for (const std::string& p : problems) say(path + ": " + p);
+  return space;
 }
 
 std::string default_profile_path() {
@@ -359,7 +388,7 @@ bool governor_start() {
     }
     if (!profile) profile = model::PlatformProfile{};
     manifest::Manifest m = governed_manifest(active_manifest());
-    loop::Governor governor(*profile, loop::space_from_manifest(m), loop::errors_from_manifest(m), settings);
+    loop::Governor governor(*profile, measured_space(m, budget), loop::errors_from_manifest(m), settings);
     const bool steering = governor.governing();
     g_thread = new GovernorThread(std::move(governor), std::move(m), o.probe_scale);
     g_thread->start();

@@ -11,6 +11,7 @@
 #include "messages.h"
 #include "glbudget/instrument/defines.hpp"
 #include "pass_names.h"
+#include "shader_instrumentation.h"
 #include "uniform_values.h"
 
 namespace glbudget {
@@ -347,7 +348,7 @@ std::vector<ShaderSource> variant_sources(const std::vector<ShaderSource>& app, 
   return out;
 }
 
-GLuint link_variant(GLuint app, const std::vector<ShaderSource>& sources, const GlCaps& caps,
+GLuint link_sources(GLuint app, const std::vector<ShaderSource>& sources, const GlCaps& caps,
                     const NameBindings& bindings, std::string* error) {
   const ApplyGl& g = agl();
   std::vector<GLuint> shaders;
@@ -382,6 +383,32 @@ GLuint link_variant(GLuint app, const std::vector<ShaderSource>& sources, const 
   return program;
 }
 
+// Linked from instrumented sources when `inst` is given and the instrumented variant builds;
+// else from `sources` as they are.
+GLuint link_variant(GLuint app, const std::vector<ShaderSource>& sources, const GlCaps& caps,
+                    const NameBindings& bindings, Instrumentation* inst, const std::string& variant_hash,
+                    const std::string& where, bool* instrumented, std::string* error) {
+  *instrumented = false;
+  if (inst) {
+    std::vector<std::pair<GLenum, std::string>> stages;
+    for (const ShaderSource& s : sources) stages.emplace_back(s.stage, s.source);
+    InstrumentedVariant iv = instrument_variant(*inst, stages, variant_hash);
+    if (iv.any) {
+      std::vector<ShaderSource> counted = sources;
+      for (size_t i = 0; i < counted.size(); ++i) counted[i].source = iv.sources[i];
+      std::string why;
+      if (const GLuint program = link_sources(app, counted, caps, bindings, &why)) {
+        after_variant_link(*inst, program, iv);
+        *instrumented = true;
+        return program;
+      }
+      say_once("variant-not-instrumented" + variant_hash,
+               where + ": the instrumented variant " + why + "; it is built and drawn without counters");
+    }
+  }
+  return link_sources(app, sources, caps, bindings, error);
+}
+
 }  // namespace
 
 int shader_stage_slot(GLenum stage) {
@@ -407,7 +434,7 @@ int match_pass(PassId hash, const std::vector<ShaderSource>& sources) {
 
 std::shared_ptr<VariantSet> build_variants(GLuint program, PassId app_hash, int pass,
                                            const std::vector<ShaderSource>& sources, const GlCaps& caps,
-                                           const NameBindings& bindings) {
+                                           const NameBindings& bindings, Instrumentation* inst) {
   const manifest::Pass& mp = active_manifest().passes[static_cast<size_t>(pass)];
   auto set = std::make_shared<VariantSet>();
   set->app_program = program;
@@ -431,15 +458,18 @@ std::shared_ptr<VariantSet> build_variants(GLuint program, PassId app_hash, int 
                                            " and every other program variant draw with the app's programs");
       } else {
         const std::vector<ShaderSource> modified = variant_sources(sources, level);
+        std::vector<uint64_t> hashes;
+        for (const ShaderSource& s : modified) hashes.push_back(shader_hash(s.stage, s.source));
+        const PassId variant_hash = program_hash(std::move(hashes));
+        v.dump_name = hash_text(variant_hash);
+        if (variant_hash == app_hash) v.dump_name += "-level" + std::to_string(l);
         std::string error;
-        v.program = link_variant(program, modified, caps, bindings, &error);
+        v.program = link_variant(program, modified, caps, bindings, inst, v.dump_name, where, &v.instrumented, &error);
         if (!v.program) {
           say_once(where + hash_text(app_hash), where + ": the variant of program " + hash_text(app_hash) + " " + error +
                                                     "; this level draws the app's program");
         } else {
-          std::vector<uint64_t> hashes;
-          for (const ShaderSource& s : modified) hashes.push_back(shader_hash(s.stage, s.source));
-          v.pass_hash = program_hash(std::move(hashes));
+          v.pass_hash = variant_hash;
           map_uniforms(program, v, level);
           map_blocks(program, v, caps);
           if (!app_stages_read) {

@@ -18,6 +18,8 @@
 
 namespace glbudget {
 
+class Instrumentation;
+
 // Subroutine uniforms (GL 4.0): their indices and locations belong to a program, as uniform
 // locations do (apply/subroutines.h). Stages are slotted 0..5: vertex, tess control, tess
 // evaluation, geometry, fragment, compute; -1 for anything else.
@@ -41,6 +43,10 @@ struct Variant {
   GLuint program = 0;   // 0: the level draws with the app's program
   PassId pass_hash = 0; // the program's name in the frame log (as if the app had built it)
   bool draws = true;    // false: the level skips the pass's draws
+  bool instrumented = false;  // built from instrumented sources (GLBUDGET_INSTRUMENT, GLBUDGET_DUMP)
+  // Its name in the dump: hash_text(pass_hash), with "-level<l>" added when only held
+  // uniforms set it apart (its sources, hence its log name, are the app program's).
+  std::string dump_name;
   // App location -> variant location (-1: absent, or held by the level).
   std::vector<GLint> location;
   std::vector<GLint> uniform_block;  // app block index -> variant index (-1: absent)
@@ -81,9 +87,11 @@ struct NameBindings {
   std::vector<std::pair<std::string, GLuint>> attributes;
   std::vector<std::pair<std::string, std::pair<GLuint, GLuint>>> frag_data;  // colour, index
 };
+// With `inst` (instrumentation on in this context) each variant is instrumented too, counting
+// under its own program hash; one that does not build instrumented is built plainly.
 std::shared_ptr<VariantSet> build_variants(GLuint program, PassId app_hash, int pass,
                                            const std::vector<ShaderSource>& sources, const GlCaps& caps,
-                                           const NameBindings& bindings);
+                                           const NameBindings& bindings, Instrumentation* inst);
 void delete_variants(const VariantSet& set);
 
 // The app's last glUniformSubroutinesuiv of one stage, in its program's indices, and the

@@ -13,6 +13,7 @@
 #include "hook_table.h"
 #include "options.h"
 #include "pass_names.h"
+#include "variants.h"
 
 namespace glbudget {
 
@@ -223,6 +224,36 @@ void after_link(ContextState& c, ShareGroup& g, GLuint program, ProgramInfo& inf
   dump_registry::add_program(dump);
 }
 
+InstrumentedVariant instrument_variant(Instrumentation& inst, const std::vector<std::pair<GLenum, std::string>>& stages,
+                                       const std::string& program_hash) {
+  InstrumentedVariant out;
+  out.dump.hash = program_hash;
+  for (const auto& [type, source] : stages) {
+    const std::optional<Stage> stage = stage_of(type);
+    if (!stage) {
+      out.sources.push_back(source);
+      continue;
+    }
+    instrument::InstrumentResult r = instrument::instrument_shader({{source}, *stage, inst.binding(), inst.extensions()});
+    out.sources.push_back(r.ok ? r.instrumented_source : source);
+    out.any |= r.ok;
+    out.needs_binding |= r.ok && !r.binding_in_source;
+    const std::string shader = hash_text(shader_hash(type, source));
+    out.dump.stages.push_back({*stage, shader, r.figures, std::nullopt});
+    dump_registry::add_shader({shader, *stage, source, std::move(r)});
+  }
+  return out;
+}
+
+void after_variant_link(Instrumentation& inst, GLuint program, const InstrumentedVariant& variant) {
+  inst.buffers().forget(program);
+  if (variant.needs_binding) {
+    GLuint block = gl().GetProgramResourceIndex(program, GL_SHADER_STORAGE_BLOCK, instrument::kCounterBlockName);
+    if (block != GL_INVALID_INDEX) gl().ShaderStorageBlockBinding(program, block, static_cast<GLuint>(inst.binding()));
+  }
+  dump_registry::add_program(variant.dump);
+}
+
 void bind_counters(ContextState& c) {
   // Made here too: a context may draw programs another context of its share group built.
   Instrumentation* inst = instrumentation_of(c);
@@ -233,6 +264,14 @@ void bind_counters(ContextState& c) {
     return it != c.group->programs.end() && it->second.instrumented ? &it->second : nullptr;
   };
   if (c.program) {
+    // A variant in the app's program's place counts under its own name, as the log names it.
+    if (c.bound_variants) {
+      const Variant& v = c.bound_variants->at(c.config);
+      if (v.program) {
+        if (v.instrumented) inst->buffers().bind(v.program, {v.dump_name});
+        return;
+      }
+    }
     if (const ProgramInfo* p = instrumented(c.program)) inst->buffers().bind(c.program, {hash_text(p->pass)});
     return;
   }

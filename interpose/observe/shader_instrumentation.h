@@ -16,6 +16,7 @@
 
 #include "context_state.h"
 #include "counter_buffers.h"
+#include "glbudget/instrument/dump.hpp"
 #include "hooks_generated.h"
 
 namespace glbudget {
@@ -42,6 +43,20 @@ Instrumentation* instrumentation_of(ContextState& c);
 // Called by handle_glLinkProgram under the share group's lock, after the real link: sets the
 // counter binding, or relinks from the app's sources if the instrumented link failed.
 void after_link(ContextState& c, ShareGroup& g, GLuint program, ProgramInfo& info, pfn_glLinkProgram real);
+
+// A variant program (apply/variants.h) instrumented like the app's shaders, so that
+// `glbudget calibrate --app` measures each level's costs: per stage the source to compile
+// (the instrumented one where the rewrite succeeds, else the given one).
+struct InstrumentedVariant {
+  std::vector<std::string> sources;
+  bool any = false;            // some stage is instrumented
+  bool needs_binding = false;  // the counter block's binding is set after linking
+  instrument::ProgramDump dump;
+};
+InstrumentedVariant instrument_variant(Instrumentation& inst, const std::vector<std::pair<GLenum, std::string>>& stages,
+                                       const std::string& program_hash);
+// After the variant linked from those sources: sets its counter binding and lists it in the dump.
+void after_variant_link(Instrumentation& inst, GLuint program, const InstrumentedVariant& variant);
 
 // After the bound program or pipeline changed: binds its counters if it is instrumented.
 void bind_counters(ContextState& c);

@@ -3,8 +3,11 @@
 #include <unordered_map>
 
 #include "context_state.h"
+#include "frame_log.h"
 #include "frame_output.h"
 #include "gl_calls.h"
+#include "governing.h"
+#include "messages.h"
 #include "options.h"
 #include "render_targets.h"
 #include "probes.h"
@@ -41,6 +44,19 @@ ContextState& find_or_add(Registry& r, void* handle, void* display) {
   return *slot;
 }
 
+// A desktop GL context without the queries some columns of the log need: one line each, once
+// per process, when frames are logged or governed. GLES contexts never have them (batches
+// only, as documented) and say nothing.
+void say_what_is_not_measured(const GlCaps& caps) {
+  if (caps.gles || caps.major == 0 || !(FrameLog::get().enabled() || governing())) return;
+  if (!caps.pipeline_stats)
+    say_once("caps:pipeline_statistics",
+             "the driver lacks GL_ARB_pipeline_statistics_query: vertices, fragments and primitives are not measured "
+             "(empty in the log)");
+  if (!caps.timer)
+    say_once("caps:timer", "the driver lacks GL_ARB_timer_query: gpu_ns is not measured (empty in the log)");
+}
+
 void initialise(ContextState& c, Registry& r) {
   if (c.initialized) return;
   if (!load_gl_calls()) return;
@@ -60,6 +76,7 @@ void initialise(ContextState& c, Registry& r) {
   apply_configuration(c, configuration_for_frame(1));
   update_pass(c);
   frame_output_started();
+  say_what_is_not_measured(c.caps);
   // After the governor has started: probes are on by default when it governs.
   if (c.targets && probe_settings().period > 0) c.probes = std::make_unique<ProbeFrames>(c);
 }
@@ -162,7 +179,10 @@ void apply_configuration(ContextState& c, const Levels& config) {
   if (c.config == config && c.config.count > 0) return;
   c.config = config;
   if (c.counter) c.counter->set_configuration(format_levels(config).c_str());
-  if (c.bound_variants) bind_program(c);
+  if (c.bound_variants) {
+    bind_program(c);
+    if (c.instrumentation) bind_counters(c);  // the variant drawn now counts under its own name
+  }
   bind_pipeline_stages(c);
   if (c.targets) c.targets->set_configuration(config);
   update_pass(c);

@@ -10,6 +10,7 @@
 #include "gl_calls.h"
 #include "shader_instrumentation.h"
 #include "subroutines.h"
+#include "variant_dump.h"
 
 namespace glbudget {
 
@@ -55,12 +56,18 @@ void shadow_program(ContextState& c, ShareGroup& g, GLuint program, ProgramInfo&
   note_pass_matched(p.manifest_pass);
   if (!link_succeeded(program)) return;  // the app's own failure: nothing to shadow
   p.variants = build_variants(program, p.pass, p.manifest_pass, sources, c.caps,
-                              {p.attribute_bindings, p.frag_data_bindings});
+                              {p.attribute_bindings, p.frag_data_bindings}, instrumentation_of(c));
   // The governor sums a pass's programs, under whichever name a variant logs them.
   note_program_pass(p.pass, p.manifest_pass);
   if (p.variants)
     for (const Variant& v : p.variants->levels) note_program_pass(v.pass_hash, p.manifest_pass);
   if (p.variants) g.has_variants = true;
+  std::vector<DrawnProgram> drawn_at_level(active_manifest().passes[static_cast<size_t>(p.manifest_pass)].levels.size(),
+                                           {p.pass, hash_text(p.pass)});
+  if (p.variants)
+    for (size_t l = 0; l < p.variants->levels.size() && l < drawn_at_level.size(); ++l)
+      if (const Variant& v = p.variants->levels[l]; v.program) drawn_at_level[l] = {v.pass_hash, v.dump_name};
+  dump_pass_programs(p.manifest_pass, drawn_at_level);
 }
 }  // namespace
 

@@ -20,7 +20,7 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_LOG", "GLBUDGET_DUMP", "GLBUDGET_PROFILE", "GLBUDGET_SENSOR_PERIOD_MS", "GLBUDGET_SYSFS_ROOT",
     "GLBUDGET_NVML_LIBRARY", "GLBUDGET_INSTRUMENT", "GLBUDGET_FORCE", "GLBUDGET_FORCE_EVERY",
     "GLBUDGET_PROBE_PERIOD", "GLBUDGET_SELECT_FRAMES", "GLBUDGET_TRANSITION_S", "GLBUDGET_FEEDBACK",
-    "GLBUDGET_DUMP_PROBES", "GLBUDGET_PROBE_SCALE", "GLBUDGET_SHIM",
+    "GLBUDGET_DUMP_PROBES", "GLBUDGET_PROBE_SCALE", "GLBUDGET_SHIM", "GLBUDGET_COSTS",
 };
 
 void warn(std::string* out, const std::string& text) { *out += "glbudget: " + text + "\n"; }
@@ -51,6 +51,8 @@ Options parse_options(char** env, std::string* warnings) {
       else warn(warnings, "GLBUDGET_INSTRUMENT='" + value + "' is not 0/1/on/off; ignored");
     } else if (name == "GLBUDGET_CONFIG") {
       o.config_path = value;
+    } else if (name == "GLBUDGET_COSTS") {
+      o.costs_path = value;
     } else if (name == "GLBUDGET_FORCE") {
       o.force = value;  // checked against the manifest when it is loaded
     } else if (name == "GLBUDGET_POWER") {

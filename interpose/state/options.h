@@ -15,6 +15,9 @@ struct Options {
   // measurement mode (it perturbs timing): off unless asked for, or implied by GLBUDGET_DUMP.
   bool instrument = false;
   std::string config_path;  // GLBUDGET_CONFIG: the variant manifest
+  // GLBUDGET_COSTS: the variant table `glbudget calibrate --app` measured (empty: the default
+  // path by executable name; "off": none).
+  std::string costs_path;
   std::string force;        // GLBUDGET_FORCE: levels per pass ("1,0,2"), or several separated by ';'
   uint64_t force_every = 0; // GLBUDGET_FORCE_EVERY: frames per configuration of a GLBUDGET_FORCE list
   std::string power;        // GLBUDGET_POWER: "40%", "35W" (parsed by the governor)

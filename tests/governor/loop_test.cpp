@@ -12,6 +12,7 @@
 
 #include "glbudget/loop/error_selection.hpp"
 #include "glbudget/loop/error_table.hpp"
+#include "glbudget/model/variant_table.hpp"
 #include "glbudget/loop/from_manifest.hpp"
 #include "glbudget/loop/governor.hpp"
 #include "glbudget/model/power_curve.hpp"
@@ -605,6 +606,52 @@ error = 0.2
     CHECK(table.error(1, 1) == 0.2);
     CHECK(table.stand_in_passes() == std::vector<std::string>{"a"});
     CHECK(table.fits(space_from_manifest(*loaded.manifest)));
+}
+
+TEST_CASE("space_from_manifest with measured costs", "[loop][manifest]") {
+    const manifest::LoadResult loaded = manifest::parse_manifest(R"toml(
+[[pass]]
+name = "a"
+match = { source = "A" }
+[[pass.level]]
+[[pass.level]]
+defines = { N = 1 }
+[[pass]]
+name = "b"
+match = { source = "B" }
+[[pass.level]]
+[[pass.level]]
+draws = false
+[[pass]]
+name = "c"
+match = { source = "C" }
+[[pass.level]]
+)toml", "m.toml");
+    REQUIRE(loaded.manifest);
+    // "a" measured; "b" measured with another number of levels; "c" absent; "z" not in the manifest.
+    const auto table = model::parse_variant_table(R"json({"passes": [
+        {"name": "a", "levels": [{"hashes": ["0000000000000001"], "ins_v": 10, "ins_f": 300, "tex_f": 4},
+                                 {"hashes": ["0000000000000002"], "ins_v": 10, "ins_f": 30, "tex_f": 1}]},
+        {"name": "b", "levels": [{"hashes": ["0000000000000003"], "ins_v": 1, "ins_f": 2, "tex_f": 3}]},
+        {"name": "z", "levels": [{"hashes": ["0000000000000004"], "ins_f": 7}]}]})json", "t.json");
+    REQUIRE(table);
+    std::vector<std::string> problems;
+    const model::ConfigurationSpace space = space_from_manifest(*loaded.manifest, *table, problems);
+    REQUIRE(space.pass_count() == 3);
+    const auto& a = space.passes()[0].levels;
+    CHECK(a[0].ins_v == 10.0);
+    CHECK(a[0].ins_f == 300.0);
+    CHECK(a[0].tex_f == 4.0);
+    CHECK(a[1].ins_f == 30.0);
+    CHECK(a[1].tex_f == 1.0);
+    const auto& b = space.passes()[1].levels;
+    CHECK(b[0].ins_f == 0.0);
+    CHECK_FALSE(b[1].draws);  // the manifest's, whatever the table says
+    CHECK(space.passes()[2].levels[0].ins_f == 0.0);
+    REQUIRE(problems.size() == 1);
+    CHECK(problems[0].find("pass 'b' has 2 levels in the manifest and 1 in the measured costs") != std::string::npos);
+    // The same space as without costs in everything but the costs.
+    CHECK(space.size() == space_from_manifest(*loaded.manifest).size());
 }
 
 TEST_CASE("space_from_manifest on the demo's manifest", "[loop][manifest]") {

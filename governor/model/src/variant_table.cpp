@@ -1,6 +1,7 @@
 #include "glbudget/model/variant_table.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -95,6 +96,14 @@ std::optional<VariantTable> parse_variant_table(const std::string& json_text, co
         if (!variants.levels.empty()) passes.push_back(std::move(variants));
     }
     return VariantTable{ConfigurationSpace(std::move(passes)), std::move(by_hash)};
+}
+
+std::string default_variant_table_path(const std::string& executable) {
+    std::string base;
+    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) base = xdg;
+    else if (const char* home = std::getenv("HOME"); home && *home) base = std::string(home) + "/.cache";
+    if (base.empty() || executable.empty()) return {};
+    return base + "/glbudget/" + executable + ".variants.json";
 }
 
 std::optional<Configuration> parse_configuration(std::string_view text, const ConfigurationSpace& space) {

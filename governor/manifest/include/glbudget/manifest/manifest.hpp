@@ -148,6 +148,11 @@ struct LoadResult {
 LoadResult parse_manifest(const std::string& toml_text, const std::string& path);
 LoadResult load_manifest(const std::string& path);
 
+// Where an app's manifest is looked for when GLBUDGET_CONFIG names none:
+// $XDG_CONFIG_HOME/glbudget/<executable>.toml (~/.config when unset), if that file exists;
+// else empty. `executable` is the program's file name, without its directory.
+std::string default_manifest_path(const std::string& executable);
+
 // The default framebuffer at 100 / 80 / 60 / 50 %: the knob every app has. Its `scales` is
 // empty: which passes draw into the default framebuffer is known only with a manifest (see
 // with_resolution_pass()) or at run time.

@@ -38,6 +38,11 @@ struct VariantTable {
 std::optional<VariantTable> parse_variant_table(const std::string& json_text, const std::string& source);
 std::optional<VariantTable> load_variant_table(const std::string& path);
 
+// Where `glbudget calibrate --app` writes an app's measured variant table and the shim looks
+// for it: $XDG_CACHE_HOME/glbudget/<executable>.variants.json (~/.cache when unset). Empty
+// when neither variable is set.
+std::string default_variant_table_path(const std::string& executable);
+
 // "0:2:1:0:0:1", one level per pass of the space in its order; nullopt unless it is one of
 // the space's configurations.
 std::optional<Configuration> parse_configuration(std::string_view text, const ConfigurationSpace& space);

@@ -1,0 +1,161 @@
+#!/usr/bin/env python3
+"""`glbudget calibrate --app` on the demo renderer with its manifest, checked against ground truth.
+
+1. The measured table: every level of every pass the manifest changes is measured, and the
+   levels' costs go the way their shaders do (metals' samples, the base shading models,
+   reflections and FXAA off).
+2. Ground truth: the demo itself can draw each level (its own --config builds that level's
+   program). Its programs, instrumented by the shim (GLBUDGET_DUMP, no manifest), must execute
+   what calibrate measured from the shim's variants, within 3 % per fragment (the camera path
+   differs a little: the forced levels draw at other frames).
+3. The shim reads the table: a governed run with GLBUDGET_COSTS names no problem; one with a
+   table for another manifest (a pass with one level fewer) says which pass and runs on; and
+   without --output the table lands where the shim looks ($XDG_CACHE_HOME/glbudget/demo.variants.json).
+4. Bad input: no manifest, a program that does not exist, one that draws nothing: a
+   `glbudget:` line and a non-zero status.
+Usage: calibrate_app_test.py GLBUDGET DEMO MANIFEST PROFILE WORK_DIR
+"""
+import glob
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+glbudget, demo, manifest, profile, work = sys.argv[1:6]
+DEMO_ARGS = ["--scene", "hall", "--detail", "0.05", "--width", "160", "--height", "90"]
+failures = []
+
+
+def check(condition, what):
+    if not condition:
+        failures.append(what)
+        print("FAIL:", what, flush=True)
+
+
+def clean_env(**extra):
+    env = {k: v for k, v in os.environ.items() if not k.startswith("GLBUDGET_") and k != "LD_PRELOAD"}
+    env["XDG_CACHE_HOME"] = os.path.join(work, "cache")
+    env["XDG_CONFIG_HOME"] = os.path.join(work, "config")
+    env.update(extra)
+    return env
+
+
+def calibrate(args, env=None):
+    return subprocess.run([glbudget, "calibrate", "--app"] + args, env=env or clean_env(), capture_output=True,
+                          text=True, timeout=300)
+
+
+shutil.rmtree(work, ignore_errors=True)
+os.makedirs(work)
+
+# 1. The table.
+table_path = os.path.join(work, "demo.variants.json")
+r = calibrate(["--config", manifest, "--frames", "6", "--output", table_path, "--", demo] + DEMO_ARGS +
+              ["--frames", "100000"])
+print(r.stdout, r.stderr)
+check(r.returncode == 0, f"calibrate --app exit status {r.returncode}")
+table = json.load(open(table_path))
+passes = {p["name"]: p["levels"] for p in table["passes"]}
+check(list(passes) == ["resolution", "base", "reflections", "shadows", "metals", "antialiasing"],
+      f"passes in manifest order: {list(passes)}")
+for name, levels in passes.items():
+    for i, level in enumerate(levels):
+        if "hashes" in level:
+            check(level.get("measured") is True, f"{name} level {i} measured")
+ins = {name: [level.get("ins_f", 0.0) for level in levels] for name, levels in passes.items()}
+tex = {name: [level.get("tex_f", 0.0) for level in levels] for name, levels in passes.items()}
+check(ins["metals"][0] > 5 * ins["metals"][1] > 5 * ins["metals"][2] / 2 and ins["metals"][2] > 0,
+      f"metals: 60 > 6 > 2 samples per fragment: {ins['metals']}")
+check(tex["metals"][0] > tex["metals"][1] > tex["metals"][2], f"metals texels fall with samples: {tex['metals']}")
+check(ins["base"][0] > ins["base"][1] > ins["base"][2], f"base: microfacet > point lights > cheap: {ins['base']}")
+check(ins["reflections"][0] > ins["reflections"][1] > 10 * ins["reflections"][2],
+      f"reflections: 64 samples > 16 > off: {ins['reflections']}")
+check(ins["antialiasing"][2] < ins["antialiasing"][0] / 10, f"FXAA off is a copy: {ins['antialiasing']}")
+check(ins["shadows"][0] == ins["shadows"][1] == ins["shadows"][2],
+      f"shadow-map sizes draw one program: {ins['shadows']}")
+check([l.get("fragment_scale", 1.0) for l in passes["resolution"]] == [1.0, 0.8 ** 2, 0.6 ** 2],
+      "the render scale's fragment scales")
+check(passes["reflections"][1].get("hashes") == passes["reflections"][0].get("hashes"),
+      "a level that only holds uniforms keeps the app program's log name")
+
+# 2. Ground truth: the demo's own programs at each of its levels.
+MARKERS = {"metals": "METAL_SAMPLES", "base": "SHADING_MODEL", "reflections": "u_kernel_taps",
+           "antialiasing": "FXAA_STEPS"}
+for level in (0, 1, 2):
+    dump = os.path.join(work, f"truth{level}")
+    config = ",".join([str(level)] * 6)
+    subprocess.run([demo] + DEMO_ARGS + ["--frames", "8", "--config", config],
+                   env=clean_env(LD_PRELOAD=os.path.join(os.path.dirname(os.path.dirname(glbudget)),
+                                                         "interpose/libglbudget.so"), GLBUDGET_DUMP=dump),
+                   check=True, capture_output=True)
+    for name, marker in MARKERS.items():
+        if name in ("reflections", "antialiasing") and level == 2:
+            continue  # the demo skips these passes at 2; the manifest draws a copy instead
+        invocations = instructions = 0.0
+        for f in glob.glob(os.path.join(dump, "program-*.json")):
+            program = json.load(open(f))
+            stages = {s["stage"]: s for s in program["stages"]}
+            fragment = stages.get("fragment")
+            if not fragment or not fragment.get("measured") or not fragment["measured"]["invocations"]:
+                continue
+            def source_of(stage):
+                path = os.path.join(dump, f"shader-{stages[stage]['shader']}.{stage}.glsl") if stage in stages else ""
+                return open(path).read() if path and os.path.exists(path) else ""
+            source, vertex_source = source_of("fragment"), source_of("vertex")
+            if marker not in source and marker not in vertex_source:
+                continue
+            m = fragment["measured"]
+            invocations += m["invocations"]
+            instructions += m["invocations"] * m["instructions_per_invocation"]
+        check(invocations > 0, f"the demo's own {name} program at level {level} drew")
+        if invocations > 0:
+            truth = instructions / invocations
+            measured = ins[name][level]
+            check(abs(measured - truth) <= 0.03 * truth,
+                  f"{name} level {level}: calibrate measured {measured:.1f} instructions per fragment, "
+                  f"the demo's own program {truth:.1f}")
+            print(f"{name} level {level}: calibrated {measured:.1f}, the demo's own {truth:.1f}")
+
+# 3. The shim reads it.
+governed = clean_env(LD_PRELOAD=os.path.join(os.path.dirname(os.path.dirname(glbudget)), "interpose/libglbudget.so"),
+                     GLBUDGET_CONFIG=manifest, GLBUDGET_POWER="50%", GLBUDGET_PROFILE=profile,
+                     GLBUDGET_SENSOR="cpu", GLBUDGET_PROBE_PERIOD="0", GLBUDGET_COSTS=table_path)
+r = subprocess.run([demo] + DEMO_ARGS + ["--frames", "4"], env=governed, capture_output=True, text=True)
+check(r.returncode == 0, f"governed run with the table: exit {r.returncode}")
+check("costs" not in r.stderr and "levels in the manifest" not in r.stderr,
+      f"no complaint about the table: {r.stderr!r}")
+other = json.load(open(table_path))
+other["passes"][4]["levels"].pop()
+other_path = os.path.join(work, "other.variants.json")
+json.dump(other, open(other_path, "w"))
+r = subprocess.run([demo] + DEMO_ARGS + ["--frames", "4"], env=dict(governed, GLBUDGET_COSTS=other_path),
+                   capture_output=True, text=True)
+check(r.returncode == 0, f"governed run with another manifest's table: exit {r.returncode}")
+check("glbudget: " in r.stderr and "pass 'metals' has 3 levels in the manifest and 2 in the measured costs" in r.stderr,
+      f"the mismatched pass is named: {r.stderr!r}")
+without = dict(governed)
+del without["GLBUDGET_COSTS"]
+r = subprocess.run([demo] + DEMO_ARGS + ["--frames", "4"], env=without, capture_output=True, text=True)
+check("glbudget calibrate --app" in r.stderr, f"without a table the shim says how to measure one: {r.stderr!r}")
+r = calibrate(["--config", manifest, "--frames", "2", "--", demo] + DEMO_ARGS + ["--frames", "100000"])
+default = os.path.join(work, "cache", "glbudget", "demo.variants.json")
+check(r.returncode == 0 and os.path.exists(default), f"default output {default}: {r.returncode} {r.stderr!r}")
+r = subprocess.run([demo] + DEMO_ARGS + ["--frames", "4"], env=without, capture_output=True, text=True)
+check(r.returncode == 0 and "glbudget calibrate --app" not in r.stderr, f"the default table is found: {r.stderr!r}")
+
+# 4. Bad input.
+r = calibrate(["--", demo] + DEMO_ARGS)
+check(r.returncode == 2 and r.stderr.startswith("glbudget: calibrate --app: no manifest for"),
+      f"no manifest: {r.returncode} {r.stderr!r}")
+r = calibrate(["--config", manifest, "--", "/no/such/program"])
+check(r.returncode == 2 and "glbudget: calibrate --app: cannot run /no/such/program" in r.stderr,
+      f"missing program: {r.returncode} {r.stderr!r}")
+r = calibrate(["--config", manifest, "--frames", "2", "--", "true"])
+check(r.returncode == 1 and "glbudget: calibrate --app: the app linked no program" in r.stderr,
+      f"a program that draws nothing: {r.returncode} {r.stderr!r}")
+r = calibrate(["--config", manifest, "--frames", "0", "--", "true"])
+check(r.returncode == 2 and "glbudget: calibrate --app: --frames 0 is not" in r.stderr, f"--frames 0: {r.stderr!r}")
+
+print("ok" if not failures else f"{len(failures)} failure(s)")
+sys.exit(1 if failures else 0)
