@@ -30,6 +30,10 @@
 #include <nlohmann/json.hpp>
 
 #include "glbudget/manifest/manifest.hpp"
+#include "glbudget/model/configured_sample.hpp"
+#include "glbudget/model/frame_log.hpp"
+#include "glbudget/model/platform_costs.hpp"
+#include "glbudget/model/platform_profile.hpp"
 #include "glbudget/model/variant_table.hpp"
 #include "shim_path.hpp"
 
@@ -42,7 +46,8 @@ using nlohmann::json;
 using nlohmann::ordered_json;
 
 constexpr const char* kUsage =
-    "usage: glbudget calibrate --app [--config MANIFEST] [--frames N] [--timeout S] [--output PATH] -- APP [ARGS...]\n";
+    "usage: glbudget calibrate --app [--config MANIFEST] [--frames N] [--power-frames N] [--fps R] [--sensor S]\n"
+    "                                [--profile P] [--timeout S] [--output PATH] -- APP [ARGS...]\n";
 
 void print_help() {
   std::printf("%s\n", kUsage);
@@ -57,12 +62,20 @@ void print_help() {
       "The table goes to --output, else $XDG_CACHE_HOME/glbudget/<app>.variants.json, where the shim\n"
       "looks for it (GLBUDGET_COSTS overrides); with it, a budget's model predicts the saving of\n"
       "levels that simplify shaders. --timeout: stop the app after S seconds whatever it drew\n"
-      "(default 600).\n");
+      "(default 600) in each of the two runs.\n\n"
+      "Then, with a platform profile (--profile, else $GLBUDGET_PROFILE, else the sensor's from\n"
+      "`glbudget calibrate`), the app runs again, uninstrumented, with the sensor (--sensor, else\n"
+      "$GLBUDGET_SENSOR, else auto): level 0 everywhere, then each level of each pass alone, for\n"
+      "--power-frames frames each (default 20; 0 skips this run), paced at --fps R if given (as the\n"
+      "app will run under a budget). From those frames' power the costs of a batch, vertex,\n"
+      "fragment, instruction and texel access in this app's frames are fitted (as `glbudget costs`\n"
+      "does) and kept in the table; the model starts from them.\n");
 }
 
 struct Options {
-  std::string manifest, output;
+  std::string manifest, output, sensor, profile, fps;
   unsigned frames = 30;
+  unsigned power_frames = 20;
   double timeout_s = 600.0;
   std::vector<char*> app;  // argv, null-terminated
 };
@@ -71,6 +84,9 @@ std::optional<Options> parse(std::span<char* const> args, int& status) {
   Options o;
   status = 2;
   if (const char* env = std::getenv("GLBUDGET_CONFIG"); env && *env) o.manifest = env;
+  if (const char* env = std::getenv("GLBUDGET_SENSOR"); env && *env) o.sensor = env;
+  if (const char* env = std::getenv("GLBUDGET_PROFILE"); env && *env) o.profile = env;
+  if (const char* env = std::getenv("GLBUDGET_FPS"); env && *env) o.fps = env;
   std::size_t i = 0;
   for (; i < args.size(); ++i) {
     const std::string arg = args[i];
@@ -84,7 +100,9 @@ std::optional<Options> parse(std::span<char* const> args, int& status) {
       return std::nullopt;
     }
     if (arg == "--app") continue;
-    if (i + 1 >= args.size() || (arg != "--config" && arg != "--frames" && arg != "--timeout" && arg != "--output")) {
+    static const std::vector<std::string> kValued = {"--config", "--frames", "--power-frames", "--timeout",
+                                                     "--output", "--fps", "--sensor", "--profile"};
+    if (i + 1 >= args.size() || std::find(kValued.begin(), kValued.end(), arg) == kValued.end()) {
       std::fprintf(stderr, "glbudget: calibrate --app: %s %s\n%s", arg.c_str(),
                    i + 1 >= args.size() ? "needs a value" : "is not an option", kUsage);
       return std::nullopt;
@@ -92,16 +110,24 @@ std::optional<Options> parse(std::span<char* const> args, int& status) {
     const std::string value = args[++i];
     if (arg == "--config") o.manifest = value;
     else if (arg == "--output") o.output = value;
+    else if (arg == "--sensor") o.sensor = value;
+    else if (arg == "--profile") o.profile = value;
     else {
       char* end = nullptr;
       const double v = std::strtod(value.c_str(), &end);
-      const bool frames = arg == "--frames";
-      if (end == value.c_str() || *end || !std::isfinite(v) || (frames ? (v < 1 || v > 100000 || v != std::floor(v)) : v <= 0)) {
+      const bool frames = arg == "--frames" || arg == "--power-frames";
+      const double least = arg == "--power-frames" ? 0 : 1;
+      const bool bad = end == value.c_str() || *end || !std::isfinite(v) ||
+                       (frames ? (v < least || v > 100000 || v != std::floor(v)) : (v <= 0 || (arg == "--fps" && v > 10000)));
+      if (bad) {
         std::fprintf(stderr, "glbudget: calibrate --app: %s %s is not %s\n", arg.c_str(), value.c_str(),
-                     frames ? "a number of frames in [1, 100000]" : "a number of seconds > 0");
+                     frames ? (least ? "a number of frames in [1, 100000]" : "a number of frames in [0, 100000]")
+                            : (arg == "--fps" ? "a frame rate in (0, 10000]" : "a number of seconds > 0"));
         return std::nullopt;
       }
-      if (frames) o.frames = static_cast<unsigned>(v);
+      if (arg == "--frames") o.frames = static_cast<unsigned>(v);
+      else if (arg == "--power-frames") o.power_frames = static_cast<unsigned>(v);
+      else if (arg == "--fps") o.fps = value;
       else o.timeout_s = v;
     }
   }
@@ -233,6 +259,117 @@ void add_program(const json& program, LevelSums& s) {
       s.fragment_texels += n * tex;
     }
   }
+}
+
+
+// GLBUDGET_FORCE for the power run: level 0 everywhere, then each level of each pass alone, so
+// that each level's power is told apart from every other's.
+std::vector<std::string> one_level_at_a_time(const manifest::Manifest& m) {
+  std::vector<std::string> configurations{std::string()};
+  for (std::size_t i = 0; i < m.passes.size(); ++i) configurations[0] += i ? ",0" : "0";
+  for (std::size_t i = 0; i < m.passes.size(); ++i)
+    for (std::size_t l = 1; l < m.passes[i].levels.size(); ++l) {
+      std::string c;
+      for (std::size_t j = 0; j < m.passes.size(); ++j) c += (j ? "," : "") + std::to_string(j == i ? l : 0);
+      configurations.push_back(c);
+    }
+  return configurations;
+}
+
+// The power run's frames as the model sees them, leaving out the first two of each
+// configuration (their power partly belongs to the one before).
+std::vector<model::ConfiguredSample> settled_samples(const model::FrameLog& log, const model::VariantTable& table) {
+  std::vector<model::ConfiguredSample> samples;
+  model::Configuration current(table.space.pass_count(), 0), previous, before_previous;
+  for (const model::LoggedFrame& frame : model::frames_of_busiest_context(log)) {
+    model::ResolvedFrame resolved = model::resolve_frame(frame, table, current);
+    current = resolved.configuration;
+    const bool settled = current == previous && current == before_previous;
+    before_previous = previous;
+    previous = current;
+    if (settled) samples.push_back({std::move(resolved.sample), std::move(resolved.configuration)});
+  }
+  return samples;
+}
+
+// Runs the app once more, uninstrumented, one level at a time with the power sensor, and fits
+// what a batch, vertex, fragment, instruction and texel cost in its frames. Adds
+// "platform_costs" and "power" to `table`; false (after saying why) when it cannot.
+bool measure_power(const Options& o, const manifest::Manifest& m, const std::vector<std::pair<std::string, std::string>>& base_env,
+                   const std::string& scratch, ordered_json& table) {
+  std::string profile_path = o.profile;
+  if (profile_path.empty()) profile_path = default_profile(o.sensor);
+  std::error_code ec;
+  if (profile_path.empty() || !fs::is_regular_file(profile_path, ec)) {
+    std::fprintf(stderr,
+                 "glbudget: calibrate --app: no platform profile (%s): the levels' power is not measured, the table "
+                 "holds their instruction and texel counts only; run `glbudget calibrate` first, or pass --profile\n",
+                 profile_path.empty() ? "$XDG_CACHE_HOME/glbudget/<sensor>.json" : profile_path.c_str());
+    return false;
+  }
+  const std::optional<model::PlatformProfile> profile = model::load_platform_profile(profile_path);  // says why
+  if (!profile) return false;
+  const std::vector<std::string> configurations = one_level_at_a_time(m);
+  std::string force;
+  for (const std::string& c : configurations) force += (force.empty() ? "" : ";") + c;
+  const std::string log = (fs::path(scratch) / "power.csv").string();
+  std::vector<std::pair<std::string, std::string>> env;
+  for (const auto& [name, value] : base_env)
+    if (name == "LD_PRELOAD" || name == "GLBUDGET_CONFIG") env.emplace_back(name, value);
+  env.emplace_back("GLBUDGET_LOG", log);
+  env.emplace_back("GLBUDGET_FORCE", force);
+  env.emplace_back("GLBUDGET_FORCE_EVERY", std::to_string(o.power_frames));
+  if (!o.sensor.empty()) env.emplace_back("GLBUDGET_SENSOR", o.sensor);
+  if (!o.fps.empty()) env.emplace_back("GLBUDGET_FPS", o.fps);
+  const std::uint64_t frames_needed = configurations.size() * o.power_frames + 2;
+  std::printf("measuring the power of %zu configurations (each level alone), %u frames each%s%s...\n",
+              configurations.size(), o.power_frames, o.fps.empty() ? "" : " at ", o.fps.empty() ? "" : (o.fps + " fps").c_str());
+  std::fflush(stdout);
+  const RunResult run = run_app(o, env, log, frames_needed);
+  if (!run.started) return false;
+  const std::optional<model::VariantTable> variants = model::parse_variant_table(table.dump(), "the measured table");
+  const std::optional<model::FrameLog> frames = model::read_frame_log_file(log);
+  if (!variants || !frames) return false;
+  const std::vector<model::ConfiguredSample> samples = settled_samples(*frames, *variants);
+  const model::CostLog logs[] = {{samples, &variants->space}};
+  const std::optional<model::PlatformCostsFit> fit = model::fit_platform_costs(logs, *profile);
+  if (!fit) {
+    std::fprintf(stderr, "glbudget: calibrate --app: the power run gave no frame with power and counts (is the "
+                 "sensor %s readable here?); the levels' power is not measured\n",
+                 o.sensor.empty() ? "auto" : o.sensor.c_str());
+    return false;
+  }
+  // Each configuration's mean measured power, for the user and the record.
+  std::map<model::Configuration, std::pair<double, int>> power;
+  for (const model::ConfiguredSample& s : samples)
+    if (std::isfinite(s.sample.power_w)) power[s.configuration].first += s.sample.power_w, ++power[s.configuration].second;
+  ordered_json measured = ordered_json::array();
+  std::printf("%-24s %9s %7s\n", "configuration", "power W", "frames");
+  for (const std::string& c : configurations) {
+    std::string colon = c;
+    std::replace(colon.begin(), colon.end(), ',', ':');
+    const auto parsed = model::parse_configuration(colon, variants->space);
+    const auto it = parsed ? power.find(*parsed) : power.end();
+    if (it == power.end()) continue;
+    const double mean = it->second.first / it->second.second;
+    std::printf("%-24s %9.2f %7d\n", colon.c_str(), mean, it->second.second);
+    measured.push_back({{"configuration", colon}, {"power_w", mean}, {"frames", it->second.second}});
+  }
+  const model::PlatformCosts& k = fit->costs;
+  std::printf("costs in this app's frames: batch %.4g, vertex %.4g, fragment %.4g, instruction %.4g, texel %.4g "
+              "(in-sample error: %.1f %% per frame, %.1f %% per configuration)\n",
+              k.batch, k.vertex, k.fragment, k.instruction, k.texel, fit->per_frame[0].mape_percent(),
+              fit->per_configuration[0].mape_percent());
+  table["platform_costs"] = {{"batch", k.batch}, {"vertex", k.vertex}, {"fragment", k.fragment},
+                             {"instruction", k.instruction}, {"texel", k.texel}};
+  table["power"] = {{"profile", fs::absolute(profile_path, ec).string()},
+                    {"sensor", o.sensor.empty() ? "auto" : o.sensor},
+                    {"fps", o.fps.empty() ? "the app's own" : o.fps},
+                    {"frames", fit->samples_used},
+                    {"error_per_frame_percent", fit->per_frame[0].mape_percent()},
+                    {"error_per_configuration_percent", fit->per_configuration[0].mape_percent()},
+                    {"configurations", std::move(measured)}};
+  return true;
 }
 
 }  // namespace
@@ -371,11 +508,12 @@ int calibrate_app_main(std::span<char* const> args) {
                      {"manifest", fs::absolute(o->manifest, ec).string()},
                      {"frames_per_level", o->frames},
                      {"passes", std::move(out_passes)}};
-  cleanup();
   if (measured == 0) {
     std::fprintf(stderr, "glbudget: calibrate --app: no level's programs drew while measured; nothing written\n");
-    return 1;
+    return cleanup(), 1;
   }
+  if (o->power_frames > 0) measure_power(*o, m, env, scratch, table);
+  cleanup();
   if (unmeasured)
     std::fprintf(stderr, "glbudget: calibrate --app: %d level(s) drew nothing while measured (the app may draw those "
                  "passes only in some scenes); they are given the level above's costs\n", unmeasured);

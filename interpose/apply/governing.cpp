@@ -13,6 +13,7 @@
 #include <deque>
 #include <filesystem>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -61,9 +62,13 @@ manifest::Manifest governed_manifest(const manifest::Manifest& m) {
 // GLBUDGET_COSTS, else the default path by executable name if that file exists. Without them
 // the model predicts savings only from levels that change how much is drawn (scales, skipped
 // passes), not from levels that change what each fragment costs.
-model::ConfigurationSpace measured_space(const manifest::Manifest& m, bool budget) {
+struct MeasuredSpace {
+  model::ConfigurationSpace space;
+  std::optional<model::PlatformCosts> costs;  // this app's, when calibrate --app measured its power
+};
+MeasuredSpace measured_space(const manifest::Manifest& m, bool budget) {
   const std::string& named = options().costs_path;
-  if (named == "off") return loop::space_from_manifest(m);
+  if (named == "off") return {loop::space_from_manifest(m), std::nullopt};
   std::string path = named.empty() ? model::default_variant_table_path(executable_name()) : named;
   std::error_code ec;
   if (named.empty() && (path.empty() || !std::filesystem::is_regular_file(path, ec))) {
@@ -74,14 +79,14 @@ model::ConfigurationSpace measured_space(const manifest::Manifest& m, bool budge
       say("no measured costs of the manifest's shader levels (" + (path.empty() ? std::string("no cache directory") : path) +
           "): the model predicts savings from render scales and skipped passes only; "
           "`glbudget calibrate --app -- APP` measures them");
-    return loop::space_from_manifest(m);
+    return {loop::space_from_manifest(m), std::nullopt};
   }
   const std::optional<model::VariantTable> table = model::load_variant_table(path);  // says why when it fails
-  if (!table) return loop::space_from_manifest(m);
+  if (!table) return {loop::space_from_manifest(m), std::nullopt};
   std::vector<std::string> problems;
   model::ConfigurationSpace space = loop::space_from_manifest(m, *table, problems);
   for (const std::string& p : problems) say(path + ": " + p);
-  return space;
+  return {std::move(space), table->platform_costs};
 }
 
 std::string default_profile_path() {
@@ -388,7 +393,9 @@ bool governor_start() {
     }
     if (!profile) profile = model::PlatformProfile{};
     manifest::Manifest m = governed_manifest(active_manifest());
-    loop::Governor governor(*profile, measured_space(m, budget), loop::errors_from_manifest(m), settings);
+    MeasuredSpace measured = measured_space(m, budget);
+    if (measured.costs) profile->costs = measured.costs;
+    loop::Governor governor(*profile, std::move(measured.space), loop::errors_from_manifest(m), settings);
     const bool steering = governor.governing();
     g_thread = new GovernorThread(std::move(governor), std::move(m), o.probe_scale);
     g_thread->start();

@@ -8,6 +8,8 @@
    program). Its programs, instrumented by the shim (GLBUDGET_DUMP, no manifest), must execute
    what calibrate measured from the shim's variants, within 3 % per fragment (the camera path
    differs a little: the forced levels draw at other frames).
+   With a profile, the app runs again with the cpu sensor, each level alone, and the costs of
+   its frames are fitted into the table.
 3. The shim reads the table: a governed run with GLBUDGET_COSTS names no problem; one with a
    table for another manifest (a pass with one level fewer) says which pass and runs on; and
    without --output the table lands where the shim looks ($XDG_CACHE_HOME/glbudget/demo.variants.json).
@@ -51,8 +53,8 @@ os.makedirs(work)
 
 # 1. The table.
 table_path = os.path.join(work, "demo.variants.json")
-r = calibrate(["--config", manifest, "--frames", "6", "--output", table_path, "--", demo] + DEMO_ARGS +
-              ["--frames", "100000"])
+r = calibrate(["--config", manifest, "--frames", "6", "--power-frames", "4", "--sensor", "cpu", "--profile", profile,
+               "--output", table_path, "--", demo] + DEMO_ARGS + ["--frames", "100000"])
 print(r.stdout, r.stderr)
 check(r.returncode == 0, f"calibrate --app exit status {r.returncode}")
 table = json.load(open(table_path))
@@ -78,6 +80,14 @@ check([l.get("fragment_scale", 1.0) for l in passes["resolution"]] == [1.0, 0.8 
       "the render scale's fragment scales")
 check(passes["reflections"][1].get("hashes") == passes["reflections"][0].get("hashes"),
       "a level that only holds uniforms keeps the app program's log name")
+# The power run: each level alone, its power, and the costs fitted from it.
+costs = table.get("platform_costs", {})
+check(sorted(costs) == ["batch", "fragment", "instruction", "texel", "vertex"] and
+      all(v >= 0 for v in costs.values()), f"platform costs fitted: {costs}")
+configurations = [c["configuration"] for c in table.get("power", {}).get("configurations", [])]
+check(len(configurations) == 13 and configurations[0] == "0:0:0:0:0:0" and "0:0:0:0:2:0" in configurations,
+      f"level 0, then each of the 12 other levels alone: {configurations}")
+check(all(c["power_w"] > 0 and c["frames"] >= 2 for c in table["power"]["configurations"]), "each one's power")
 
 # 2. Ground truth: the demo's own programs at each of its levels.
 MARKERS = {"metals": "METAL_SAMPLES", "base": "SHADING_MODEL", "reflections": "u_kernel_taps",
@@ -141,6 +151,8 @@ check("glbudget calibrate --app" in r.stderr, f"without a table the shim says ho
 r = calibrate(["--config", manifest, "--frames", "2", "--", demo] + DEMO_ARGS + ["--frames", "100000"])
 default = os.path.join(work, "cache", "glbudget", "demo.variants.json")
 check(r.returncode == 0 and os.path.exists(default), f"default output {default}: {r.returncode} {r.stderr!r}")
+check("glbudget: calibrate --app: no platform profile" in r.stderr and "platform_costs" not in open(default).read(),
+      f"without a profile the power run is skipped, and said so: {r.stderr!r}")
 r = subprocess.run([demo] + DEMO_ARGS + ["--frames", "4"], env=without, capture_output=True, text=True)
 check(r.returncode == 0 and "glbudget calibrate --app" not in r.stderr, f"the default table is found: {r.stderr!r}")
 

@@ -244,3 +244,34 @@ TEST_CASE("predict-all is right whichever position the scaling pass has in the s
     }
     CHECK(predictor.predict({0, 0, 0, 0}) > predictor.predict({0, 1, 0, 0}));
 }
+
+TEST_CASE("a variant table's platform costs: read whole or not at all", "[model][variants][extremes]") {
+    const auto good = parse_variant_table(R"({"passes": [{"name": "p", "levels": [{"ins_f": 3}]}],
+        "platform_costs": {"batch": 0, "vertex": 1e-300, "fragment": 3.5, "instruction": 0.02, "texel": 1e300}})",
+                                          "inline");
+    REQUIRE(good);
+    REQUIRE(good->platform_costs);
+    CHECK(good->platform_costs->batch == 0.0);
+    CHECK(good->platform_costs->vertex == 1e-300);
+    CHECK(good->platform_costs->fragment == 3.5);
+    CHECK(good->platform_costs->instruction == 0.02);
+    CHECK(good->platform_costs->texel == 1e300);
+    const auto none = parse_variant_table(R"({"passes": [{"name": "p", "levels": [{}]}]})", "inline");
+    REQUIRE(none);
+    CHECK_FALSE(none->platform_costs);
+    for (const char* bad : {R"("platform_costs": {"batch": 0, "vertex": 0, "fragment": 1, "instruction": 0.1})",
+                            R"("platform_costs": {"batch": 0, "vertex": 0, "fragment": -1, "instruction": 0.1, "texel": 0})",
+                            R"("platform_costs": {"batch": 0, "vertex": 0, "fragment": "1", "instruction": 0.1, "texel": 0})",
+                            R"("platform_costs": [0, 0, 1, 0.1, 0])"}) {
+        std::ostringstream captured;
+        auto* old = std::cerr.rdbuf(captured.rdbuf());
+        const auto table = parse_variant_table(std::string(R"({"passes": [{"name": "p", "levels": [{}]}], )") + bad + "}",
+                                               "inline");
+        std::cerr.rdbuf(old);
+        INFO(bad);
+        REQUIRE(table);  // the levels are kept
+        CHECK_FALSE(table->platform_costs);
+        CHECK(captured.str().find("glbudget: inline: \"platform_costs\" needs batch, vertex, fragment, instruction and "
+                                  "texel") != std::string::npos);
+    }
+}

@@ -95,7 +95,22 @@ std::optional<VariantTable> parse_variant_table(const std::string& json_text, co
         }
         if (!variants.levels.empty()) passes.push_back(std::move(variants));
     }
-    return VariantTable{ConfigurationSpace(std::move(passes)), std::move(by_hash)};
+    VariantTable table{ConfigurationSpace(std::move(passes)), std::move(by_hash), std::nullopt};
+    if (const auto it = document.find("platform_costs"); it != document.end()) {
+        PlatformCosts costs;
+        bool ok = it->is_object();
+        for (auto [key, field] : {std::pair{"batch", &costs.batch}, {"vertex", &costs.vertex}, {"fragment", &costs.fragment},
+                                  {"instruction", &costs.instruction}, {"texel", &costs.texel}}) {
+            const auto value = ok ? it->find(key) : it->end();
+            ok = ok && value != it->end() && value->is_number() && std::isfinite(value->get<double>()) &&
+                 value->get<double>() >= 0.0;
+            if (ok) *field = value->get<double>();
+        }
+        if (ok) table.platform_costs = costs;
+        else std::cerr << "glbudget: " << source << ": \"platform_costs\" needs batch, vertex, fragment, instruction "
+                          "and texel, numbers >= 0; ignored\n";
+    }
+    return table;
 }
 
 std::string default_variant_table_path(const std::string& executable) {

@@ -19,6 +19,7 @@
 
 #include "glbudget/model/configuration_space.hpp"
 #include "glbudget/model/frame_log.hpp"
+#include "glbudget/model/platform_profile.hpp"
 #include "glbudget/model/power_model.hpp"
 #include "glbudget/model/vatjus_anttila_model.hpp"
 
@@ -32,6 +33,11 @@ struct VariantRef {
 struct VariantTable {
     ConfigurationSpace space;
     std::map<std::string, VariantRef> by_hash;
+    // What a batch, vertex, fragment, instruction and texel cost in this app's frames, when
+    // `glbudget calibrate --app` measured its levels' power too ("platform_costs", the five
+    // numbers of a profile's "costs"): the run-time model starts from these rather than the
+    // profile's, which came from other apps or none.
+    std::optional<PlatformCosts> platform_costs;
 };
 
 // Malformed entries: one `glbudget:` line each, and the entry is left out.
