@@ -2,12 +2,15 @@
 
 #include <cmath>
 
+#include <fcntl.h>
 #include <pthread.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cinttypes>
 #include <condition_variable>
 #include <cstdio>
+#include <cstring>
 #include <mutex>
 #include <vector>
 
@@ -61,9 +64,11 @@ struct FrameLog::Impl {
   pthread_t thread{};
 
   std::mutex file_mu;  // guards the file; held while writing
-  FILE* file = nullptr;
-  bool open_failed = false;
+  int fd = -1;
+  off_t written = 0;         // bytes of whole rows in the file
+  bool open_failed = false;  // or a write failed (a full disk): rows are dropped from then on
   std::vector<FrameRow> writing;
+  std::string text;          // the batch being written, whole rows only
   std::string file_path;
 };
 
@@ -136,16 +141,43 @@ void* FrameLog::writer_main(void* self) {
 
 bool FrameLog::open_file_locked() {
   Impl& m = *impl_;
-  if (m.file) return true;
+  if (m.fd >= 0) return true;
   if (m.open_failed) return false;
-  m.file = fopen(m.file_path.c_str(), "w");
-  if (!m.file) {
+  m.fd = open(m.file_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (m.fd < 0) {
     m.open_failed = true;
     std::string msg = "glbudget: cannot write GLBUDGET_LOG file '" + m.file_path + "'; frames are not logged\n";
     (void)!write(STDERR_FILENO, msg.data(), msg.size());
     return false;
   }
-  fprintf(m.file, "%s\n", kFrameLogHeader);
+  m.written = 0;
+  return write_text_locked(std::string(kFrameLogHeader) + "\n");
+}
+
+// One write() per batch of whole rows (no stdio buffer that spills part of a row when it
+// fills), so a process killed at any moment leaves only whole rows. A failed or short write
+// (a full disk) is cut back to the last whole row, said once, and ends logging.
+bool FrameLog::write_text_locked(const std::string& text) {
+  Impl& m = *impl_;
+  size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = write(m.fd, text.data() + done, text.size() - done);
+    if (n > 0) {
+      done += static_cast<size_t>(n);
+      continue;
+    }
+    if (n < 0 && errno == EINTR) continue;
+    const int error = n < 0 ? errno : ENOSPC;
+    if (done > 0) (void)!ftruncate(m.fd, m.written);  // no partial row left behind
+    close(m.fd);
+    m.fd = -1;
+    m.open_failed = true;
+    std::string msg = "glbudget: cannot write GLBUDGET_LOG file '" + m.file_path + "' (" + std::strerror(error) +
+                      "); frames are no longer logged\n";
+    (void)!write(STDERR_FILENO, msg.data(), msg.size());
+    return false;
+  }
+  m.written += static_cast<off_t>(done);
   return true;
 }
 
@@ -159,14 +191,23 @@ void FrameLog::write_rows_locked() {
     m.writing.clear();
     return;
   }
-  char line[256];
+  m.text.clear();
+  char line[512];
   for (const FrameRow& r : m.writing) {
-    format_row(r, line, sizeof line);
-    fputs(line, m.file);
-    fputc('\n', m.file);
+    const int n = format_row(r, line, sizeof line);
+    if (n < 0) continue;
+    if (static_cast<size_t>(n) < sizeof line) {
+      m.text.append(line, static_cast<size_t>(n));
+    } else {  // a long configuration column: format it again at its full length
+      const size_t at = m.text.size();
+      m.text.resize(at + static_cast<size_t>(n) + 1);
+      format_row(r, m.text.data() + at, n + 1);
+      m.text.resize(at + static_cast<size_t>(n));
+    }
+    m.text += '\n';
   }
   m.writing.clear();
-  fflush(m.file);  // a killed process loses at most the rows of the current batch
+  write_text_locked(m.text);
 }
 
 void FrameLog::drain() {
@@ -197,9 +238,9 @@ void FrameLog::forked_child() {
   // The locks were taken in prepare by the forking thread, which is this thread now.
   m.queue.clear();  // the parent writes its own rows
   m.thread_started = false;
-  if (m.file) {
-    fclose(m.file);  // our FILE copy: closing it flushes nothing (the parent flushed)
-    m.file = nullptr;
+  if (m.fd >= 0) {
+    close(m.fd);  // the parent's file
+    m.fd = -1;
   }
   m.open_failed = false;
   m.file_path = path_for_child(path_);

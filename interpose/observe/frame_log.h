@@ -1,6 +1,8 @@
 // GLBUDGET_LOG: the per-frame CSV, written by a background thread so the render thread never
 // does file I/O. Rows are flushed on exit, _exit and SIGTERM/SIGINT; a child forked without
-// exec writes its own file (`run.csv` -> `run.<pid>.csv`).
+// exec writes its own file (`run.csv` -> `run.<pid>.csv`). Rows are written whole (one
+// write() per batch), so a killed process leaves no partial row; a write that fails (a full
+// disk) is said once on stderr and ends the log, never the app.
 #pragma once
 #include <string>
 
@@ -30,6 +32,7 @@ class FrameLog {
   static void* writer_main(void* self);
   void write_rows_locked();  // holds file_mu_
   bool open_file_locked();
+  bool write_text_locked(const std::string& text);  // false (said once) when the file cannot take it
 
   std::string path_;
   struct Impl;

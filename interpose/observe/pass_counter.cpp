@@ -4,6 +4,7 @@
 #include <string_view>
 
 #include "gl_calls.h"
+#include "options.h"
 
 namespace glbudget {
 
@@ -25,6 +26,7 @@ int stat_index(GLenum target) {
 }
 
 bool has_extension(const GlCaps& caps, const char* name) {
+  if (extension_hidden(name)) return false;  // GLBUDGET_TEST_HIDE_EXTENSIONS
   const GlCalls& g = gl();
   if (caps.major >= 3 && g.GetStringi) {
     GLint n = 0;
@@ -57,11 +59,16 @@ GlCaps detect_caps() {
   caps.major = v.size() > 0 ? v[0] - '0' : 0;
   caps.minor = v.size() > 2 ? v[2] - '0' : 0;
   auto at_least = [&](int M, int m) { return caps.major > M || (caps.major == M && caps.minor >= m); };
+  // A feature of the core version from (M, m) on, or of the extension; a hidden extension
+  // (GLBUDGET_TEST_HIDE_EXTENSIONS) hides the feature from every version.
+  auto feature = [&](int M, int m, const char* extension) {
+    return !extension_hidden(extension) && (at_least(M, m) || has_extension(caps, extension));
+  };
   // GLES lacks pipeline statistics and GL_TIMESTAMP counters in core; there we count batches.
   if (!caps.gles && g.BeginQuery && g.EndQuery && g.GetQueryObjectui64v) {
-    caps.pipeline_stats = at_least(4, 6) || has_extension(caps, "GL_ARB_pipeline_statistics_query");
-    caps.timer = g.QueryCounter && (at_least(3, 3) || has_extension(caps, "GL_ARB_timer_query"));
-    caps.query_buffer = at_least(4, 4) || has_extension(caps, "GL_ARB_query_buffer_object");
+    caps.pipeline_stats = feature(4, 6, "GL_ARB_pipeline_statistics_query");
+    caps.timer = g.QueryCounter && feature(3, 3, "GL_ARB_timer_query");
+    caps.query_buffer = feature(4, 4, "GL_ARB_query_buffer_object");
   }
   return caps;
 }

@@ -21,6 +21,9 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_NVML_LIBRARY", "GLBUDGET_INSTRUMENT", "GLBUDGET_FORCE", "GLBUDGET_FORCE_EVERY",
     "GLBUDGET_PROBE_PERIOD", "GLBUDGET_SELECT_FRAMES", "GLBUDGET_TRANSITION_S", "GLBUDGET_FEEDBACK",
     "GLBUDGET_DUMP_PROBES", "GLBUDGET_PROBE_SCALE", "GLBUDGET_SHIM", "GLBUDGET_COSTS",
+    // A test switch, to be documented in README's options table: GL extensions the shim
+    // takes as absent (comma-separated), e.g. to run it as on a driver without timer queries.
+    "GLBUDGET_TEST_HIDE_EXTENSIONS",
 };
 
 void warn(std::string* out, const std::string& text) { *out += "glbudget: " + text + "\n"; }
@@ -92,6 +95,16 @@ Options parse_options(char** env, std::string* warnings) {
       if (value == "1" || value == "on") o.feedback = true;
       else if (value == "0" || value == "off") o.feedback = false;
       else warn(warnings, "GLBUDGET_FEEDBACK='" + value + "' is not 0/1/on/off; on");
+    } else if (name == "GLBUDGET_TEST_HIDE_EXTENSIONS") {
+      for (size_t start = 0; start <= value.size();) {
+        size_t comma = value.find(',', start);
+        if (comma == std::string::npos) comma = value.size();
+        std::string item = value.substr(start, comma - start);
+        while (!item.empty() && item.front() == ' ') item.erase(item.begin());
+        while (!item.empty() && item.back() == ' ') item.pop_back();
+        if (!item.empty()) o.hide_extensions.push_back(item);
+        start = comma + 1;
+      }
     } else if (name == "GLBUDGET_FORCE_EVERY") {
       errno = 0;
       char* end = nullptr;
@@ -126,6 +139,12 @@ const Options& options() {
     if (!warnings.empty()) (void)!write(STDERR_FILENO, warnings.data(), warnings.size());
   });
   return parsed;
+}
+
+bool extension_hidden(const char* extension) {
+  for (const std::string& hidden : options().hide_extensions)
+    if (hidden == extension) return true;
+  return false;
 }
 
 }  // namespace glbudget

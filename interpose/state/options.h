@@ -4,6 +4,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace glbudget {
 
@@ -30,9 +31,16 @@ struct Options {
   std::string dump_probes;  // GLBUDGET_DUMP_PROBES: probe images as PPM files here
   int probe_scale = 0;      // GLBUDGET_PROBE_SCALE: SSIM at 1, 2 or 4 (0: Wang's rule for the size)
   bool feedback = true;        // GLBUDGET_FEEDBACK=0: no correction from measured power (the paper's open loop)
+  // GLBUDGET_TEST_HIDE_EXTENSIONS=GL_ARB_timer_query,...: a test switch (tests/interpose/
+  // test_faults.cpp); the shim's capability probe (detect_caps) takes these extensions, and the
+  // features they name even where the core version includes them, as absent.
+  std::vector<std::string> hide_extensions;
 };
 
 const Options& options();
+
+// True when GLBUDGET_TEST_HIDE_EXTENSIONS names `extension` (exact name, "GL_ARB_timer_query").
+bool extension_hidden(const char* extension);
 
 // Exposed for tests of the parser: parses `env` (a NULL-terminated environ-style array),
 // writing warnings to `warn`.

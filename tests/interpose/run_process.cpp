@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <fstream>
 #include <sstream>
 
@@ -23,10 +24,8 @@ bool file_exists(const std::string& path) {
   return stat(path.c_str(), &st) == 0;
 }
 
-ProcessResult run_process(const std::vector<std::string>& argv, const std::map<std::string, std::string>& env) {
-  static int counter = 0;
-  std::string base = "/tmp/glbudget_test_" + std::to_string(getpid()) + "_" + std::to_string(counter++);
-  std::string out_path = base + ".out", err_path = base + ".err";
+int spawn_process(const std::vector<std::string>& argv, const std::map<std::string, std::string>& env,
+                  const std::string& out_path, const std::string& err_path) {
   std::vector<std::string> env_strings;
   for (char** e = environ; *e; ++e) {
     std::string s(*e);
@@ -45,14 +44,28 @@ ProcessResult run_process(const std::vector<std::string>& argv, const std::map<s
   posix_spawn_file_actions_addopen(&fa, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_addopen(&fa, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
-  ProcessResult r;
-  pid_t pid;
-  if (posix_spawnp(&pid, args[0], &fa, nullptr, args.data(), envp.data()) == 0) {
-    int status = 0;
-    waitpid(pid, &status, 0);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  }
+  pid_t pid = -1;
+  if (posix_spawnp(&pid, args[0], &fa, nullptr, args.data(), envp.data()) != 0) pid = -1;
   posix_spawn_file_actions_destroy(&fa);
+  return pid;
+}
+
+int wait_process(int pid) {
+  int status = 0;
+  if (pid < 0) return -1;
+  pid_t got;
+  while ((got = waitpid(pid, &status, 0)) < 0 && errno == EINTR) {
+  }
+  if (got != pid) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+ProcessResult run_process(const std::vector<std::string>& argv, const std::map<std::string, std::string>& env) {
+  static int counter = 0;
+  std::string base = "/tmp/glbudget_test_" + std::to_string(getpid()) + "_" + std::to_string(counter++);
+  std::string out_path = base + ".out", err_path = base + ".err";
+  ProcessResult r;
+  r.exit_code = wait_process(spawn_process(argv, env, out_path, err_path));
   r.out = read_file(out_path);
   r.err = read_file(err_path);
   unlink(out_path.c_str());

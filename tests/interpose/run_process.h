@@ -11,6 +11,13 @@ struct ProcessResult {
 
 ProcessResult run_process(const std::vector<std::string>& argv, const std::map<std::string, std::string>& env);
 
+// The same, started and left running: its stdin is /dev/null, stdout and stderr go to the
+// files named (created or truncated). Returns its pid, or -1. wait_process() reaps it and
+// returns its exit status, or 128 + signal number.
+int spawn_process(const std::vector<std::string>& argv, const std::map<std::string, std::string>& env,
+                  const std::string& out_path, const std::string& err_path);
+int wait_process(int pid);
+
 std::string read_file(const std::string& path);
 // How many lines of text contain needle.
 size_t count_lines_with(const std::string& text, const std::string& needle);

@@ -99,3 +99,12 @@ TEST_CASE("frame-log rows: empty fields for what was not measured", "[unit]") {
   CHECK(n < int(sizeof line));
   CHECK(std::string(line).find("18446744073709551615,9223372036854775807,0,ffffffffffffffff,18446744073709551615") == 0);
 }
+
+TEST_CASE("GLBUDGET_TEST_HIDE_EXTENSIONS: a comma-separated list of extensions, spaces trimmed", "[unit]") {
+  std::string w;
+  Options o = parse_env({"GLBUDGET_TEST_HIDE_EXTENSIONS=GL_ARB_timer_query, GL_ARB_pipeline_statistics_query,,"}, &w);
+  CHECK(w.empty());  // a known variable
+  CHECK(o.hide_extensions == std::vector<std::string>{"GL_ARB_timer_query", "GL_ARB_pipeline_statistics_query"});
+  CHECK(parse_env({"GLBUDGET_TEST_HIDE_EXTENSIONS="}, &w).hide_extensions.empty());
+  CHECK(parse_env({}, &w).hide_extensions.empty());
+}

@@ -89,6 +89,32 @@ TEST_CASE("bad lines and timestamps that go backwards are discarded and counted"
   ::close(writer);
 }
 
+TEST_CASE("an implausible line is dropped on its own, not averaged with good ones; bad bytes are escaped",
+          "[file][faults]") {
+  FakeSysfs dir;
+  const std::string fifo = (dir.root() / "meter").string();
+  REQUIRE(mkfifo(fifo.c_str(), 0600) == 0);
+  auto opened = open_file_sensor(fifo);
+  REQUIRE(opened.source);
+  const int writer = ::open(fifo.c_str(), O_WRONLY);
+  REQUIRE(writer >= 0);
+
+  // The mean of the three, 2008 W, would pass the Sampler's plausibility check (5000 W).
+  write_all(writer, "1.0,12\n1.1,6000\n1.2,12\n");
+  const Reading r = opened.source->read(0);
+  CHECK(r.status == ReadStatus::ok);
+  CHECK(r.value == Approx(12.0));
+  CHECK(r.discarded_garbage == 1);
+  CHECK(r.detail.find("implausible power in \"1.1,6000\"") != std::string::npos);
+
+  write_all(writer, "\x1b[2J\x01," + std::string(100, '9') + "\n");
+  const Reading binary = opened.source->read(0);
+  CHECK(binary.discarded_garbage == 1);
+  CHECK(binary.detail.find("bad line \"\\x1b[2J\\x01,999") != std::string::npos);
+  CHECK(binary.detail.size() < 200);
+  ::close(writer);
+}
+
 TEST_CASE("a meter's FIFO drives per-frame power through the sampling thread", "[file]") {
   FakeSysfs dir;
   const std::string fifo = (dir.root() / "meter").string();

@@ -8,14 +8,35 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <string>
 
+#include "glbudget/sensors/energy_integrator.hpp"
 #include "sources.hpp"
 
 namespace glbudget::sensors {
 
 namespace {
+
+constexpr double kMaxPlausibleW = IntegratorLimits{}.max_plausible_w;
+
+// A meter's line as the stderr message quotes it: control bytes escaped (\xNN), at most 80
+// characters, so that binary garbage cannot garble the terminal or flood it.
+std::string quoted(std::string_view line) {
+  std::string text = "\"";
+  for (const char c : line.substr(0, 80)) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte >= 0x20 && byte < 0x7f && c != '"' && c != '\\') {
+      text += c;
+    } else {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
+      text += escaped;
+    }
+  }
+  return text + (line.size() > 80 ? "\"..." : "\"");
+}
 
 bool parse_double(std::string_view text, double& value) {
   while (!text.empty() && text.front() == ' ') text.remove_prefix(1);
@@ -67,12 +88,19 @@ class FileMeterSource final : public Source {
           !parse_double(line.substr(comma + 1), watts) || !std::isfinite(timestamp) ||
           !std::isfinite(watts) || watts < 0.0) {
         ++reading.discarded_garbage;
-        reading.detail = path_ + ": bad line \"" + std::string(line) + "\"";
+        reading.detail = path_ + ": bad line " + quoted(line);
+        continue;
+      }
+      // Judged line by line: averaged with good lines of the same read, an implausible
+      // sample would pass the integrator's check on the mean and be charged to frames.
+      if (watts > kMaxPlausibleW) {
+        ++reading.discarded_garbage;
+        reading.detail = path_ + ": implausible power in " + quoted(line);
         continue;
       }
       if (have_timestamp_ && timestamp <= last_timestamp_) {
         ++reading.discarded_backwards;
-        reading.detail = path_ + ": timestamp " + std::string(line.substr(0, comma)) +
+        reading.detail = path_ + ": timestamp " + quoted(line.substr(0, comma)) +
                          " is not after the previous one";
         continue;
       }
