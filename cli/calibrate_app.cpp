@@ -101,34 +101,43 @@ std::optional<Options> parse(std::span<char* const> args, int& status) {
     }
     if (arg == "--app") continue;
     static const std::vector<std::string> kValued = {"--config", "--frames", "--power-frames", "--timeout",
-                                                     "--output", "--fps", "--sensor", "--profile"};
+                                                     "--output", "--fps",    "--sensor",       "--profile"};
     if (i + 1 >= args.size() || std::find(kValued.begin(), kValued.end(), arg) == kValued.end()) {
       std::fprintf(stderr, "glbudget: calibrate --app: %s %s\n%s", arg.c_str(),
                    i + 1 >= args.size() ? "needs a value" : "is not an option", kUsage);
       return std::nullopt;
     }
     const std::string value = args[++i];
-    if (arg == "--config") o.manifest = value;
-    else if (arg == "--output") o.output = value;
-    else if (arg == "--sensor") o.sensor = value;
-    else if (arg == "--profile") o.profile = value;
+    if (arg == "--config")
+      o.manifest = value;
+    else if (arg == "--output")
+      o.output = value;
+    else if (arg == "--sensor")
+      o.sensor = value;
+    else if (arg == "--profile")
+      o.profile = value;
     else {
       char* end = nullptr;
       const double v = std::strtod(value.c_str(), &end);
       const bool frames = arg == "--frames" || arg == "--power-frames";
       const double least = arg == "--power-frames" ? 0 : 1;
-      const bool bad = end == value.c_str() || *end || !std::isfinite(v) ||
-                       (frames ? (v < least || v > 100000 || v != std::floor(v)) : (v <= 0 || (arg == "--fps" && v > 10000)));
+      const bool bad =
+          end == value.c_str() || *end || !std::isfinite(v) ||
+          (frames ? (v < least || v > 100000 || v != std::floor(v)) : (v <= 0 || (arg == "--fps" && v > 10000)));
       if (bad) {
         std::fprintf(stderr, "glbudget: calibrate --app: %s %s is not %s\n", arg.c_str(), value.c_str(),
                      frames ? (least ? "a number of frames in [1, 100000]" : "a number of frames in [0, 100000]")
                             : (arg == "--fps" ? "a frame rate in (0, 10000]" : "a number of seconds > 0"));
         return std::nullopt;
       }
-      if (arg == "--frames") o.frames = static_cast<unsigned>(v);
-      else if (arg == "--power-frames") o.power_frames = static_cast<unsigned>(v);
-      else if (arg == "--fps") o.fps = value;
-      else o.timeout_s = v;
+      if (arg == "--frames")
+        o.frames = static_cast<unsigned>(v);
+      else if (arg == "--power-frames")
+        o.power_frames = static_cast<unsigned>(v);
+      else if (arg == "--fps")
+        o.fps = value;
+      else
+        o.timeout_s = v;
     }
   }
   if (i >= args.size()) {
@@ -178,12 +187,12 @@ struct RunResult {
   bool started = false;
   bool stopped = false;  // by us, once every level had drawn (or at the timeout)
   bool timed_out = false;
-  int status = 0;        // waitpid's
+  int status = 0;  // waitpid's
   std::uint64_t frames = 0;
 };
 
-RunResult run_app(const Options& o, const std::vector<std::pair<std::string, std::string>>& env,
-                  const std::string& log, std::uint64_t frames_needed) {
+RunResult run_app(const Options& o, const std::vector<std::pair<std::string, std::string>>& env, const std::string& log,
+                  std::uint64_t frames_needed) {
   RunResult r;
   const pid_t child = fork();
   if (child < 0) {
@@ -261,7 +270,6 @@ void add_program(const json& program, LevelSums& s) {
   }
 }
 
-
 // GLBUDGET_FORCE for the power run: level 0 everywhere, then each level of each pass alone, so
 // that each level's power is told apart from every other's.
 std::vector<std::string> one_level_at_a_time(const manifest::Manifest& m) {
@@ -295,8 +303,9 @@ std::vector<model::ConfiguredSample> settled_samples(const model::FrameLog& log,
 // Runs the app once more, uninstrumented, one level at a time with the power sensor, and fits
 // what a batch, vertex, fragment, instruction and texel cost in its frames. Adds
 // "platform_costs" and "power" to `table`; false (after saying why) when it cannot.
-bool measure_power(const Options& o, const manifest::Manifest& m, const std::vector<std::pair<std::string, std::string>>& base_env,
-                   const std::string& scratch, ordered_json& table) {
+bool measure_power(const Options& o, const manifest::Manifest& m,
+                   const std::vector<std::pair<std::string, std::string>>& base_env, const std::string& scratch,
+                   ordered_json& table) {
   std::string profile_path = o.profile;
   if (profile_path.empty()) profile_path = default_profile(o.sensor);
   std::error_code ec;
@@ -323,7 +332,8 @@ bool measure_power(const Options& o, const manifest::Manifest& m, const std::vec
   if (!o.fps.empty()) env.emplace_back("GLBUDGET_FPS", o.fps);
   const std::uint64_t frames_needed = configurations.size() * o.power_frames + 2;
   std::printf("measuring the power of %zu configurations (each level alone), %u frames each%s%s...\n",
-              configurations.size(), o.power_frames, o.fps.empty() ? "" : " at ", o.fps.empty() ? "" : (o.fps + " fps").c_str());
+              configurations.size(), o.power_frames, o.fps.empty() ? "" : " at ",
+              o.fps.empty() ? "" : (o.fps + " fps").c_str());
   std::fflush(stdout);
   const RunResult run = run_app(o, env, log, frames_needed);
   if (!run.started) return false;
@@ -334,7 +344,8 @@ bool measure_power(const Options& o, const manifest::Manifest& m, const std::vec
   const model::CostLog logs[] = {{samples, &variants->space}};
   const std::optional<model::PlatformCostsFit> fit = model::fit_platform_costs(logs, *profile);
   if (!fit) {
-    std::fprintf(stderr, "glbudget: calibrate --app: the power run gave no frame with power and counts (is the "
+    std::fprintf(stderr,
+                 "glbudget: calibrate --app: the power run gave no frame with power and counts (is the "
                  "sensor %s readable here?); the levels' power is not measured\n",
                  o.sensor.empty() ? "auto" : o.sensor.c_str());
     return false;
@@ -342,7 +353,8 @@ bool measure_power(const Options& o, const manifest::Manifest& m, const std::vec
   // Each configuration's mean measured power, for the user and the record.
   std::map<model::Configuration, std::pair<double, int>> power;
   for (const model::ConfiguredSample& s : samples)
-    if (std::isfinite(s.sample.power_w)) power[s.configuration].first += s.sample.power_w, ++power[s.configuration].second;
+    if (std::isfinite(s.sample.power_w))
+      power[s.configuration].first += s.sample.power_w, ++power[s.configuration].second;
   ordered_json measured = ordered_json::array();
   std::printf("%-24s %9s %7s\n", "configuration", "power W", "frames");
   for (const std::string& c : configurations) {
@@ -356,12 +368,16 @@ bool measure_power(const Options& o, const manifest::Manifest& m, const std::vec
     measured.push_back({{"configuration", colon}, {"power_w", mean}, {"frames", it->second.second}});
   }
   const model::PlatformCosts& k = fit->costs;
-  std::printf("costs in this app's frames: batch %.4g, vertex %.4g, fragment %.4g, instruction %.4g, texel %.4g "
-              "(in-sample error: %.1f %% per frame, %.1f %% per configuration)\n",
-              k.batch, k.vertex, k.fragment, k.instruction, k.texel, fit->per_frame[0].mape_percent(),
-              fit->per_configuration[0].mape_percent());
-  table["platform_costs"] = {{"batch", k.batch}, {"vertex", k.vertex}, {"fragment", k.fragment},
-                             {"instruction", k.instruction}, {"texel", k.texel}};
+  std::printf(
+      "costs in this app's frames: batch %.4g, vertex %.4g, fragment %.4g, instruction %.4g, texel %.4g "
+      "(in-sample error: %.1f %% per frame, %.1f %% per configuration)\n",
+      k.batch, k.vertex, k.fragment, k.instruction, k.texel, fit->per_frame[0].mape_percent(),
+      fit->per_configuration[0].mape_percent());
+  table["platform_costs"] = {{"batch", k.batch},
+                             {"vertex", k.vertex},
+                             {"fragment", k.fragment},
+                             {"instruction", k.instruction},
+                             {"texel", k.texel}};
   table["power"] = {{"profile", fs::absolute(profile_path, ec).string()},
                     {"sensor", o.sensor.empty() ? "auto" : o.sensor},
                     {"fps", o.fps.empty() ? "the app's own" : o.fps},
@@ -398,7 +414,8 @@ int calibrate_app_main(std::span<char* const> args) {
 
   const std::string shim = find_shim();
   if (shim.empty()) {
-    std::fprintf(stderr, "glbudget: calibrate --app: libglbudget.so not found beside this program (set GLBUDGET_SHIM)\n");
+    std::fprintf(stderr,
+                 "glbudget: calibrate --app: libglbudget.so not found beside this program (set GLBUDGET_SHIM)\n");
     return 2;
   }
   std::string scratch = (fs::temp_directory_path() / "glbudget-calibrate-app-XXXXXX").string();
@@ -412,12 +429,9 @@ int calibrate_app_main(std::span<char* const> args) {
   if (const char* old = std::getenv("LD_PRELOAD"); old && *old) preload += std::string(":") + old;
   std::error_code ec;
   const std::vector<std::pair<std::string, std::string>> env = {
-      {"LD_PRELOAD", preload},
-      {"GLBUDGET_CONFIG", fs::absolute(o->manifest, ec).string()},
-      {"GLBUDGET_DUMP", dump.string()},
-      {"GLBUDGET_LOG", log},
-      {"GLBUDGET_FORCE", force},
-      {"GLBUDGET_FORCE_EVERY", std::to_string(o->frames)}};
+      {"LD_PRELOAD", preload},          {"GLBUDGET_CONFIG", fs::absolute(o->manifest, ec).string()},
+      {"GLBUDGET_DUMP", dump.string()}, {"GLBUDGET_LOG", log},
+      {"GLBUDGET_FORCE", force},        {"GLBUDGET_FORCE_EVERY", std::to_string(o->frames)}};
   // Every level's frames, then a few more: counters are read back a few frames late.
   const std::uint64_t frames_needed = levels * o->frames + 8;
   std::printf("measuring %zu levels of %zu passes, %u frames each (%s)...\n", levels, m.passes.size(), o->frames,
@@ -429,10 +443,10 @@ int calibrate_app_main(std::span<char* const> args) {
   if (!run.stopped) {
     if (WIFEXITED(run.status) && WEXITSTATUS(run.status) == 127) return cleanup(), 2;
     if (run.frames < frames_needed)
-      std::fprintf(stderr, "glbudget: calibrate --app: the app ended after %llu frames (%s %d); levels after frame %llu "
+      std::fprintf(stderr,
+                   "glbudget: calibrate --app: the app ended after %llu frames (%s %d); levels after frame %llu "
                    "are measured from fewer frames or not at all\n",
-                   static_cast<unsigned long long>(run.frames),
-                   WIFSIGNALED(run.status) ? "signal" : "exit status",
+                   static_cast<unsigned long long>(run.frames), WIFSIGNALED(run.status) ? "signal" : "exit status",
                    WIFSIGNALED(run.status) ? WTERMSIG(run.status) : WEXITSTATUS(run.status),
                    static_cast<unsigned long long>(levels * o->frames));
   } else if (run.timed_out) {
@@ -484,7 +498,7 @@ int calibrate_app_main(std::span<char* const> args) {
       }
       if (level.contains("fragment_scale")) out["fragment_scale"] = level["fragment_scale"];
       if (!draws) out["draws"] = false;
-      const std::string name = pass.value("name", "") ;
+      const std::string name = pass.value("name", "");
       if (!has_programs) {
         std::printf("%-16s %5zu  %-28.28s %10s %10s %10s\n", name.c_str(), out_levels.size(),
                     out["name"].get<std::string>().c_str(), "-", "-", "-");
@@ -515,13 +529,17 @@ int calibrate_app_main(std::span<char* const> args) {
   if (o->power_frames > 0) measure_power(*o, m, env, scratch, table);
   cleanup();
   if (unmeasured)
-    std::fprintf(stderr, "glbudget: calibrate --app: %d level(s) drew nothing while measured (the app may draw those "
-                 "passes only in some scenes); they are given the level above's costs\n", unmeasured);
+    std::fprintf(stderr,
+                 "glbudget: calibrate --app: %d level(s) drew nothing while measured (the app may draw those "
+                 "passes only in some scenes); they are given the level above's costs\n",
+                 unmeasured);
 
   std::string output = o->output;
   if (output.empty()) output = model::default_variant_table_path(executable);
   if (output.empty()) {
-    std::fprintf(stderr, "glbudget: calibrate --app: nowhere to write the table: set XDG_CACHE_HOME or HOME, or pass --output\n");
+    std::fprintf(
+        stderr,
+        "glbudget: calibrate --app: nowhere to write the table: set XDG_CACHE_HOME or HOME, or pass --output\n");
     return 2;
   }
   if (fs::path(output).has_parent_path()) fs::create_directories(fs::path(output).parent_path(), ec);

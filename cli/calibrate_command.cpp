@@ -80,8 +80,10 @@ std::optional<Options> parse(std::span<char* const> args, int& exit_status) {
     } else if (arg == "--sensor" || arg == "--output" || arg == "--fps") {
       const char* v = value();
       if (!v) return std::nullopt;
-      if (arg == "--sensor") o.sensor = v;
-      else if (arg == "--output") o.output = v;
+      if (arg == "--sensor")
+        o.sensor = v;
+      else if (arg == "--output")
+        o.output = v;
       else {
         char* end = nullptr;
         o.fps = std::strtod(v, &end);
@@ -112,7 +114,8 @@ std::optional<Sensor> open_sensor(const std::string& text) {
     std::fprintf(stderr, "glbudget: calibrate: sensor %s: %s\n", text.c_str(), error.c_str());
     return std::nullopt;
   }
-  const sensors::OpenResult opened = sensors::open_source(*spec, sensors::SourceEnvironment::from_process_environment());
+  const sensors::OpenResult opened =
+      sensors::open_source(*spec, sensors::SourceEnvironment::from_process_environment());
   if (!opened.source) {
     std::fprintf(stderr, "glbudget: calibrate: sensor %s is not available: %s\n", text.c_str(), opened.why_not.c_str());
     return std::nullopt;
@@ -156,7 +159,8 @@ void print_sweeps(const CalibrationSession& session) {
   for (const SweepRecord& sweep : session.sweeps()) {
     std::printf("%s sweep:\n", sweep.name);
     for (const MeasuredStep& s : sweep.steps)
-      std::printf("  %14.0f per frame  %8.2f W  %4lld frames%s\n", s.count, s.power_w, s.frames, s.late ? "  late" : "");
+      std::printf("  %14.0f per frame  %8.2f W  %4lld frames%s\n", s.count, s.power_w, s.frames,
+                  s.late ? "  late" : "");
   }
 }
 
@@ -167,7 +171,8 @@ void print_result(const model::CalibrationResult& r, const CalibrationSession& s
     return false;
   };
   const model::Saturation* saturations[3] = {&r.batches, &r.vertices, &r.fragments};
-  const double values[3] = {r.profile.saturation_batches, r.profile.saturation_vertices, r.profile.saturation_fragments};
+  const double values[3] = {r.profile.saturation_batches, r.profile.saturation_vertices,
+                            r.profile.saturation_fragments};
   const char* symbols[3] = {"B", "V", "F"};
   const char* names[3] = {"batches", "vertices", "fragments"};
   std::printf("P_m %10.2f W    %s\n", r.profile.p_min_w,
@@ -202,7 +207,8 @@ int calibrate_main(std::span<char* const> args) {
     if (const char* env = std::getenv("GLBUDGET_PROFILE"); env && *env) output = env;
   if (output.empty()) output = default_profile(sensor->value);
   if (output.empty()) {
-    std::fprintf(stderr, "glbudget: calibrate: nowhere to write the profile: set XDG_CACHE_HOME or HOME, or pass --output\n");
+    std::fprintf(stderr,
+                 "glbudget: calibrate: nowhere to write the profile: set XDG_CACHE_HOME or HOME, or pass --output\n");
     return 2;
   }
   const fs::path path = fs::absolute(output);
@@ -215,7 +221,8 @@ int calibrate_main(std::span<char* const> args) {
   }
   const std::string load = find_helper("calibrate_load", "testapps/calibrate_load", "GLBUDGET_CALIBRATE_LOAD");
   if (load.empty()) {
-    std::fprintf(stderr, "glbudget: calibrate: calibrate_load not found beside this program (set GLBUDGET_CALIBRATE_LOAD)\n");
+    std::fprintf(stderr,
+                 "glbudget: calibrate: calibrate_load not found beside this program (set GLBUDGET_CALIBRATE_LOAD)\n");
     return 2;
   }
   std::error_code ec;
@@ -235,7 +242,8 @@ int calibrate_main(std::span<char* const> args) {
     settings.budget_s = 20.0;
     settings.max_steps = 12;
   }
-  std::printf("sensor %s (%s); sweeps paced at %g fps\n", sensor->kind.c_str(), sensor->description.c_str(), settings.fps);
+  std::printf("sensor %s (%s); sweeps paced at %g fps\n", sensor->kind.c_str(), sensor->description.c_str(),
+              settings.fps);
   std::fflush(stdout);
   catch_interrupts();
   LoadRunner runner(load, shim, sensor->value, work_dir);

@@ -79,17 +79,18 @@ bool CalibrationSession::run(std::string& error) {
 bool CalibrationSession::run_idle(std::string& error) {
   progress_.update(0.0, seconds_left_estimate(-1, 0), "idle power");
   const double started = now_s();
-  const LoadRun run = runner_.run({"--batches", "1", "--vertices", "3", "--fps", number(settings_.fps), "--seconds",
-                                   std::to_string(settings_.idle_s), "--width", std::to_string(kWidth), "--height",
-                                   std::to_string(kHeight)},
-                                  nullptr);
+  const LoadRun run = runner_.run(
+      {"--batches", "1", "--vertices", "3", "--fps", number(settings_.fps), "--seconds",
+       std::to_string(settings_.idle_s), "--width", std::to_string(kWidth), "--height", std::to_string(kHeight)},
+      nullptr);
   if (run.failed) {
     error = run.failure;
     return false;
   }
   if (run.steps.empty()) return true;  // interrupted before it began
   const LoadStep& step = run.steps.front();
-  idle_w_ = model::measure_step(run.frames, static_cast<double>(step.start_ns), static_cast<double>(step.end_ns)).power_w;
+  idle_w_ =
+      model::measure_step(run.frames, static_cast<double>(step.start_ns), static_cast<double>(step.end_ns)).power_w;
   startup_s_ = std::max(0.0, now_s() - started - static_cast<double>(step.end_ns - step.start_ns) * 1e-9);
   if (!std::isfinite(idle_w_) && !interrupted()) {
     error = "the sensor gave no power readings for the idle frames";
@@ -111,11 +112,28 @@ bool CalibrationSession::run_sweep(const Quantity& q, std::string& error) {
   auto count_of = [&](const std::string& which) -> std::string {
     return which == name ? number(q.first) : which == "batches" ? "1" : which == "vertices" ? "3" : "0";
   };
-  const std::vector<std::string> args = {
-      "--sweep", name, "--batches", count_of("batches"), "--vertices", count_of("vertices"), "--fragments",
-      count_of("fragments"), "--fps", number(settings_.fps), "--seconds", std::to_string(settings_.step_s),
-      "--factor", std::to_string(settings_.factor), "--steps", std::to_string(steps), "--stop-when-late", "2",
-      "--width", std::to_string(kWidth), "--height", std::to_string(kHeight)};
+  const std::vector<std::string> args = {"--sweep",
+                                         name,
+                                         "--batches",
+                                         count_of("batches"),
+                                         "--vertices",
+                                         count_of("vertices"),
+                                         "--fragments",
+                                         count_of("fragments"),
+                                         "--fps",
+                                         number(settings_.fps),
+                                         "--seconds",
+                                         std::to_string(settings_.step_s),
+                                         "--factor",
+                                         std::to_string(settings_.factor),
+                                         "--steps",
+                                         std::to_string(steps),
+                                         "--stop-when-late",
+                                         "2",
+                                         "--width",
+                                         std::to_string(kWidth),
+                                         "--height",
+                                         std::to_string(kHeight)};
   auto swept = [&](const LoadStep& step) {
     return name == "batches" ? step.batches : name == "vertices" ? step.vertices : step.fragments;
   };

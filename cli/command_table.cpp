@@ -16,10 +16,8 @@ namespace {
 constexpr Command table[] = {
     {"run", "run a GL app under the shim: glbudget run [--power 40%|35W] [--error E] [--fps N] -- APP [ARGS...]",
      run_main},
-    {"sensors", "list the power sensors this machine offers and what they read now",
-     sensors_main},
-    {"replay", "run a frame log through the power model and the baseline, print their errors",
-     replay_main},
+    {"sensors", "list the power sensors this machine offers and what they read now", sensors_main},
+    {"replay", "run a frame log through the power model and the baseline, print their errors", replay_main},
     {"costs", "fit this machine's per-batch, vertex, fragment, instruction and texel costs from frame logs",
      costs_main},
     {"ssim", "the SSIM of two images (same size), as the governor measures quality", ssim_main},

@@ -77,11 +77,11 @@ std::unique_ptr<HeadlessGlContext> HeadlessGlContext::open(GlApi api, std::strin
   }
   EGLConfig config = nullptr;
   if (!pick_config(display, api, config, why_not)) return nullptr;
-  const EGLint desktop_attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 3,
-                                       EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+  const EGLint desktop_attributes[] = {
+      EGL_CONTEXT_MAJOR_VERSION,           4,       EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+      EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
   const EGLint es_attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 1, EGL_NONE};
-  EGLContext context =
-      eglCreateContext(display, config, EGL_NO_CONTEXT, desktop ? desktop_attributes : es_attributes);
+  EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, desktop ? desktop_attributes : es_attributes);
   if (context == EGL_NO_CONTEXT) {
     fail(why_not, egl_error((std::string("eglCreateContext (") + name + ")").c_str()));
     return nullptr;
@@ -106,8 +106,6 @@ bool HeadlessGlContext::make_current() {
   return eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_) == EGL_TRUE;
 }
 
-void* HeadlessGlContext::proc_address(const char* name) {
-  return reinterpret_cast<void*>(eglGetProcAddress(name));
-}
+void* HeadlessGlContext::proc_address(const char* name) { return reinterpret_cast<void*>(eglGetProcAddress(name)); }
 
 }  // namespace glbudget::cli

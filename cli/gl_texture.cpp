@@ -18,8 +18,8 @@ T entry(GlProcLoader load, const char* name) {
 
 }  // namespace
 
-GlTexture::GlTexture(GlProcLoader load, int width, int height, unsigned internal_format, unsigned format,
-                     unsigned type, const void* pixels)
+GlTexture::GlTexture(GlProcLoader load, int width, int height, unsigned internal_format, unsigned format, unsigned type,
+                     const void* pixels)
     : load_(load) {
   const auto get_integer = entry<PFNGLGETINTEGERVPROC>(load, "glGetIntegerv");
   const auto bind = entry<PFNGLBINDTEXTUREPROC>(load, "glBindTexture");
@@ -35,8 +35,8 @@ GlTexture::GlTexture(GlProcLoader load, int width, int height, unsigned internal
   bind(GL_TEXTURE_2D, name_);
   pixel_store(GL_UNPACK_ALIGNMENT, 1);
   entry<PFNGLBINDBUFFERPROC>(load, "glBindBuffer")(GL_PIXEL_UNPACK_BUFFER, 0);
-  entry<PFNGLTEXIMAGE2DPROC>(load, "glTexImage2D")(GL_TEXTURE_2D, 0, static_cast<GLint>(internal_format), width,
-                                                   height, 0, format, type, pixels);
+  entry<PFNGLTEXIMAGE2DPROC>(load, "glTexImage2D")(GL_TEXTURE_2D, 0, static_cast<GLint>(internal_format), width, height,
+                                                   0, format, type, pixels);
   const GLenum error = get_error();
   pixel_store(GL_UNPACK_ALIGNMENT, alignment);
   entry<PFNGLBINDBUFFERPROC>(load, "glBindBuffer")(GL_PIXEL_UNPACK_BUFFER, static_cast<GLuint>(unpack_buffer));

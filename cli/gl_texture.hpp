@@ -1,7 +1,7 @@
 // A 2D texture made from pixels in memory, through a GL loader, for `glbudget ssim --gpu` and
 // the GPU SSIM test. One mipmap level and GL's default sampling state.
 #pragma once
-#include "gpu_ssim.h"
+#include "gpu_ssim.hpp"
 
 namespace glbudget::cli {
 

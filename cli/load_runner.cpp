@@ -29,9 +29,9 @@ void on_interrupt(int) {
 }
 
 // Settings that would make the shim govern, pace or instrument the load instead of observing it.
-constexpr const char* kCleared[] = {"GLBUDGET_POWER", "GLBUDGET_ERROR", "GLBUDGET_CONFIG", "GLBUDGET_FORCE",
-                                    "GLBUDGET_FORCE_EVERY", "GLBUDGET_FPS", "GLBUDGET_DUMP", "GLBUDGET_INSTRUMENT",
-                                    "GLBUDGET_PROFILE", "GLBUDGET_LOG", "GLBUDGET_SENSOR", "LD_PRELOAD"};
+constexpr const char* kCleared[] = {"GLBUDGET_POWER",       "GLBUDGET_ERROR", "GLBUDGET_CONFIG", "GLBUDGET_FORCE",
+                                    "GLBUDGET_FORCE_EVERY", "GLBUDGET_FPS",   "GLBUDGET_DUMP",   "GLBUDGET_INSTRUMENT",
+                                    "GLBUDGET_PROFILE",     "GLBUDGET_LOG",   "GLBUDGET_SENSOR", "LD_PRELOAD"};
 
 bool cleared(std::string_view entry) {
   for (std::string_view name : kCleared)
@@ -53,14 +53,22 @@ bool parse_step(const std::string& line, LoadStep& step) {
     }
     long long value = 0;
     if (!(in >> value)) return false;
-    if (word == "batches") step.batches = static_cast<double>(value);
-    else if (word == "vertices") step.vertices = static_cast<double>(value);
-    else if (word == "fragments") step.fragments = static_cast<double>(value);
-    else if (word == "start_ns") step.start_ns = value;
-    else if (word == "end_ns") step.end_ns = value;
-    else if (word == "frames") step.frames = value;
-    else if (word == "late") step.late = value != 0;
-    else continue;
+    if (word == "batches")
+      step.batches = static_cast<double>(value);
+    else if (word == "vertices")
+      step.vertices = static_cast<double>(value);
+    else if (word == "fragments")
+      step.fragments = static_cast<double>(value);
+    else if (word == "start_ns")
+      step.start_ns = value;
+    else if (word == "end_ns")
+      step.end_ns = value;
+    else if (word == "frames")
+      step.frames = value;
+    else if (word == "late")
+      step.late = value != 0;
+    else
+      continue;
     ++fields;
   }
   return fields == 7;

@@ -10,9 +10,8 @@ namespace {
 void print_usage(std::FILE* out) {
   std::fprintf(out, "usage: glbudget <command> [options]\n\ncommands:\n");
   for (const auto& command : glbudget::cli::commands())
-    std::fprintf(out, "  %-10.*s %.*s\n", static_cast<int>(command.name.size()),
-                 command.name.data(), static_cast<int>(command.summary.size()),
-                 command.summary.data());
+    std::fprintf(out, "  %-10.*s %.*s\n", static_cast<int>(command.name.size()), command.name.data(),
+                 static_cast<int>(command.summary.size()), command.summary.data());
   std::fprintf(out, "  %-10s %s\n", "help", "this list; `glbudget <command> --help` for one");
 }
 

@@ -85,8 +85,10 @@ int report_main(std::span<char* const> args) {
     started = true;
     if (status != kNoMatplotlib) return status;
   }
-  std::fprintf(stderr, started ? "glbudget: report: needs matplotlib for python3 (Debian: apt-get install python3-matplotlib)\n"
-                               : "glbudget: report: needs python3 with matplotlib (Debian: apt-get install python3-matplotlib)\n");
+  std::fprintf(stderr,
+               started
+                   ? "glbudget: report: needs matplotlib for python3 (Debian: apt-get install python3-matplotlib)\n"
+                   : "glbudget: report: needs python3 with matplotlib (Debian: apt-get install python3-matplotlib)\n");
   return 2;
 }
 

@@ -122,8 +122,11 @@ int run_main(std::span<char* const> args) {
     return 2;
   }
   if (profile.empty()) {
-    if (const char* p = std::getenv("GLBUDGET_PROFILE"); p && *p) profile = p;
-    else profile = default_profile(sensor.empty() ? (std::getenv("GLBUDGET_SENSOR") ? std::getenv("GLBUDGET_SENSOR") : "") : sensor);
+    if (const char* p = std::getenv("GLBUDGET_PROFILE"); p && *p)
+      profile = p;
+    else
+      profile = default_profile(sensor.empty() ? (std::getenv("GLBUDGET_SENSOR") ? std::getenv("GLBUDGET_SENSOR") : "")
+                                               : sensor);
   }
   std::error_code ec;
   if (!profile.empty() && fs::is_regular_file(profile, ec)) {

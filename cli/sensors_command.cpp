@@ -40,12 +40,10 @@ int parse_window(std::span<char* const> args) {
       const std::string_view value = args[++i];
       int parsed = 0;
       const auto [ptr, ec] = std::from_chars(value.data(), value.data() + value.size(), parsed);
-      if (ec == std::errc() && ptr == value.data() + value.size() && parsed >= 20 &&
-          parsed <= 60000)
+      if (ec == std::errc() && ptr == value.data() + value.size() && parsed >= 20 && parsed <= 60000)
         window_ms = parsed;
       else
-        std::fprintf(stderr, "glbudget: --window %s is not 20..60000 ms; using %d\n",
-                     args[i], default_window_ms);
+        std::fprintf(stderr, "glbudget: --window %s is not 20..60000 ms; using %d\n", args[i], default_window_ms);
     } else {
       std::fprintf(stderr, "glbudget: sensors: ignoring unknown argument \"%s\"\n", args[i]);
     }
@@ -66,17 +64,14 @@ void print_row(const Row& row, const FrameEnergy& frame) {
   }
   char reading[64];
   if (frame.valid)
-    std::snprintf(reading, sizeof reading, "%8.2f W%s", frame.mean_power_w,
-                  frame.estimate ? " (estimate)" : "");
+    std::snprintf(reading, sizeof reading, "%8.2f W%s", frame.mean_power_w, frame.estimate ? " (estimate)" : "");
   else
     std::snprintf(reading, sizeof reading, "no reading");  // nothing moved, or every read failed
   std::printf("  %-8s %-22s %s", row.label.c_str(), reading, row.sensor->description().c_str());
   if (const FaultCounts f = row.sensor->faults(); f.total() > 0)
     std::printf("  [dropped: %llu read errors, %llu garbage, %llu backwards, %llu stalled]",
-                static_cast<unsigned long long>(f.read_error),
-                static_cast<unsigned long long>(f.garbage),
-                static_cast<unsigned long long>(f.backwards),
-                static_cast<unsigned long long>(f.stalled));
+                static_cast<unsigned long long>(f.read_error), static_cast<unsigned long long>(f.garbage),
+                static_cast<unsigned long long>(f.backwards), static_cast<unsigned long long>(f.stalled));
   std::printf("\n");
 }
 
@@ -113,14 +108,12 @@ int sensors_main(std::span<char* const> args) {
   for (auto& row : rows)
     if (row.sensor) row.sensor->on_swap(monotonic_now_ns());
   std::this_thread::sleep_for(std::chrono::milliseconds(window_ms));
-  std::printf("power sensors (mean over %d ms; cpu is this glbudget process, near idle):\n",
-              window_ms);
-  for (auto& row : rows)
-    print_row(row, row.sensor ? row.sensor->on_swap(monotonic_now_ns()) : FrameEnergy{});
+  std::printf("power sensors (mean over %d ms; cpu is this glbudget process, near idle):\n", window_ms);
+  for (auto& row : rows) print_row(row, row.sensor ? row.sensor->on_swap(monotonic_now_ns()) : FrameEnergy{});
 
   if (!chosen_spec) {
-    std::printf("\nGLBUDGET_SENSOR=%s is invalid (%s); the shim would use auto\n",
-                chosen_text.c_str(), chosen_error.c_str());
+    std::printf("\nGLBUDGET_SENSOR=%s is invalid (%s); the shim would use auto\n", chosen_text.c_str(),
+                chosen_error.c_str());
     return 0;
   }
   const auto opened = open_source(*chosen_spec, env);
@@ -129,8 +122,8 @@ int sensors_main(std::span<char* const> args) {
                 static_cast<int>(opened.source->name().size()), opened.source->name().data(),
                 opened.source->is_estimate() ? " (an estimate, not a measurement)" : "");
   else
-    std::printf("\nGLBUDGET_SENSOR=%s is unavailable (%s); the shim would use auto\n",
-                chosen_text.c_str(), opened.why_not.c_str());
+    std::printf("\nGLBUDGET_SENSOR=%s is unavailable (%s); the shim would use auto\n", chosen_text.c_str(),
+                opened.why_not.c_str());
   return 0;
 }
 

@@ -27,109 +27,109 @@ using namespace glbudget::quality;
 constexpr const char* kUsage = "usage: glbudget ssim A.png B.png [--scale 1|2|4] [--gpu]";
 
 void print_help() {
-    std::printf("%s\n\n", kUsage);
-    std::printf(
-        "Prints the SSIM of images A and B (same size, any format OpenImageIO reads), a number in\n"
-        "[-1, 1], 1 for identical images; the error the governor uses is 1 - SSIM. SSIM as Wang et\n"
-        "al. 2004 define it and skimage computes it: Rec. 709 luma of the 8-bit values (range 255),\n"
-        "11x11 Gaussian window of sigma 1.5, K1 0.01, K2 0.03, the mean over the map less a\n"
-        "5-pixel border. --scale 2 or 4 first box-averages 2x2 or 4x4 blocks: faster, and a coarser\n"
-        "measure (pixel noise and aliasing count less, banding and missing effects more).\n"
-        "--gpu computes the same SSIM with the shim's compute shaders (GpuSsim) in an EGL\n"
-        "surfaceless OpenGL 4.3 (or OpenGL ES 3.1) context instead of on the CPU. See docs/ssim.md.\n");
+  std::printf("%s\n\n", kUsage);
+  std::printf(
+      "Prints the SSIM of images A and B (same size, any format OpenImageIO reads), a number in\n"
+      "[-1, 1], 1 for identical images; the error the governor uses is 1 - SSIM. SSIM as Wang et\n"
+      "al. 2004 define it and skimage computes it: Rec. 709 luma of the 8-bit values (range 255),\n"
+      "11x11 Gaussian window of sigma 1.5, K1 0.01, K2 0.03, the mean over the map less a\n"
+      "5-pixel border. --scale 2 or 4 first box-averages 2x2 or 4x4 blocks: faster, and a coarser\n"
+      "measure (pixel noise and aliasing count less, banding and missing effects more).\n"
+      "--gpu computes the same SSIM with the shim's compute shaders (GpuSsim) in an EGL\n"
+      "surfaceless OpenGL 4.3 (or OpenGL ES 3.1) context instead of on the CPU. See docs/ssim.md.\n");
 }
 
 // One line: OpenImageIO's messages may run over several.
 std::string one_line(std::string text) {
-    for (char& c : text)
-        if (c == '\n' || c == '\r') c = ' ';
-    while (!text.empty() && text.back() == ' ') text.pop_back();
-    return text;
+  for (char& c : text)
+    if (c == '\n' || c == '\r') c = ' ';
+  while (!text.empty() && text.back() == ' ') text.pop_back();
+  return text;
 }
 
 int fail(const std::string& message) {
-    std::fprintf(stderr, "glbudget: %s\n", one_line(message).c_str());
-    return 2;
+  std::fprintf(stderr, "glbudget: %s\n", one_line(message).c_str());
+  return 2;
 }
 
 std::optional<DecodedImage> read_image(const std::string& path, std::string& error) {
-    // Colour as stored: PNG readers would otherwise premultiply it by alpha.
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    auto input = OIIO::ImageInput::open(path, &config);
-    if (!input) {
-        error = "cannot read " + path + ": " + OIIO::geterror();
-        return std::nullopt;
-    }
-    const OIIO::ImageSpec& spec = input->spec();
-    DecodedImage image;
-    image.width = spec.width;
-    image.height = spec.height;
-    image.channels = spec.nchannels >= 3 ? 3 : 1;  // RGB, or grey; alpha is not read
-    const std::size_t count =
-        static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) * image.channels;
-    bool read = false;
-    if (spec.format == OIIO::TypeDesc::UINT8) {
-        image.bytes.resize(count);
-        read = input->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::UINT8, image.bytes.data());
-    } else {
-        image.floats.resize(count);
-        read = input->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::FLOAT, image.floats.data());
-    }
-    if (!read) {
-        error = "cannot read " + path + ": " + input->geterror();
-        return std::nullopt;
-    }
-    return image;
+  // Colour as stored: PNG readers would otherwise premultiply it by alpha.
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto input = OIIO::ImageInput::open(path, &config);
+  if (!input) {
+    error = "cannot read " + path + ": " + OIIO::geterror();
+    return std::nullopt;
+  }
+  const OIIO::ImageSpec& spec = input->spec();
+  DecodedImage image;
+  image.width = spec.width;
+  image.height = spec.height;
+  image.channels = spec.nchannels >= 3 ? 3 : 1;  // RGB, or grey; alpha is not read
+  const std::size_t count =
+      static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) * image.channels;
+  bool read = false;
+  if (spec.format == OIIO::TypeDesc::UINT8) {
+    image.bytes.resize(count);
+    read = input->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::UINT8, image.bytes.data());
+  } else {
+    image.floats.resize(count);
+    read = input->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::FLOAT, image.floats.data());
+  }
+  if (!read) {
+    error = "cannot read " + path + ": " + input->geterror();
+    return std::nullopt;
+  }
+  return image;
 }
 
 LumaImage luma_of(const DecodedImage& image) {
-    return image.floats.empty() ? luma_from_8bit(image.bytes.data(), image.width, image.height, image.channels)
-                                : luma_from_unit_float(image.floats.data(), image.width, image.height, image.channels);
+  return image.floats.empty() ? luma_from_8bit(image.bytes.data(), image.width, image.height, image.channels)
+                              : luma_from_unit_float(image.floats.data(), image.width, image.height, image.channels);
 }
 
 }  // namespace
 
 int ssim_main(std::span<char* const> args) {
-    std::vector<std::string> paths;
-    int scale = 1;
-    bool gpu = false;
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        const std::string_view arg = args[i];
-        if (arg == "--help" || arg == "-h") {
-            print_help();
-            return 0;
-        }
-        if (arg == "--scale") {
-            if (i + 1 >= args.size()) return fail("--scale needs a value: 1, 2 or 4");
-            const std::string_view value = args[++i];
-            const auto [end, status] = std::from_chars(value.data(), value.data() + value.size(), scale);
-            if (status != std::errc() || end != value.data() + value.size() || !is_valid_scale(scale))
-                return fail("--scale must be 1, 2 or 4, not \"" + std::string(value) + "\"");
-        } else if (arg == "--gpu") {
-            gpu = true;
-        } else if (arg.starts_with("-") && arg.size() > 1) {
-            return fail("unknown option \"" + std::string(arg) + "\"; " + kUsage);
-        } else {
-            paths.emplace_back(arg);
-        }
+  std::vector<std::string> paths;
+  int scale = 1;
+  bool gpu = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string_view arg = args[i];
+    if (arg == "--help" || arg == "-h") {
+      print_help();
+      return 0;
     }
-    if (paths.size() != 2) return fail(std::string("ssim needs two images; ") + kUsage);
-    std::string error;
-    const auto a = read_image(paths[0], error);
-    if (!a) return fail(error);
-    const auto b = read_image(paths[1], error);
-    if (!b) return fail(error);
-    if (a->width != b->width || a->height != b->height)
-        return fail(paths[0] + " is " + std::to_string(a->width) + "x" + std::to_string(a->height) + " but " +
-                    paths[1] + " is " + std::to_string(b->width) + "x" + std::to_string(b->height));
-    try {
-        const double value = gpu ? ssim_on_gpu(*a, *b, scale) : ssim(luma_of(*a).view(), luma_of(*b).view(), {scale, 0});
-        std::printf("%.9f\n", value);
-    } catch (const std::exception& e) {
-        return fail(e.what());
+    if (arg == "--scale") {
+      if (i + 1 >= args.size()) return fail("--scale needs a value: 1, 2 or 4");
+      const std::string_view value = args[++i];
+      const auto [end, status] = std::from_chars(value.data(), value.data() + value.size(), scale);
+      if (status != std::errc() || end != value.data() + value.size() || !is_valid_scale(scale))
+        return fail("--scale must be 1, 2 or 4, not \"" + std::string(value) + "\"");
+    } else if (arg == "--gpu") {
+      gpu = true;
+    } else if (arg.starts_with("-") && arg.size() > 1) {
+      return fail("unknown option \"" + std::string(arg) + "\"; " + kUsage);
+    } else {
+      paths.emplace_back(arg);
     }
-    return 0;
+  }
+  if (paths.size() != 2) return fail(std::string("ssim needs two images; ") + kUsage);
+  std::string error;
+  const auto a = read_image(paths[0], error);
+  if (!a) return fail(error);
+  const auto b = read_image(paths[1], error);
+  if (!b) return fail(error);
+  if (a->width != b->width || a->height != b->height)
+    return fail(paths[0] + " is " + std::to_string(a->width) + "x" + std::to_string(a->height) + " but " + paths[1] +
+                " is " + std::to_string(b->width) + "x" + std::to_string(b->height));
+  try {
+    const double value = gpu ? ssim_on_gpu(*a, *b, scale) : ssim(luma_of(*a).view(), luma_of(*b).view(), {scale, 0});
+    std::printf("%.9f\n", value);
+  } catch (const std::exception& e) {
+    return fail(e.what());
+  }
+  return 0;
 }
 
 }  // namespace glbudget::cli

@@ -7,7 +7,7 @@
 
 #include "egl_context.hpp"
 #include "gl_texture.hpp"
-#include "gpu_ssim.h"
+#include "gpu_ssim.hpp"
 
 namespace glbudget::cli {
 

@@ -10,21 +10,22 @@
 namespace model = glbudget::model;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    const std::optional<model::Budget> budget =
-        model::parse_budget(std::string_view(reinterpret_cast<const char*>(data), size));
-    if (!budget) return 0;
-    switch (budget->kind) {
-    case model::Budget::Kind::Off: break;
+  const std::optional<model::Budget> budget =
+      model::parse_budget(std::string_view(reinterpret_cast<const char*>(data), size));
+  if (!budget) return 0;
+  switch (budget->kind) {
+    case model::Budget::Kind::Off:
+      break;
     case model::Budget::Kind::ShareOfRange:
-        if (!(budget->value >= 0.0 && budget->value <= 1.0)) std::abort();
-        break;
+      if (!(budget->value >= 0.0 && budget->value <= 1.0)) std::abort();
+      break;
     case model::Budget::Kind::Watts:
-        if (!(std::isfinite(budget->value) && budget->value >= 0.0)) std::abort();
-        break;
-    }
-    const double predicted[] = {10.0, 20.0, 30.0};
-    const double error[] = {0.0, 0.1, 0.2};
-    const model::Selection chosen = model::select_configuration(predicted, error, *budget);
-    if (chosen.index >= 3) std::abort();
-    return 0;
+      if (!(std::isfinite(budget->value) && budget->value >= 0.0)) std::abort();
+      break;
+  }
+  const double predicted[] = {10.0, 20.0, 30.0};
+  const double error[] = {0.0, 0.1, 0.2};
+  const model::Selection chosen = model::select_configuration(predicted, error, *budget);
+  if (chosen.index >= 3) std::abort();
+  return 0;
 }

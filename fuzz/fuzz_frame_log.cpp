@@ -10,12 +10,12 @@
 namespace model = glbudget::model;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    std::istringstream in(std::string(reinterpret_cast<const char*>(data), size));
-    const std::optional<model::FrameLog> log = model::read_frame_log(in, "fuzz.csv");
-    if (!log) return 0;
-    std::size_t passes = 0;
-    for (const model::LoggedFrame& frame : log->frames) passes += frame.passes.size();
-    if (passes + log->rows_skipped != log->rows) std::abort();  // every row is a pass or skipped
-    (void)model::frames_of_busiest_context(*log);
-    return 0;
+  std::istringstream in(std::string(reinterpret_cast<const char*>(data), size));
+  const std::optional<model::FrameLog> log = model::read_frame_log(in, "fuzz.csv");
+  if (!log) return 0;
+  std::size_t passes = 0;
+  for (const model::LoggedFrame& frame : log->frames) passes += frame.passes.size();
+  if (passes + log->rows_skipped != log->rows) std::abort();  // every row is a pass or skipped
+  (void)model::frames_of_busiest_context(*log);
+  return 0;
 }

@@ -15,27 +15,27 @@
 namespace instrument = glbudget::instrument;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    if (size < 2) return -1;
-    const std::uint8_t flags = data[0];
-    const int binding = data[1];
-    const std::string source(reinterpret_cast<const char*>(data) + 2, size - 2);
+  if (size < 2) return -1;
+  const std::uint8_t flags = data[0];
+  const int binding = data[1];
+  const std::string source(reinterpret_cast<const char*>(data) + 2, size - 2);
 
-    instrument::InstrumentRequest request;
-    request.stage = static_cast<instrument::Stage>((flags & 7) % instrument::kStageCount);
-    request.ssbo_binding = binding;
-    if (flags & 16) {
-        request.sources = {source.substr(0, source.size() / 2), source.substr(source.size() / 2)};
-    } else {
-        request.sources = {source};
-    }
-    if (flags & 8) {
-        request.driver_extensions = std::vector<std::string>{
-            "GL_ARB_shader_storage_buffer_object", "GL_ARB_gpu_shader5", "GL_EXT_gpu_shader4",
-            "GL_ARB_separate_shader_objects", "GL_ARB_explicit_attrib_location"};
-    }
-    const instrument::InstrumentResult result = instrument::instrument_shader(request);
-    // What the shim relies on: a failure says why, a success gives a source.
-    if (result.ok == result.instrumented_source.empty()) std::abort();
-    if (!result.ok && result.error.empty()) std::abort();
-    return 0;
+  instrument::InstrumentRequest request;
+  request.stage = static_cast<instrument::Stage>((flags & 7) % instrument::kStageCount);
+  request.ssbo_binding = binding;
+  if (flags & 16) {
+    request.sources = {source.substr(0, source.size() / 2), source.substr(source.size() / 2)};
+  } else {
+    request.sources = {source};
+  }
+  if (flags & 8) {
+    request.driver_extensions =
+        std::vector<std::string>{"GL_ARB_shader_storage_buffer_object", "GL_ARB_gpu_shader5", "GL_EXT_gpu_shader4",
+                                 "GL_ARB_separate_shader_objects", "GL_ARB_explicit_attrib_location"};
+  }
+  const instrument::InstrumentResult result = instrument::instrument_shader(request);
+  // What the shim relies on: a failure says why, a success gives a source.
+  if (result.ok == result.instrumented_source.empty()) std::abort();
+  if (!result.ok && result.error.empty()) std::abort();
+  return 0;
 }

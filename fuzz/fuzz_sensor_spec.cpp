@@ -11,10 +11,10 @@
 namespace sensors = glbudget::sensors;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    std::string error;
-    const std::optional<sensors::SensorSpec> spec =
-        sensors::parse_sensor_spec(std::string_view(reinterpret_cast<const char*>(data), size), error);
-    if (!spec && error.empty()) std::abort();  // a rejection says why
-    if (spec && spec->kind.empty()) std::abort();
-    return 0;
+  std::string error;
+  const std::optional<sensors::SensorSpec> spec =
+      sensors::parse_sensor_spec(std::string_view(reinterpret_cast<const char*>(data), size), error);
+  if (!spec && error.empty()) std::abort();  // a rejection says why
+  if (spec && spec->kind.empty()) std::abort();
+  return 0;
 }

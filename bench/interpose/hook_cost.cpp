@@ -8,8 +8,8 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "draw_count.h"
-#include "hook_table.h"
+#include "draw_count.hpp"
+#include "hook_table.hpp"
 
 extern "C" void glDrawArrays(GLenum mode, GLint first, GLsizei count);  // the shim's wrapper
 
@@ -58,7 +58,8 @@ int main() {
   printf("glDrawArrays with a do-nothing driver, best of 7 x 20M calls\n");
   printf("%-40s%10s%10s%12s\n", "path", "ns/call", "ratio", "added ns");
   printf("%-40s%10.2f%10.3f%12s\n", "app -> driver (baseline)", direct, 1.0, "-");
-  printf("%-40s%10.2f%10.3f%12.2f\n", "app -> shim -> driver, draw in pass", in_pass, in_pass / direct, in_pass - direct);
+  printf("%-40s%10.2f%10.3f%12.2f\n", "app -> shim -> driver, draw in pass", in_pass, in_pass / direct,
+         in_pass - direct);
   printf("%-40s%10.2f%10.3f%12.2f\n", "app -> shim -> driver, no context", no_context, no_context / direct,
          no_context - direct);
   printf("batches counted: %llu\n", static_cast<unsigned long long>(same_pass.open_batches));

@@ -29,7 +29,7 @@
 #include "egl_context.hpp"
 #include "gl_texture.hpp"
 #include "glbudget/quality/ssim.hpp"
-#include "gpu_ssim.h"
+#include "gpu_ssim.hpp"
 #include "gpu_ssim_images.hpp"
 
 using glbudget::GpuSsim;
@@ -45,9 +45,7 @@ volatile double g_sink = 0.0;
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 // Seconds per call of f: the best of at least 3 calls and g_seconds in all.
 double best_of(const std::function<double()>& f) {
@@ -110,8 +108,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-  std::printf("GPU SSIM throughput, Mpix/s of input pixels (best of %d rounds of >= %.2f s and >= 3 calls)\n",
-              g_rounds, g_seconds);
+  std::printf("GPU SSIM throughput, Mpix/s of input pixels (best of %d rounds of >= %.2f s and >= 3 calls)\n", g_rounds,
+              g_seconds);
   std::printf("GL: %s; CPU path on %u threads; frame vs the same frame with +-12 noise\n\n", renderer().c_str(),
               threads);
   std::printf("%-10s %5s %9s %9s %9s %9s %9s %9s %12s %10s\n", "size", "scale", "GPU", "GPU ms", "submit ms", "CPU",

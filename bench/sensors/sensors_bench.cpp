@@ -144,10 +144,8 @@ class RatioReporter : public benchmark::ConsoleReporter {
   void Finalize() override {
     ConsoleReporter::Finalize();
     const double baseline = cpu_ns_["BM_baseline_clock_monotonic"];
-    std::printf("\nCPU time per call, relative to clock_gettime(CLOCK_MONOTONIC) = %.1f ns:\n",
-                baseline);
-    for (const auto& [name, ns] : cpu_ns_)
-      std::printf("  %-36s %10.1f ns  %8.1fx\n", name.c_str(), ns, ns / baseline);
+    std::printf("\nCPU time per call, relative to clock_gettime(CLOCK_MONOTONIC) = %.1f ns:\n", baseline);
+    for (const auto& [name, ns] : cpu_ns_) std::printf("  %-36s %10.1f ns  %8.1fx\n", name.c_str(), ns, ns / baseline);
   }
 
  private:
@@ -172,8 +170,8 @@ void report_sampler_share(const std::string& spec, int period_ms) {
   }
   const double used = process_cpu_seconds() - before;
   const double samples = seconds * 1000.0 / period_ms;
-  std::printf("  %-8s %4d ms  %6.2f%% of one core  (%.1f us per sample incl. wake-up)\n",
-              spec.c_str(), period_ms, 100.0 * used / seconds, 1e6 * used / samples);
+  std::printf("  %-8s %4d ms  %6.2f%% of one core  (%.1f us per sample incl. wake-up)\n", spec.c_str(), period_ms,
+              100.0 * used / seconds, 1e6 * used / samples);
 }
 
 // Per-frame accuracy of the cpu estimate against the exact model value: the same formula
@@ -190,9 +188,7 @@ void report_frame_accuracy(int period_ms) {
   SamplerOptions options;
   options.period = std::chrono::milliseconds(std::max(period_ms, 1));
   auto source = open_source(*spec, SourceEnvironment{}).source;
-  PowerSensor sensor(period_ms > 0 ? std::make_unique<SampledOnly>(std::move(source))
-                                   : std::move(source),
-                     options);
+  PowerSensor sensor(period_ms > 0 ? std::make_unique<SampledOnly>(std::move(source)) : std::move(source), options);
 
   // A render-like load: one thread busy for the first half of each frame.
   std::atomic<bool> stop{false};
@@ -243,10 +239,10 @@ void report_frame_accuracy(int period_ms) {
     std::printf("  at swap");
   else
     std::printf("  %4d ms", period_ms);
-  std::printf("  mean exact %.2f W  per frame: mean |e| %.3f W, rms %.3f W;"
-              "  30-frame mean: worst |e| %.3f W  (%d/%d frames valid)\n",
-              sum_exact / valid, sum_abs / valid, std::sqrt(sum_sq / valid), window_worst, valid,
-              frames);
+  std::printf(
+      "  mean exact %.2f W  per frame: mean |e| %.3f W, rms %.3f W;"
+      "  30-frame mean: worst |e| %.3f W  (%d/%d frames valid)\n",
+      sum_exact / valid, sum_abs / valid, std::sqrt(sum_sq / valid), window_worst, valid, frames);
 }
 
 }  // namespace
@@ -259,9 +255,10 @@ int main(int argc, char** argv) {
   for (int period_ms : {1, 5, 20}) report_sampler_share("cpu", period_ms);
   report_sampler_share("amdgpu", 5);
   report_sampler_share("rapl", 5);
-  std::printf("\ncpu estimate per 16.7 ms frame vs the exact model value at the swap, read at the\n"
-              "swap (its default) or forced through the sampling thread at each period\n"
-              "(one thread busy half of each frame; idle 10 W, max 45 W, 2 cores):\n");
+  std::printf(
+      "\ncpu estimate per 16.7 ms frame vs the exact model value at the swap, read at the\n"
+      "swap (its default) or forced through the sampling thread at each period\n"
+      "(one thread busy half of each frame; idle 10 W, max 45 W, 2 cores):\n");
   for (int period_ms : {0, 1, 5, 20}) report_frame_accuracy(period_ms);
   benchmark::Shutdown();
   return 0;

@@ -41,7 +41,7 @@ def load_matplotlib():
     from matplotlib.colors import BoundaryNorm, ListedColormap
 
 
-# The columns today's shim writes (interpose/observe/frame_log.h); the last four are empty
+# The columns today's shim writes (interpose/observe/frame_log.hpp); the last four are empty
 # when it does not govern, and logs from before the governor stop at `configuration`.
 # probe_error and probe (quality probes) are drawn when present.
 LOG_COLUMNS = ["frame", "time_ns", "context", "pass", "batches", "vertices", "fragments", "primitives",

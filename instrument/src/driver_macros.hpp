@@ -11,8 +11,8 @@
 namespace glbudget::instrument {
 
 struct DriverMacroSource {
-    std::string source;    // conditionals on extension macros renamed; lines unchanged
-    std::string preamble;  // #define GLBUDGET_DRIVER_<name> 1 for every driver extension tested
+  std::string source;    // conditionals on extension macros renamed; lines unchanged
+  std::string preamble;  // #define GLBUDGET_DRIVER_<name> 1 for every driver extension tested
 };
 
 DriverMacroSource with_driver_extension_macros(const std::string& source,

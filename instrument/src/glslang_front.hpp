@@ -11,25 +11,25 @@
 namespace glbudget::instrument {
 
 struct LanguageVersion {
-    int version = 110;
-    bool es = false;
-    bool compatibility = false;  // desktop compatibility profile (or no profile below 150)
+  int version = 110;
+  bool es = false;
+  bool compatibility = false;  // desktop compatibility profile (or no profile below 150)
 };
 
 struct Preprocessed {
-    bool ok = false;
-    std::string text;   // macros expanded, conditionals resolved, #line kept
-    std::string error;  // glslang's first error line
+  bool ok = false;
+  std::string text;   // macros expanded, conditionals resolved, #line kept
+  std::string error;  // glslang's first error line
 };
 
 // Preprocesses the concatenated sources as the driver would; `preamble` is seen first.
 Preprocessed preprocess(const std::string& source, Stage stage, const std::string& preamble = {});
 
 struct Parsed {
-    bool ok = false;
-    std::string error;
-    LanguageVersion language;
-    std::vector<CountedNode> nodes;  // positions are physical lines of `text`
+  bool ok = false;
+  std::string error;
+  LanguageVersion language;
+  std::vector<CountedNode> nodes;  // positions are physical lines of `text`
 };
 
 // Parses preprocessed text. Its #line directives must have been blanked so that glslang's

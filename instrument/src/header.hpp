@@ -13,8 +13,8 @@
 namespace glbudget::instrument {
 
 struct HeaderPlan {
-    std::vector<Insertion> insertions;
-    bool binding_in_source = false;
+  std::vector<Insertion> insertions;
+  bool binding_in_source = false;
 };
 
 // May edit `text` in place (GLSL ES 3.00 is raised to 3.10, the first with storage buffers).

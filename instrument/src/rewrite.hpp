@@ -13,13 +13,13 @@
 namespace glbudget::instrument {
 
 struct Insertion {
-    std::size_t offset = 0;
-    std::string text;
+  std::size_t offset = 0;
+  std::string text;
 };
 
 struct BodyPlan {
-    std::vector<Insertion> insertions;  // in the order they must appear at equal offsets
-    StaticFigures figures;
+  std::vector<Insertion> insertions;  // in the order they must appear at equal offsets
+  StaticFigures figures;
 };
 
 // Names the inserted code uses; declared by the header (header.hpp).

@@ -1,6 +1,6 @@
-#include "apply_gl.h"
+#include "apply_gl.hpp"
 
-#include "hook_table.h"
+#include "hook_table.hpp"
 
 namespace glbudget {
 

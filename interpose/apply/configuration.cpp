@@ -1,5 +1,5 @@
-#include "configuration.h"
-#include "messages.h"
+#include "configuration.hpp"
+#include "messages.hpp"
 
 #include <unistd.h>
 
@@ -9,8 +9,8 @@
 #include <filesystem>
 #include <mutex>
 
-#include "governing.h"
-#include "options.h"
+#include "governing.hpp"
+#include "options.hpp"
 
 namespace glbudget {
 
@@ -67,8 +67,10 @@ State& state() {
       st->has_programs |= !p.match.empty();
       for (const manifest::Level& l : p.levels)
         for (const manifest::Target& t : l.targets)
-          if (t.kind == manifest::Target::Kind::default_framebuffer) st->scales_window = true;
-          else st->scales_targets = true;
+          if (t.kind == manifest::Target::Kind::default_framebuffer)
+            st->scales_window = true;
+          else
+            st->scales_targets = true;
     }
     const Options& o = options();
     if (!o.force.empty()) {

@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <vector>
 
-#include "configuration.h"
-#include "context_state.h"
-#include "hooks_generated.h"
-#include "hook_table.h"
-#include "render_targets.h"
-#include "probes.h"
+#include "configuration.hpp"
+#include "context_state.hpp"
+#include "hooks_generated.hpp"
+#include "hook_table.hpp"
+#include "render_targets.hpp"
+#include "probes.hpp"
 
 namespace glbudget {
 
@@ -30,9 +30,12 @@ void answer_for_app(GLenum pname, T* params) {
     // An app that loads cached binaries never gives its sources for the manifest to match: with
     // no binary format, apps build from source, as after a driver update.
     params[0] = 0;
-  } else if (s && s->window_scaled() && (pname == GL_DRAW_FRAMEBUFFER_BINDING || pname == GL_READ_FRAMEBUFFER_BINDING)) {
-    params[0] = static_cast<T>(pname == GL_READ_FRAMEBUFFER_BINDING ? s->app_read_framebuffer() : s->app_draw_framebuffer());
-  } else if (s && s->window_scaled() && (pname == GL_DRAW_BUFFER || pname == GL_DRAW_BUFFER0 || pname == GL_READ_BUFFER)) {
+  } else if (s && s->window_scaled() &&
+             (pname == GL_DRAW_FRAMEBUFFER_BINDING || pname == GL_READ_FRAMEBUFFER_BINDING)) {
+    params[0] =
+        static_cast<T>(pname == GL_READ_FRAMEBUFFER_BINDING ? s->app_read_framebuffer() : s->app_draw_framebuffer());
+  } else if (s && s->window_scaled() &&
+             (pname == GL_DRAW_BUFFER || pname == GL_DRAW_BUFFER0 || pname == GL_READ_BUFFER)) {
     // The stand-in's GL_COLOR_ATTACHMENT0 is the window's back buffer to the app.
     const GLuint app = pname == GL_READ_BUFFER ? s->app_read_framebuffer() : s->app_draw_framebuffer();
     if (app == 0 && params[0] == static_cast<T>(GL_COLOR_ATTACHMENT0)) params[0] = static_cast<T>(GL_BACK);
@@ -72,8 +75,8 @@ void handle_glBindFramebuffer(pfn_glBindFramebuffer real, GLenum target, GLuint 
   if (target != GL_READ_FRAMEBUFFER) c->counter->invalidate();  // the next draw may reveal a target
 }
 
-void handle_glFramebufferTexture2D(pfn_glFramebufferTexture2D real, GLenum target, GLenum attachment,
-                                   GLenum textarget, GLuint texture, GLint level) {
+void handle_glFramebufferTexture2D(pfn_glFramebufferTexture2D real, GLenum target, GLenum attachment, GLenum textarget,
+                                   GLuint texture, GLint level) {
   real(target, attachment, textarget, texture, level);
   if (TargetScaler* s = scaler()) s->framebuffer_attachment_changed(target);
 }
@@ -130,9 +133,10 @@ void handle_glTexImage2D(pfn_glTexImage2D real, GLenum target, GLint level, GLin
   real(target, level, internalformat, width, height, border, format, type, pixels);
 }
 
-void handle_glRenderbufferStorage(pfn_glRenderbufferStorage real, GLenum target, GLenum internalformat,
-                                  GLsizei width, GLsizei height) {
-  if (TargetScaler* s = scaler(); s && width > 0 && height > 0) s->renderbuffer_storage(0, internalformat, &width, &height);
+void handle_glRenderbufferStorage(pfn_glRenderbufferStorage real, GLenum target, GLenum internalformat, GLsizei width,
+                                  GLsizei height) {
+  if (TargetScaler* s = scaler(); s && width > 0 && height > 0)
+    s->renderbuffer_storage(0, internalformat, &width, &height);
   real(target, internalformat, width, height);
 }
 
@@ -203,8 +207,8 @@ void handle_glCopyTexImage2D(pfn_glCopyTexImage2D real, GLenum target, GLint lev
   s->read_window([&] { real(target, level, internalformat, x, y, width, height, border); });
 }
 
-void handle_glCopyTexSubImage2D(pfn_glCopyTexSubImage2D real, GLenum target, GLint level, GLint xoffset,
-                                GLint yoffset, GLint x, GLint y, GLsizei width, GLsizei height) {
+void handle_glCopyTexSubImage2D(pfn_glCopyTexSubImage2D real, GLenum target, GLint level, GLint xoffset, GLint yoffset,
+                                GLint x, GLint y, GLsizei width, GLsizei height) {
   TargetScaler* s = scaler();
   if (!s) return real(target, level, xoffset, yoffset, x, y, width, height);
   s->read_window([&] { real(target, level, xoffset, yoffset, x, y, width, height); });
@@ -219,9 +223,12 @@ bool window_bound(const TargetScaler* s, bool read) {
 std::vector<GLenum> stand_in_attachments(GLsizei n, const GLenum* attachments) {
   std::vector<GLenum> out(attachments, attachments + (n > 0 ? n : 0));
   for (GLenum& a : out) {
-    if (a == GL_COLOR || a == GL_BACK_LEFT || a == GL_BACK) a = GL_COLOR_ATTACHMENT0;
-    else if (a == GL_DEPTH) a = GL_DEPTH_ATTACHMENT;
-    else if (a == GL_STENCIL) a = GL_STENCIL_ATTACHMENT;
+    if (a == GL_COLOR || a == GL_BACK_LEFT || a == GL_BACK)
+      a = GL_COLOR_ATTACHMENT0;
+    else if (a == GL_DEPTH)
+      a = GL_DEPTH_ATTACHMENT;
+    else if (a == GL_STENCIL)
+      a = GL_STENCIL_ATTACHMENT;
   }
   return out;
 }
@@ -286,7 +293,8 @@ void handle_glBlitNamedFramebuffer(pfn_glBlitNamedFramebuffer real, GLuint readF
                                    GLint srcX0, GLint srcY0, GLint srcX1, GLint srcY1, GLint dstX0, GLint dstY0,
                                    GLint dstX1, GLint dstY1, GLbitfield mask, GLenum filter) {
   TargetScaler* s = scaler();
-  if (!s) return real(readFramebuffer, drawFramebuffer, srcX0, srcY0, srcX1, srcY1, dstX0, dstY0, dstX1, dstY1, mask, filter);
+  if (!s)
+    return real(readFramebuffer, drawFramebuffer, srcX0, srcY0, srcX1, srcY1, dstX0, dstY0, dstX1, dstY1, mask, filter);
   GLint src[4] = {srcX0, srcY0, srcX1, srcY1}, dst[4] = {dstX0, dstY0, dstX1, dstY1};
   s->blit_rectangles(readFramebuffer, drawFramebuffer, src, dst);
   real(s->real_framebuffer(readFramebuffer), s->real_framebuffer(drawFramebuffer), src[0], src[1], src[2], src[3],

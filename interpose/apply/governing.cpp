@@ -1,5 +1,5 @@
-#include "governing.h"
-#include "messages.h"
+#include "governing.hpp"
+#include "messages.hpp"
 
 #include <pthread.h>
 #include <unistd.h>
@@ -18,15 +18,15 @@
 #include <unordered_map>
 #include <vector>
 
-#include "frame_log.h"
+#include "frame_log.hpp"
 #include "glbudget/loop/from_manifest.hpp"
 #include "glbudget/loop/governor.hpp"
 #include "glbudget/model/platform_profile.hpp"
 #include "glbudget/model/selection.hpp"
 #include "glbudget/model/variant_table.hpp"
 #include "glbudget/sensors/profile_path.hpp"
-#include "options.h"
-#include "probes.h"
+#include "options.hpp"
+#include "probes.hpp"
 #include "glbudget/quality/luma_image.hpp"
 #include "glbudget/quality/ssim.hpp"
 
@@ -47,7 +47,8 @@ manifest::Manifest governed_manifest(const manifest::Manifest& m) {
   for (manifest::Pass& p : out.passes) {
     bool scales_window = false;
     for (const manifest::Level& l : p.levels)
-      for (const manifest::Target& t : l.targets) scales_window |= t.kind == manifest::Target::Kind::default_framebuffer;
+      for (const manifest::Target& t : l.targets)
+        scales_window |= t.kind == manifest::Target::Kind::default_framebuffer;
     if (scales_window) {
       // The window holds every pass's final image: its scale shrinks whatever draws into it.
       p.scales.clear();
@@ -73,10 +74,12 @@ MeasuredSpace measured_space(const manifest::Manifest& m, bool budget) {
   std::error_code ec;
   if (named.empty() && (path.empty() || !std::filesystem::is_regular_file(path, ec))) {
     const bool has_programs = std::any_of(m.passes.begin(), m.passes.end(), [](const manifest::Pass& p) {
-      return std::any_of(p.levels.begin(), p.levels.end(), [](const manifest::Level& l) { return l.changes_program(); });
+      return std::any_of(p.levels.begin(), p.levels.end(),
+                         [](const manifest::Level& l) { return l.changes_program(); });
     });
     if (budget && has_programs)
-      say("no measured costs of the manifest's shader levels (" + (path.empty() ? std::string("no cache directory") : path) +
+      say("no measured costs of the manifest's shader levels (" +
+          (path.empty() ? std::string("no cache directory") : path) +
           "): the model predicts savings from render scales and skipped passes only; "
           "`glbudget calibrate --app -- APP` measures them");
     return {loop::space_from_manifest(m), std::nullopt};
@@ -344,12 +347,12 @@ class GovernorThread {
   std::vector<Held> held_;
   std::unordered_map<uint64_t, double> shown_error_;  // by probe frame
   std::unordered_map<int, double> measured_;          // e_i(lmax) by pass
-  int fixed_scale_ = 0;  // GLBUDGET_PROBE_SCALE; 0: Wang's rule for each capture's size
+  int fixed_scale_ = 0;                               // GLBUDGET_PROBE_SCALE; 0: Wang's rule for each capture's size
   std::FILE* selections_ = nullptr;
   bool selections_failed_ = false;
 };
 
-GovernorThread* g_thread = nullptr;  // never destroyed: hooks may run during exit
+GovernorThread* g_thread = nullptr;    // never destroyed: hooks may run during exit
 std::atomic<bool> g_governing{false};  // frames pass through the thread
 std::atomic<bool> g_steering{false};   // and it chooses their configuration (a budget is set)
 thread_local Frame t_building;
@@ -372,8 +375,10 @@ bool governor_start() {
     if (!o.error.empty()) {
       char* end = nullptr;
       const double e = std::strtod(o.error.c_str(), &end);
-      if (end != o.error.c_str() && !*end && e >= 0.0 && e <= 1.0) settings.error_budget = e;
-      else say("GLBUDGET_ERROR='" + o.error + "' is not an error (1 - SSIM) in [0, 1]; ignored");
+      if (end != o.error.c_str() && !*end && e >= 0.0 && e <= 1.0)
+        settings.error_budget = e;
+      else
+        say("GLBUDGET_ERROR='" + o.error + "' is not an error (1 - SSIM) in [0, 1]; ignored");
     }
     const bool budget = settings.power.kind != model::Budget::Kind::Off || settings.error_budget;
     if (!budget && !probes_asked) return;

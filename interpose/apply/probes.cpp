@@ -1,4 +1,4 @@
-#include "probes.h"
+#include "probes.hpp"
 
 #include <cerrno>
 #include <cstdio>
@@ -7,13 +7,13 @@
 #include <mutex>
 #include <unordered_map>
 
-#include "apply_gl.h"
-#include "context_state.h"
-#include "governing.h"
-#include "hook_table.h"
-#include "messages.h"
-#include "options.h"
-#include "render_targets.h"
+#include "apply_gl.hpp"
+#include "context_state.hpp"
+#include "governing.hpp"
+#include "hook_table.hpp"
+#include "messages.hpp"
+#include "options.hpp"
+#include "render_targets.hpp"
 
 namespace glbudget {
 
@@ -63,7 +63,9 @@ struct ProbeGl {
 const ProbeGl& pgl() {
   static const ProbeGl g = [] {
     ProbeGl p;
-    auto load = [](auto& fn, const char* name) { fn = reinterpret_cast<std::remove_reference_t<decltype(fn)>>(resolve_gl(name)); };
+    auto load = [](auto& fn, const char* name) {
+      fn = reinterpret_cast<std::remove_reference_t<decltype(fn)>>(resolve_gl(name));
+    };
     load(p.ActiveTexture, "glActiveTexture");
     load(p.GetTexLevelParameteriv, "glGetTexLevelParameteriv");
     load(p.GetTexParameteriv, "glGetTexParameteriv");
@@ -95,8 +97,8 @@ const ProbeGl& pgl() {
 }
 
 constexpr int kMaxColorAttachments = 8;
-constexpr int kMaxUnits = 32;       // texture units looked at for redirection
-constexpr size_t kMaxPending = 4;   // probe read-backs in flight
+constexpr int kMaxUnits = 32;      // texture units looked at for redirection
+constexpr size_t kMaxPending = 4;  // probe read-backs in flight
 constexpr int kMaxStreams = 2;
 
 GLint get(GLenum pname) {
@@ -175,8 +177,10 @@ struct ProbeFrames::Impl {
   void release_shadow(Shadow& s) {
     const ApplyGl& g = agl();
     for (ShadowImage& im : s.images) {
-      if (im.renderbuffer) g.DeleteRenderbuffers(1, &im.shadow);
-      else g.DeleteTextures(1, &im.shadow);
+      if (im.renderbuffer)
+        g.DeleteRenderbuffers(1, &im.shadow);
+      else
+        g.DeleteTextures(1, &im.shadow);
     }
     if (s.fbo) g.DeleteFramebuffers(1, &s.fbo);
     s = Shadow{};
@@ -232,11 +236,15 @@ struct ProbeFrames::Impl {
           // Only 2D textures, level 0. Nothing here may raise a GL error: the app would read
           // it from glGetError.
           GLint level = 0, layered = GL_FALSE, face = 0, layer = 0;
-          g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL, &level);
-          g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_CUBE_MAP_FACE, &face);
-          g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LAYER, &layer);
+          g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL,
+                                                &level);
+          g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point,
+                                                GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_CUBE_MAP_FACE, &face);
+          g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LAYER,
+                                                &layer);
           if (at_least(3, 2, 3, 2))
-            g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_LAYERED, &layered);
+            g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_LAYERED,
+                                                  &layered);
           if (level != 0 || layered || face != 0 || layer != 0) return false;
           if (p.GetTextureParameteriv && at_least(4, 5, 99, 0)) {
             GLint target = 0;
@@ -279,7 +287,8 @@ struct ProbeFrames::Impl {
     if (app == 0) {
       draw_buffers[draw_count++] = GL_COLOR_ATTACHMENT0;
     } else {
-      for (int i = 0; i < kMaxColorAttachments; ++i) draw_buffers[draw_count++] = static_cast<GLenum>(get(GL_DRAW_BUFFER0 + i));
+      for (int i = 0; i < kMaxColorAttachments; ++i)
+        draw_buffers[draw_count++] = static_cast<GLenum>(get(GL_DRAW_BUFFER0 + i));
     }
     g.GenFramebuffers(1, &s.fbo);
     g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, s.fbo);
@@ -287,15 +296,16 @@ struct ProbeFrames::Impl {
       if (im.renderbuffer) {
         g.GenRenderbuffers(1, &im.shadow);
         g.BindRenderbuffer(GL_RENDERBUFFER, im.shadow);
-        g.RenderbufferStorageMultisample(GL_RENDERBUFFER, im.samples, static_cast<GLenum>(im.format), s.width, s.height);
+        g.RenderbufferStorageMultisample(GL_RENDERBUFFER, im.samples, static_cast<GLenum>(im.format), s.width,
+                                         s.height);
         g.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, im.point, GL_RENDERBUFFER, im.shadow);
       } else {
         g.GenTextures(1, &im.shadow);
         g.BindTexture(GL_TEXTURE_2D, im.shadow);
         p.TexStorage2D(GL_TEXTURE_2D, 1, static_cast<GLenum>(im.format), s.width, s.height);
         // Sampled as the app's texture is: its filtering, wrapping and depth comparison.
-        static const GLenum kParams[] = {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER, GL_TEXTURE_WRAP_S,
-                                         GL_TEXTURE_WRAP_T, GL_TEXTURE_COMPARE_MODE, GL_TEXTURE_COMPARE_FUNC};
+        static const GLenum kParams[] = {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER,   GL_TEXTURE_WRAP_S,
+                                         GL_TEXTURE_WRAP_T,     GL_TEXTURE_COMPARE_MODE, GL_TEXTURE_COMPARE_FUNC};
         for (GLenum param : kParams) {
           GLint v = 0;
           g.BindTexture(GL_TEXTURE_2D, im.app);
@@ -329,9 +339,12 @@ struct ProbeFrames::Impl {
     const GLint read_buffer = get(GL_READ_BUFFER);
     GLbitfield depth_stencil = 0;
     for (const ShadowImage& im : s.images) {
-      if (im.point == GL_DEPTH_ATTACHMENT) depth_stencil |= GL_DEPTH_BUFFER_BIT;
-      else if (im.point == GL_STENCIL_ATTACHMENT) depth_stencil |= GL_STENCIL_BUFFER_BIT;
-      else if (im.point == GL_DEPTH_STENCIL_ATTACHMENT) depth_stencil |= GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT;
+      if (im.point == GL_DEPTH_ATTACHMENT)
+        depth_stencil |= GL_DEPTH_BUFFER_BIT;
+      else if (im.point == GL_STENCIL_ATTACHMENT)
+        depth_stencil |= GL_STENCIL_BUFFER_BIT;
+      else if (im.point == GL_DEPTH_STENCIL_ATTACHMENT)
+        depth_stencil |= GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT;
       else {
         const GLenum source = app == 0 && !targets()->window_scaled() ? GL_BACK : im.point;
         g.ReadBuffer(source);
@@ -352,7 +365,8 @@ struct ProbeFrames::Impl {
       draw_buffers[count++] = GL_COLOR_ATTACHMENT0;
     } else {
       g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, real);
-      for (int i = 0; i < kMaxColorAttachments; ++i) draw_buffers[count++] = static_cast<GLenum>(get(GL_DRAW_BUFFER0 + i));
+      for (int i = 0; i < kMaxColorAttachments; ++i)
+        draw_buffers[count++] = static_cast<GLenum>(get(GL_DRAW_BUFFER0 + i));
       g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, s.fbo);
     }
     p.DrawBuffers(count, draw_buffers);
@@ -363,7 +377,8 @@ struct ProbeFrames::Impl {
     const GLint draw = get(GL_DRAW_FRAMEBUFFER_BINDING);
     agl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
     // Any other parameter of an absent buffer is an error the app would see.
-    agl().GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+    agl().GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE,
+                                              &type);
     agl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
     return type != GL_NONE;
   }
@@ -428,7 +443,8 @@ struct ProbeFrames::Impl {
     if (it != side_effects.end()) return it->second;
     const ApplyGl& g = agl();
     GLint blocks = 0, atomics = 0;
-    if (g.GetProgramInterfaceiv && (c.caps.gles ? c.caps.major * 10 + c.caps.minor >= 31 : c.caps.major * 10 + c.caps.minor >= 43))
+    if (g.GetProgramInterfaceiv &&
+        (c.caps.gles ? c.caps.major * 10 + c.caps.minor >= 31 : c.caps.major * 10 + c.caps.minor >= 43))
       g.GetProgramInterfaceiv(program, GL_SHADER_STORAGE_BLOCK, GL_ACTIVE_RESOURCES, &blocks);
     if (c.caps.gles ? c.caps.major * 10 + c.caps.minor >= 31 : c.caps.major * 10 + c.caps.minor >= 42)
       g.GetProgramiv(program, GL_ACTIVE_ATOMIC_COUNTER_BUFFERS, &atomics);
@@ -526,8 +542,10 @@ struct ProbeFrames::Impl {
     }
     pgl().ActiveTexture(static_cast<GLenum>(saved_active));
     c.config = saved_config;
-    if (c.bound_variants) bind_program(c);
-    else if (c.pipeline && !c.program) bind_pipeline_stages(c);
+    if (c.bound_variants)
+      bind_program(c);
+    else if (c.pipeline && !c.program)
+      bind_pipeline_stages(c);
     g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(saved_draw_fbo));
     g.Viewport(saved_viewport[0], saved_viewport[1], saved_viewport[2], saved_viewport[3]);
     g.Scissor(saved_scissor[0], saved_scissor[1], saved_scissor[2], saved_scissor[3]);
@@ -710,7 +728,8 @@ struct ProbeFrames::Impl {
     if (!(c.config == best)) streams[stream_count++].config = best;
     for (size_t tries = 0; tries < m.passes.size(); ++tries) {
       const size_t i = next_pass++ % m.passes.size();
-      if (i >= static_cast<size_t>(kMaxPasses) || static_cast<int>(i) >= passes || m.passes[i].levels.size() < 2) continue;
+      if (i >= static_cast<size_t>(kMaxPasses) || static_cast<int>(i) >= passes || m.passes[i].levels.size() < 2)
+        continue;
       const bool scales = [&] {
         for (const manifest::Level& l : m.passes[i].levels)
           if (!l.targets.empty()) return true;
@@ -792,7 +811,6 @@ bool ProbeFrames::first() {
 bool ProbeFrames::next() { return impl_->advance(); }
 void ProbeFrames::end() { impl_->end_duplicate(); }
 
-
 void ProbeFrames::blit(const GLint* src, const GLint* dst, GLbitfield mask, GLenum filter) {
   Impl& p = *impl_;
   if (!p.frame) return;
@@ -804,7 +822,8 @@ void ProbeFrames::blit(const GLint* src, const GLint* dst, GLbitfield mask, GLen
   for (int s = 0; s < p.stream_count; ++s) {
     Stream& st = p.streams[s];
     auto to = st.shadows.find(app_draw);
-    if (!st.complete || to == st.shadows.end() || !to->second.usable || to->second.initialized_frame != p.frame) continue;
+    if (!st.complete || to == st.shadows.end() || !to->second.usable || to->second.initialized_frame != p.frame)
+      continue;
     const Shadow& d = to->second;
     // From the stream's own image of the source when the frame drew it, else the app's.
     GLuint from = t.real_framebuffer(app_read);

@@ -1,5 +1,5 @@
-#include "render_targets.h"
-#include "messages.h"
+#include "render_targets.hpp"
+#include "messages.hpp"
 
 #include <unistd.h>
 
@@ -9,7 +9,7 @@
 #include <set>
 #include <string>
 
-#include "apply_gl.h"
+#include "apply_gl.hpp"
 
 namespace glbudget {
 
@@ -27,8 +27,8 @@ bool is_depth_stencil(GLint f) {
   return f == GL_DEPTH_STENCIL || f == GL_DEPTH24_STENCIL8 || f == GL_DEPTH32F_STENCIL8;
 }
 bool is_integer_format(GLenum format) {
-  return format == GL_RED_INTEGER || format == GL_RG_INTEGER || format == GL_RGB_INTEGER ||
-         format == GL_RGBA_INTEGER || format == GL_BGRA_INTEGER;
+  return format == GL_RED_INTEGER || format == GL_RG_INTEGER || format == GL_RGB_INTEGER || format == GL_RGBA_INTEGER ||
+         format == GL_BGRA_INTEGER;
 }
 
 // The real bindings a rescale touches, restored when it ends.
@@ -52,7 +52,8 @@ struct SavedBindings {
     g.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read));
     g.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(texture));
     g.BindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(renderbuffer));
-    if (unpack) reinterpret_cast<PFNGLBINDBUFFERPROC>(bind_buffer())(GL_PIXEL_UNPACK_BUFFER, static_cast<GLuint>(unpack));
+    if (unpack)
+      reinterpret_cast<PFNGLBINDBUFFERPROC>(bind_buffer())(GL_PIXEL_UNPACK_BUFFER, static_cast<GLuint>(unpack));
     if (scissor) g.Enable(GL_SCISSOR_TEST);
   }
   static void* bind_buffer();
@@ -62,7 +63,7 @@ struct SavedBindings {
 
 }  // namespace glbudget
 
-#include "hook_table.h"
+#include "hook_table.hpp"
 
 namespace glbudget {
 
@@ -113,9 +114,15 @@ double TargetScaler::window_scale_for(const Levels& config) const {
 
 GLenum TargetScaler::window_buffer(GLenum buffer) {
   switch (buffer) {
-    case GL_BACK: case GL_FRONT: case GL_BACK_LEFT: case GL_FRONT_LEFT: case GL_LEFT: case GL_FRONT_AND_BACK:
+    case GL_BACK:
+    case GL_FRONT:
+    case GL_BACK_LEFT:
+    case GL_FRONT_LEFT:
+    case GL_LEFT:
+    case GL_FRONT_AND_BACK:
       return GL_COLOR_ATTACHMENT0;
-    default: return buffer;
+    default:
+      return buffer;
   }
 }
 
@@ -141,9 +148,10 @@ void TargetScaler::update_window() {
     g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
     g.GetIntegerv(GL_SAMPLES, &samples);
     g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE, &depth);
-    g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_STENCIL, GL_FRAMEBUFFER_ATTACHMENT_STENCIL_SIZE, &stencil);
-    g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, gles_ ? GL_BACK : GL_BACK_LEFT, GL_FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING,
-                                          &encoding);
+    g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_STENCIL, GL_FRAMEBUFFER_ATTACHMENT_STENCIL_SIZE,
+                                          &stencil);
+    g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, gles_ ? GL_BACK : GL_BACK_LEFT,
+                                          GL_FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING, &encoding);
     g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
     window_.multisampled = samples > 0;
     window_.has_depth = depth > 0 || stencil > 0;
@@ -307,17 +315,22 @@ double TargetScaler::scale_for(GLuint name, const Framebuffer& f, const Levels& 
     for (const manifest::Target& t : level.targets) {
       bool hit = false;
       switch (t.kind) {
-        case manifest::Target::Kind::self: hit = (f.passes >> q) & 1; break;
+        case manifest::Target::Kind::self:
+          hit = (f.passes >> q) & 1;
+          break;
         case manifest::Target::Kind::pass: {
           const int other = m.find(t.name);
           hit = other >= 0 && other < 64 && ((f.passes >> other) & 1);
           break;
         }
-        case manifest::Target::Kind::framebuffer: hit = t.id == name; break;
+        case manifest::Target::Kind::framebuffer:
+          hit = t.id == name;
+          break;
         case manifest::Target::Kind::texture:
           for (const Attachment& a : f.attachments) hit |= !a.renderbuffer && a.name == t.id;
           break;
-        case manifest::Target::Kind::default_framebuffer: break;
+        case manifest::Target::Kind::default_framebuffer:
+          break;
       }
       if (hit) s = std::min(s, level.scale);
     }
@@ -355,10 +368,14 @@ bool TargetScaler::cleared_before_drawn(const Framebuffer& f) const {
     const auto& images = a.renderbuffer ? renderbuffers_ : textures_;
     auto it = images.find(a.name);
     const GLint format = it == images.end() ? 0 : it->second.internal_format;
-    if (is_depth(format)) needed |= GL_DEPTH_BUFFER_BIT;
-    else if (is_depth_stencil(format)) needed |= GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT;
-    else if (format == GL_STENCIL_INDEX8) needed |= GL_STENCIL_BUFFER_BIT;
-    else needed |= GL_COLOR_BUFFER_BIT;
+    if (is_depth(format))
+      needed |= GL_DEPTH_BUFFER_BIT;
+    else if (is_depth_stencil(format))
+      needed |= GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT;
+    else if (format == GL_STENCIL_INDEX8)
+      needed |= GL_STENCIL_BUFFER_BIT;
+    else
+      needed |= GL_COLOR_BUFFER_BIT;
   }
   return (f.cleared & needed) == needed;
 }
@@ -366,7 +383,7 @@ bool TargetScaler::cleared_before_drawn(const Framebuffer& f) const {
 void TargetScaler::on_clear(GLbitfield mask) {
   if (draw_fbo_ == 0) return;
   Framebuffer& f = framebuffers_[draw_fbo_];
-  if (f.drawn_frame == frame_) return;  // drawn already this frame: a clear now is no fresh start
+  if (f.drawn_frame == frame_) return;           // drawn already this frame: a clear now is no fresh start
   if (agl().IsEnabled(GL_SCISSOR_TEST)) return;  // a partial clear
   if (f.cleared_frame != frame_) f.cleared = 0;
   f.cleared_frame = frame_;
@@ -414,10 +431,12 @@ void TargetScaler::rescale(GLuint name, Image& image, double scale, bool carry_c
   SavedBindings saved;
   const GLsizei old_w = image.stored_width(), old_h = image.stored_height();
   const bool depth = is_depth(image.internal_format), depth_stencil = is_depth_stencil(image.internal_format);
-  const GLenum point = depth ? GL_DEPTH_ATTACHMENT : depth_stencil ? GL_DEPTH_STENCIL_ATTACHMENT
+  const GLenum point = depth                                        ? GL_DEPTH_ATTACHMENT
+                       : depth_stencil                              ? GL_DEPTH_STENCIL_ATTACHMENT
                        : image.internal_format == GL_STENCIL_INDEX8 ? GL_STENCIL_ATTACHMENT
-                                                                     : GL_COLOR_ATTACHMENT0;
-  const GLbitfield mask = depth ? GL_DEPTH_BUFFER_BIT : depth_stencil ? GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT
+                                                                    : GL_COLOR_ATTACHMENT0;
+  const GLbitfield mask = depth                            ? GL_DEPTH_BUFFER_BIT
+                          : depth_stencil                  ? GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT
                           : point == GL_STENCIL_ATTACHMENT ? GL_STENCIL_BUFFER_BIT
                                                            : GL_COLOR_BUFFER_BIT;
   const GLenum filter = mask == GL_COLOR_BUFFER_BIT && !is_integer_format(image.format) ? GL_LINEAR : GL_NEAREST;
@@ -428,13 +447,16 @@ void TargetScaler::rescale(GLuint name, Image& image, double scale, bool carry_c
   GLuint fbo[2] = {0, 0}, copy = 0;
   auto attach = [&](GLenum target, GLuint fb, bool rb, GLuint object) {
     g.BindFramebuffer(target, fb);
-    if (rb) g.FramebufferRenderbuffer(target, point, GL_RENDERBUFFER, object);
-    else g.FramebufferTexture2D(target, point, GL_TEXTURE_2D, object, 0);
+    if (rb)
+      g.FramebufferRenderbuffer(target, point, GL_RENDERBUFFER, object);
+    else
+      g.FramebufferTexture2D(target, point, GL_TEXTURE_2D, object, 0);
   };
   auto allocate = [&](GLuint object, GLsizei w, GLsizei h, int level) {
     if (image.renderbuffer) {
       g.BindRenderbuffer(GL_RENDERBUFFER, object);
-      g.RenderbufferStorageMultisample(GL_RENDERBUFFER, image.samples, static_cast<GLenum>(image.internal_format), w, h);
+      g.RenderbufferStorageMultisample(GL_RENDERBUFFER, image.samples, static_cast<GLenum>(image.internal_format), w,
+                                       h);
     } else {
       g.BindTexture(GL_TEXTURE_2D, object);
       g.TexImage2D(GL_TEXTURE_2D, level, image.internal_format, w, h, 0, image.format, image.type, nullptr);
@@ -444,8 +466,10 @@ void TargetScaler::rescale(GLuint name, Image& image, double scale, bool carry_c
   const GLsizei new_w = scaled(image.app_size[0][0], scale), new_h = scaled(image.app_size[0][1], scale);
   if (carry) {
     g.GenFramebuffers(2, fbo);
-    if (image.renderbuffer) g.GenRenderbuffers(1, &copy);
-    else g.GenTextures(1, &copy);
+    if (image.renderbuffer)
+      g.GenRenderbuffers(1, &copy);
+    else
+      g.GenTextures(1, &copy);
     allocate(copy, new_w, new_h, 0);
     attach(GL_READ_FRAMEBUFFER, fbo[0], image.renderbuffer, name);
     attach(GL_DRAW_FRAMEBUFFER, fbo[1], image.renderbuffer, copy);
@@ -454,15 +478,18 @@ void TargetScaler::rescale(GLuint name, Image& image, double scale, bool carry_c
   image.scale = scale;
   for (size_t level = 0; level < image.app_size.size(); ++level) {
     if (image.app_size[level][0] == 0) continue;
-    allocate(name, scaled(image.app_size[level][0], scale), scaled(image.app_size[level][1], scale), static_cast<int>(level));
+    allocate(name, scaled(image.app_size[level][0], scale), scaled(image.app_size[level][1], scale),
+             static_cast<int>(level));
   }
   if (carry) {
     attach(GL_READ_FRAMEBUFFER, fbo[0], image.renderbuffer, copy);
     attach(GL_DRAW_FRAMEBUFFER, fbo[1], image.renderbuffer, name);
     g.BlitFramebuffer(0, 0, new_w, new_h, 0, 0, new_w, new_h, mask, GL_NEAREST);
     g.DeleteFramebuffers(2, fbo);
-    if (image.renderbuffer) g.DeleteRenderbuffers(1, &copy);
-    else g.DeleteTextures(1, &copy);
+    if (image.renderbuffer)
+      g.DeleteRenderbuffers(1, &copy);
+    else
+      g.DeleteTextures(1, &copy);
   }
 }
 

@@ -1,20 +1,20 @@
-#include "subroutines.h"
+#include "subroutines.hpp"
 
 #include <algorithm>
 #include <limits>
 #include <vector>
 
-#include "apply_gl.h"
-#include "context_state.h"
-#include "hooks_generated.h"
+#include "apply_gl.hpp"
+#include "context_state.hpp"
+#include "hooks_generated.hpp"
 
 namespace glbudget {
 
 namespace {
 
 // By stage slot (shader_stage_slot).
-const GLenum kStageOfSlot[kShaderStages] = {GL_VERTEX_SHADER, GL_TESS_CONTROL_SHADER, GL_TESS_EVALUATION_SHADER,
-                                            GL_GEOMETRY_SHADER, GL_FRAGMENT_SHADER, GL_COMPUTE_SHADER};
+const GLenum kStageOfSlot[kShaderStages] = {GL_VERTEX_SHADER,   GL_TESS_CONTROL_SHADER, GL_TESS_EVALUATION_SHADER,
+                                            GL_GEOMETRY_SHADER, GL_FRAGMENT_SHADER,     GL_COMPUTE_SHADER};
 
 thread_local std::vector<GLuint> t_indices;
 
@@ -45,8 +45,8 @@ bool valid_selection(const SubroutineStage& app, GLsizei count, const GLuint* in
 // glUniformSubroutinesuiv): each of the variant's locations gets the subroutine of the same name
 // as the app's choice for the uniform of the same name, else one compatible with it, so the
 // call is always valid.
-void select_in_variant(PFNGLUNIFORMSUBROUTINESUIVPROC select, GLenum stage, const SubroutineMap& m,
-                       const GLuint* app, size_t app_count) {
+void select_in_variant(PFNGLUNIFORMSUBROUTINESUIVPROC select, GLenum stage, const SubroutineMap& m, const GLuint* app,
+                       size_t app_count) {
   if (m.own.locations <= 0) return;  // nothing to select (and some drivers read past an empty table)
   t_indices.assign(static_cast<size_t>(m.own.locations), 0);
   for (size_t l = 0; l < t_indices.size(); ++l) {
@@ -54,7 +54,8 @@ void select_in_variant(PFNGLUNIFORMSUBROUTINESUIVPROC select, GLenum stage, cons
     const GLint a = m.app_location[l];
     GLuint index = GL_INVALID_INDEX;
     if (a >= 0 && static_cast<size_t>(a) < app_count && app[a] < m.index.size()) index = m.index[app[a]];
-    if (index == GL_INVALID_INDEX || !compatible_with(compatible, index)) index = compatible.empty() ? 0 : compatible.front();
+    if (index == GL_INVALID_INDEX || !compatible_with(compatible, index))
+      index = compatible.empty() ? 0 : compatible.front();
     t_indices[l] = index;
   }
   select(stage, m.own.locations, t_indices.data());

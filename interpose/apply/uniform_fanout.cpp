@@ -1,6 +1,6 @@
-#include "uniform_fanout.h"
+#include "uniform_fanout.hpp"
 
-#include "context_state.h"
+#include "context_state.hpp"
 
 namespace glbudget {
 

@@ -1,8 +1,8 @@
-#include "uniform_values.h"
+#include "uniform_values.hpp"
 
 #include <algorithm>
 
-#include "apply_gl.h"
+#include "apply_gl.hpp"
 
 namespace glbudget {
 
@@ -19,42 +19,117 @@ struct TypeInfo {
 
 bool describe(GLenum type, TypeInfo* t) {
   switch (type) {
-    case GL_FLOAT: *t = {Base::f, 1}; return true;
-    case GL_FLOAT_VEC2: *t = {Base::f, 2}; return true;
-    case GL_FLOAT_VEC3: *t = {Base::f, 3}; return true;
-    case GL_FLOAT_VEC4: *t = {Base::f, 4}; return true;
-    case GL_DOUBLE: *t = {Base::d, 1}; return true;
-    case GL_DOUBLE_VEC2: *t = {Base::d, 2}; return true;
-    case GL_DOUBLE_VEC3: *t = {Base::d, 3}; return true;
-    case GL_DOUBLE_VEC4: *t = {Base::d, 4}; return true;
-    case GL_INT: case GL_BOOL: *t = {Base::i, 1}; return true;
-    case GL_INT_VEC2: case GL_BOOL_VEC2: *t = {Base::i, 2}; return true;
-    case GL_INT_VEC3: case GL_BOOL_VEC3: *t = {Base::i, 3}; return true;
-    case GL_INT_VEC4: case GL_BOOL_VEC4: *t = {Base::i, 4}; return true;
-    case GL_UNSIGNED_INT: *t = {Base::u, 1}; return true;
-    case GL_UNSIGNED_INT_VEC2: *t = {Base::u, 2}; return true;
-    case GL_UNSIGNED_INT_VEC3: *t = {Base::u, 3}; return true;
-    case GL_UNSIGNED_INT_VEC4: *t = {Base::u, 4}; return true;
-    case GL_FLOAT_MAT2: *t = {Base::f, 4, 2, 2}; return true;
-    case GL_FLOAT_MAT3: *t = {Base::f, 9, 3, 3}; return true;
-    case GL_FLOAT_MAT4: *t = {Base::f, 16, 4, 4}; return true;
-    case GL_FLOAT_MAT2x3: *t = {Base::f, 6, 2, 3}; return true;
-    case GL_FLOAT_MAT2x4: *t = {Base::f, 8, 2, 4}; return true;
-    case GL_FLOAT_MAT3x2: *t = {Base::f, 6, 3, 2}; return true;
-    case GL_FLOAT_MAT3x4: *t = {Base::f, 12, 3, 4}; return true;
-    case GL_FLOAT_MAT4x2: *t = {Base::f, 8, 4, 2}; return true;
-    case GL_FLOAT_MAT4x3: *t = {Base::f, 12, 4, 3}; return true;
-    case GL_DOUBLE_MAT2: *t = {Base::d, 4, 2, 2}; return true;
-    case GL_DOUBLE_MAT3: *t = {Base::d, 9, 3, 3}; return true;
-    case GL_DOUBLE_MAT4: *t = {Base::d, 16, 4, 4}; return true;
-    case GL_DOUBLE_MAT2x3: *t = {Base::d, 6, 2, 3}; return true;
-    case GL_DOUBLE_MAT2x4: *t = {Base::d, 8, 2, 4}; return true;
-    case GL_DOUBLE_MAT3x2: *t = {Base::d, 6, 3, 2}; return true;
-    case GL_DOUBLE_MAT3x4: *t = {Base::d, 12, 3, 4}; return true;
-    case GL_DOUBLE_MAT4x2: *t = {Base::d, 8, 4, 2}; return true;
-    case GL_DOUBLE_MAT4x3: *t = {Base::d, 12, 4, 3}; return true;
-    case GL_UNSIGNED_INT_ATOMIC_COUNTER: return false;  // bound by offset, never set
-    default: *t = {Base::i, 1}; return true;            // samplers and images: a unit number
+    case GL_FLOAT:
+      *t = {Base::f, 1};
+      return true;
+    case GL_FLOAT_VEC2:
+      *t = {Base::f, 2};
+      return true;
+    case GL_FLOAT_VEC3:
+      *t = {Base::f, 3};
+      return true;
+    case GL_FLOAT_VEC4:
+      *t = {Base::f, 4};
+      return true;
+    case GL_DOUBLE:
+      *t = {Base::d, 1};
+      return true;
+    case GL_DOUBLE_VEC2:
+      *t = {Base::d, 2};
+      return true;
+    case GL_DOUBLE_VEC3:
+      *t = {Base::d, 3};
+      return true;
+    case GL_DOUBLE_VEC4:
+      *t = {Base::d, 4};
+      return true;
+    case GL_INT:
+    case GL_BOOL:
+      *t = {Base::i, 1};
+      return true;
+    case GL_INT_VEC2:
+    case GL_BOOL_VEC2:
+      *t = {Base::i, 2};
+      return true;
+    case GL_INT_VEC3:
+    case GL_BOOL_VEC3:
+      *t = {Base::i, 3};
+      return true;
+    case GL_INT_VEC4:
+    case GL_BOOL_VEC4:
+      *t = {Base::i, 4};
+      return true;
+    case GL_UNSIGNED_INT:
+      *t = {Base::u, 1};
+      return true;
+    case GL_UNSIGNED_INT_VEC2:
+      *t = {Base::u, 2};
+      return true;
+    case GL_UNSIGNED_INT_VEC3:
+      *t = {Base::u, 3};
+      return true;
+    case GL_UNSIGNED_INT_VEC4:
+      *t = {Base::u, 4};
+      return true;
+    case GL_FLOAT_MAT2:
+      *t = {Base::f, 4, 2, 2};
+      return true;
+    case GL_FLOAT_MAT3:
+      *t = {Base::f, 9, 3, 3};
+      return true;
+    case GL_FLOAT_MAT4:
+      *t = {Base::f, 16, 4, 4};
+      return true;
+    case GL_FLOAT_MAT2x3:
+      *t = {Base::f, 6, 2, 3};
+      return true;
+    case GL_FLOAT_MAT2x4:
+      *t = {Base::f, 8, 2, 4};
+      return true;
+    case GL_FLOAT_MAT3x2:
+      *t = {Base::f, 6, 3, 2};
+      return true;
+    case GL_FLOAT_MAT3x4:
+      *t = {Base::f, 12, 3, 4};
+      return true;
+    case GL_FLOAT_MAT4x2:
+      *t = {Base::f, 8, 4, 2};
+      return true;
+    case GL_FLOAT_MAT4x3:
+      *t = {Base::f, 12, 4, 3};
+      return true;
+    case GL_DOUBLE_MAT2:
+      *t = {Base::d, 4, 2, 2};
+      return true;
+    case GL_DOUBLE_MAT3:
+      *t = {Base::d, 9, 3, 3};
+      return true;
+    case GL_DOUBLE_MAT4:
+      *t = {Base::d, 16, 4, 4};
+      return true;
+    case GL_DOUBLE_MAT2x3:
+      *t = {Base::d, 6, 2, 3};
+      return true;
+    case GL_DOUBLE_MAT2x4:
+      *t = {Base::d, 8, 2, 4};
+      return true;
+    case GL_DOUBLE_MAT3x2:
+      *t = {Base::d, 6, 3, 2};
+      return true;
+    case GL_DOUBLE_MAT3x4:
+      *t = {Base::d, 12, 3, 4};
+      return true;
+    case GL_DOUBLE_MAT4x2:
+      *t = {Base::d, 8, 4, 2};
+      return true;
+    case GL_DOUBLE_MAT4x3:
+      *t = {Base::d, 12, 4, 3};
+      return true;
+    case GL_UNSIGNED_INT_ATOMIC_COUNTER:
+      return false;  // bound by offset, never set
+    default:
+      *t = {Base::i, 1};
+      return true;  // samplers and images: a unit number
   }
 }
 
@@ -66,23 +141,45 @@ bool write<GLfloat>(GLuint p, GLint l, const TypeInfo& t, GLsizei n, const GLflo
   const ApplyGl& g = agl();
   if (t.columns == 0) {
     switch (t.components) {
-      case 1: return g.ProgramUniform1fv && (g.ProgramUniform1fv(p, l, n, v), true);
-      case 2: return g.ProgramUniform2fv && (g.ProgramUniform2fv(p, l, n, v), true);
-      case 3: return g.ProgramUniform3fv && (g.ProgramUniform3fv(p, l, n, v), true);
-      default: return g.ProgramUniform4fv && (g.ProgramUniform4fv(p, l, n, v), true);
+      case 1:
+        return g.ProgramUniform1fv && (g.ProgramUniform1fv(p, l, n, v), true);
+      case 2:
+        return g.ProgramUniform2fv && (g.ProgramUniform2fv(p, l, n, v), true);
+      case 3:
+        return g.ProgramUniform3fv && (g.ProgramUniform3fv(p, l, n, v), true);
+      default:
+        return g.ProgramUniform4fv && (g.ProgramUniform4fv(p, l, n, v), true);
     }
   }
   PFNGLPROGRAMUNIFORMMATRIX4FVPROC fn = nullptr;
   switch (t.columns * 10 + t.rows) {
-    case 22: fn = g.ProgramUniformMatrix2fv; break;
-    case 33: fn = g.ProgramUniformMatrix3fv; break;
-    case 44: fn = g.ProgramUniformMatrix4fv; break;
-    case 23: fn = g.ProgramUniformMatrix2x3fv; break;
-    case 24: fn = g.ProgramUniformMatrix2x4fv; break;
-    case 32: fn = g.ProgramUniformMatrix3x2fv; break;
-    case 34: fn = g.ProgramUniformMatrix3x4fv; break;
-    case 42: fn = g.ProgramUniformMatrix4x2fv; break;
-    case 43: fn = g.ProgramUniformMatrix4x3fv; break;
+    case 22:
+      fn = g.ProgramUniformMatrix2fv;
+      break;
+    case 33:
+      fn = g.ProgramUniformMatrix3fv;
+      break;
+    case 44:
+      fn = g.ProgramUniformMatrix4fv;
+      break;
+    case 23:
+      fn = g.ProgramUniformMatrix2x3fv;
+      break;
+    case 24:
+      fn = g.ProgramUniformMatrix2x4fv;
+      break;
+    case 32:
+      fn = g.ProgramUniformMatrix3x2fv;
+      break;
+    case 34:
+      fn = g.ProgramUniformMatrix3x4fv;
+      break;
+    case 42:
+      fn = g.ProgramUniformMatrix4x2fv;
+      break;
+    case 43:
+      fn = g.ProgramUniformMatrix4x3fv;
+      break;
   }
   return fn && (fn(p, l, n, GL_FALSE, v), true);
 }
@@ -92,23 +189,45 @@ bool write<GLdouble>(GLuint p, GLint l, const TypeInfo& t, GLsizei n, const GLdo
   const ApplyGl& g = agl();
   if (t.columns == 0) {
     switch (t.components) {
-      case 1: return g.ProgramUniform1dv && (g.ProgramUniform1dv(p, l, n, v), true);
-      case 2: return g.ProgramUniform2dv && (g.ProgramUniform2dv(p, l, n, v), true);
-      case 3: return g.ProgramUniform3dv && (g.ProgramUniform3dv(p, l, n, v), true);
-      default: return g.ProgramUniform4dv && (g.ProgramUniform4dv(p, l, n, v), true);
+      case 1:
+        return g.ProgramUniform1dv && (g.ProgramUniform1dv(p, l, n, v), true);
+      case 2:
+        return g.ProgramUniform2dv && (g.ProgramUniform2dv(p, l, n, v), true);
+      case 3:
+        return g.ProgramUniform3dv && (g.ProgramUniform3dv(p, l, n, v), true);
+      default:
+        return g.ProgramUniform4dv && (g.ProgramUniform4dv(p, l, n, v), true);
     }
   }
   PFNGLPROGRAMUNIFORMMATRIX4DVPROC fn = nullptr;
   switch (t.columns * 10 + t.rows) {
-    case 22: fn = g.ProgramUniformMatrix2dv; break;
-    case 33: fn = g.ProgramUniformMatrix3dv; break;
-    case 44: fn = g.ProgramUniformMatrix4dv; break;
-    case 23: fn = g.ProgramUniformMatrix2x3dv; break;
-    case 24: fn = g.ProgramUniformMatrix2x4dv; break;
-    case 32: fn = g.ProgramUniformMatrix3x2dv; break;
-    case 34: fn = g.ProgramUniformMatrix3x4dv; break;
-    case 42: fn = g.ProgramUniformMatrix4x2dv; break;
-    case 43: fn = g.ProgramUniformMatrix4x3dv; break;
+    case 22:
+      fn = g.ProgramUniformMatrix2dv;
+      break;
+    case 33:
+      fn = g.ProgramUniformMatrix3dv;
+      break;
+    case 44:
+      fn = g.ProgramUniformMatrix4dv;
+      break;
+    case 23:
+      fn = g.ProgramUniformMatrix2x3dv;
+      break;
+    case 24:
+      fn = g.ProgramUniformMatrix2x4dv;
+      break;
+    case 32:
+      fn = g.ProgramUniformMatrix3x2dv;
+      break;
+    case 34:
+      fn = g.ProgramUniformMatrix3x4dv;
+      break;
+    case 42:
+      fn = g.ProgramUniformMatrix4x2dv;
+      break;
+    case 43:
+      fn = g.ProgramUniformMatrix4x3dv;
+      break;
   }
   return fn && (fn(p, l, n, GL_FALSE, v), true);
 }
@@ -117,10 +236,14 @@ template <>
 bool write<GLint>(GLuint p, GLint l, const TypeInfo& t, GLsizei n, const GLint* v) {
   const ApplyGl& g = agl();
   switch (t.components) {
-    case 1: return g.ProgramUniform1iv && (g.ProgramUniform1iv(p, l, n, v), true);
-    case 2: return g.ProgramUniform2iv && (g.ProgramUniform2iv(p, l, n, v), true);
-    case 3: return g.ProgramUniform3iv && (g.ProgramUniform3iv(p, l, n, v), true);
-    default: return g.ProgramUniform4iv && (g.ProgramUniform4iv(p, l, n, v), true);
+    case 1:
+      return g.ProgramUniform1iv && (g.ProgramUniform1iv(p, l, n, v), true);
+    case 2:
+      return g.ProgramUniform2iv && (g.ProgramUniform2iv(p, l, n, v), true);
+    case 3:
+      return g.ProgramUniform3iv && (g.ProgramUniform3iv(p, l, n, v), true);
+    default:
+      return g.ProgramUniform4iv && (g.ProgramUniform4iv(p, l, n, v), true);
   }
 }
 
@@ -128,10 +251,14 @@ template <>
 bool write<GLuint>(GLuint p, GLint l, const TypeInfo& t, GLsizei n, const GLuint* v) {
   const ApplyGl& g = agl();
   switch (t.components) {
-    case 1: return g.ProgramUniform1uiv && (g.ProgramUniform1uiv(p, l, n, v), true);
-    case 2: return g.ProgramUniform2uiv && (g.ProgramUniform2uiv(p, l, n, v), true);
-    case 3: return g.ProgramUniform3uiv && (g.ProgramUniform3uiv(p, l, n, v), true);
-    default: return g.ProgramUniform4uiv && (g.ProgramUniform4uiv(p, l, n, v), true);
+    case 1:
+      return g.ProgramUniform1uiv && (g.ProgramUniform1uiv(p, l, n, v), true);
+    case 2:
+      return g.ProgramUniform2uiv && (g.ProgramUniform2uiv(p, l, n, v), true);
+    case 3:
+      return g.ProgramUniform3uiv && (g.ProgramUniform3uiv(p, l, n, v), true);
+    default:
+      return g.ProgramUniform4uiv && (g.ProgramUniform4uiv(p, l, n, v), true);
   }
 }
 
@@ -185,12 +312,16 @@ bool set_uniform(GLuint program, GLint location, GLenum type, GLint max_elements
   TypeInfo t;
   if (!describe(type, &t) || values.empty() || values.size() % static_cast<size_t>(t.components) != 0) return false;
   const auto n = static_cast<GLsizei>(std::min<size_t>(values.size() / static_cast<size_t>(t.components),
-                                                         static_cast<size_t>(max_elements < 1 ? 1 : max_elements)));
+                                                       static_cast<size_t>(max_elements < 1 ? 1 : max_elements)));
   switch (t.base) {
-    case Base::f: return write_converted<GLfloat>(program, location, t, n, values);
-    case Base::d: return write_converted<GLdouble>(program, location, t, n, values);
-    case Base::i: return write_converted<GLint>(program, location, t, n, values);
-    case Base::u: return write_converted<GLuint>(program, location, t, n, values);
+    case Base::f:
+      return write_converted<GLfloat>(program, location, t, n, values);
+    case Base::d:
+      return write_converted<GLdouble>(program, location, t, n, values);
+    case Base::i:
+      return write_converted<GLint>(program, location, t, n, values);
+    case Base::u:
+      return write_converted<GLuint>(program, location, t, n, values);
   }
   return false;
 }

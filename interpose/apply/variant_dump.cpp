@@ -1,4 +1,4 @@
-#include "variant_dump.h"
+#include "variant_dump.hpp"
 
 #include <unistd.h>
 
@@ -11,10 +11,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "configuration.h"
-#include "messages.h"
-#include "options.h"
-#include "pass_names.h"
+#include "configuration.hpp"
+#include "messages.hpp"
+#include "options.hpp"
+#include "pass_names.hpp"
 
 namespace glbudget {
 

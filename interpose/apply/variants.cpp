@@ -1,4 +1,4 @@
-#include "variants.h"
+#include "variants.hpp"
 
 #include <unistd.h>
 
@@ -7,12 +7,12 @@
 #include <mutex>
 #include <set>
 
-#include "apply_gl.h"
-#include "messages.h"
+#include "apply_gl.hpp"
+#include "messages.hpp"
 #include "glbudget/instrument/defines.hpp"
-#include "pass_names.h"
-#include "shader_instrumentation.h"
-#include "uniform_values.h"
+#include "pass_names.hpp"
+#include "shader_instrumentation.hpp"
+#include "uniform_values.hpp"
 
 namespace glbudget {
 
@@ -20,13 +20,20 @@ namespace {
 
 std::optional<manifest::Stage> manifest_stage(GLenum stage) {
   switch (stage) {
-    case GL_VERTEX_SHADER: return manifest::Stage::vertex;
-    case GL_TESS_CONTROL_SHADER: return manifest::Stage::tess_control;
-    case GL_TESS_EVALUATION_SHADER: return manifest::Stage::tess_evaluation;
-    case GL_GEOMETRY_SHADER: return manifest::Stage::geometry;
-    case GL_FRAGMENT_SHADER: return manifest::Stage::fragment;
-    case GL_COMPUTE_SHADER: return manifest::Stage::compute;
-    default: return std::nullopt;
+    case GL_VERTEX_SHADER:
+      return manifest::Stage::vertex;
+    case GL_TESS_CONTROL_SHADER:
+      return manifest::Stage::tess_control;
+    case GL_TESS_EVALUATION_SHADER:
+      return manifest::Stage::tess_evaluation;
+    case GL_GEOMETRY_SHADER:
+      return manifest::Stage::geometry;
+    case GL_FRAGMENT_SHADER:
+      return manifest::Stage::fragment;
+    case GL_COMPUTE_SHADER:
+      return manifest::Stage::compute;
+    default:
+      return std::nullopt;
   }
 }
 
@@ -107,7 +114,8 @@ void copy_before_link(GLuint app, GLuint variant, const GlCaps& caps, const Name
       const GLint location = g.GetFragDataLocation(app, name);
       const GLint index = g.GetFragDataIndex(app, name);
       if (location >= 0)
-        g.BindFragDataLocationIndexed(variant, static_cast<GLuint>(location), static_cast<GLuint>(index < 0 ? 0 : index), name);
+        g.BindFragDataLocationIndexed(variant, static_cast<GLuint>(location),
+                                      static_cast<GLuint>(index < 0 ? 0 : index), name);
     }
   }
   GLint varyings = 0;
@@ -192,7 +200,8 @@ void hold_uniforms(const manifest::Pass& pass, size_t level_index, const manifes
     auto it = uniforms.find(name);
     const std::string where = "pass '" + pass.name + "' level " + std::to_string(level_index);
     if (it == uniforms.end()) {
-      say_once(where + name, "uniform '" + name + "' of " + where + " is not an active uniform of the program; not held");
+      say_once(where + name,
+               "uniform '" + name + "' of " + where + " is not an active uniform of the program; not held");
       continue;
     }
     const GLint location = g.GetUniformLocation(program, (it->second.size > 1 ? name + "[0]" : name).c_str());
@@ -413,13 +422,20 @@ GLuint link_variant(GLuint app, const std::vector<ShaderSource>& sources, const 
 
 int shader_stage_slot(GLenum stage) {
   switch (stage) {
-    case GL_VERTEX_SHADER: return 0;
-    case GL_TESS_CONTROL_SHADER: return 1;
-    case GL_TESS_EVALUATION_SHADER: return 2;
-    case GL_GEOMETRY_SHADER: return 3;
-    case GL_FRAGMENT_SHADER: return 4;
-    case GL_COMPUTE_SHADER: return 5;
-    default: return -1;
+    case GL_VERTEX_SHADER:
+      return 0;
+    case GL_TESS_CONTROL_SHADER:
+      return 1;
+    case GL_TESS_EVALUATION_SHADER:
+      return 2;
+    case GL_GEOMETRY_SHADER:
+      return 3;
+    case GL_FRAGMENT_SHADER:
+      return 4;
+    case GL_COMPUTE_SHADER:
+      return 5;
+    default:
+      return -1;
   }
 }
 
@@ -451,8 +467,8 @@ std::shared_ptr<VariantSet> build_variants(GLuint program, PassId app_hash, int 
     v.pass_hash = app_hash;
     v.draws = level.draws;
     if (level.changes_program()) {
-      const std::string where = "pass '" + mp.name + "' level " + std::to_string(l) +
-                                (level.name.empty() ? "" : " (" + level.name + ")");
+      const std::string where =
+          "pass '" + mp.name + "' level " + std::to_string(l) + (level.name.empty() ? "" : " (" + level.name + ")");
       if (!apply_gl_has_program_uniforms()) {
         say_once("no-program-uniform", "variants need glProgramUniform* (GL 4.1, GLES 3.1); " + where +
                                            " and every other program variant draw with the app's programs");
@@ -466,8 +482,8 @@ std::shared_ptr<VariantSet> build_variants(GLuint program, PassId app_hash, int 
         std::string error;
         v.program = link_variant(program, modified, caps, bindings, inst, v.dump_name, where, &v.instrumented, &error);
         if (!v.program) {
-          say_once(where + hash_text(app_hash), where + ": the variant of program " + hash_text(app_hash) + " " + error +
-                                                    "; this level draws the app's program");
+          say_once(where + hash_text(app_hash), where + ": the variant of program " + hash_text(app_hash) + " " +
+                                                    error + "; this level draws the app's program");
         } else {
           v.pass_hash = variant_hash;
           map_uniforms(program, v, level);
@@ -517,8 +533,10 @@ void forward_block_binding(const VariantSet& set, GLuint index, GLuint binding, 
     if (!v.program) continue;
     const std::vector<GLint>& map = storage ? v.storage_block : v.uniform_block;
     if (index >= map.size() || map[index] < 0) continue;
-    if (storage) g.ShaderStorageBlockBinding(v.program, static_cast<GLuint>(map[index]), binding);
-    else g.UniformBlockBinding(v.program, static_cast<GLuint>(map[index]), binding);
+    if (storage)
+      g.ShaderStorageBlockBinding(v.program, static_cast<GLuint>(map[index]), binding);
+    else
+      g.UniformBlockBinding(v.program, static_cast<GLuint>(map[index]), binding);
   }
 }
 

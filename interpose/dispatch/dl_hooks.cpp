@@ -6,12 +6,11 @@
 #include <sys/syscall.h>
 #include <unistd.h>
 
-#include "frame_output.h"
-#include "hook_table.h"
-#include "proc_address.h"
+#include "frame_output.hpp"
+#include "hook_table.hpp"
+#include "proc_address.hpp"
 
 using namespace glbudget;
-
 
 namespace glbudget {
 

@@ -1,6 +1,6 @@
-#include "gl_calls.h"
+#include "gl_calls.hpp"
 
-#include "hook_table.h"
+#include "hook_table.hpp"
 
 namespace glbudget {
 

@@ -1,4 +1,4 @@
-#include "hook_table.h"
+#include "hook_table.hpp"
 
 #include <dlfcn.h>
 #include <cstdint>

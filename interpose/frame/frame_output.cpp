@@ -1,4 +1,4 @@
-#include "frame_output.h"
+#include "frame_output.hpp"
 
 #include <pthread.h>
 #include <signal.h>
@@ -10,15 +10,15 @@
 #include <cmath>
 #include <mutex>
 
-#include "configuration.h"
-#include "governing.h"
-#include "context_state.h"
-#include "frame_log.h"
-#include "options.h"
-#include "probes.h"
-#include "render_targets.h"
-#include "shader_instrumentation.h"
-#include "window_size.h"
+#include "configuration.hpp"
+#include "governing.hpp"
+#include "context_state.hpp"
+#include "frame_log.hpp"
+#include "options.hpp"
+#include "probes.hpp"
+#include "render_targets.hpp"
+#include "shader_instrumentation.hpp"
+#include "window_size.hpp"
 #include "glbudget/sensors/sensor.hpp"
 
 namespace glbudget {
@@ -31,8 +31,10 @@ thread_local const ContextState* t_emitting = nullptr;
 void emit_row(const FrameRow& in) {
   FrameRow row = in;
   row.probe = t_emitting && t_emitting->probes && t_emitting->probes->was_probe_frame(row.frame);
-  if (governing()) governor_push(row);
-  else FrameLog::get().push(row);
+  if (governing())
+    governor_push(row);
+  else
+    FrameLog::get().push(row);
 }
 
 // Set while this thread runs the code that changes a counter's queue of pending frames.
@@ -74,7 +76,8 @@ void pace(ContextState& c, double fps) {
     return;
   }
   if (now < c.next_deadline_ns) {
-    timespec ts{static_cast<time_t>(c.next_deadline_ns / 1000000000), static_cast<long>(c.next_deadline_ns % 1000000000)};
+    timespec ts{static_cast<time_t>(c.next_deadline_ns / 1000000000),
+                static_cast<long>(c.next_deadline_ns % 1000000000)};
     while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
     }
   }
@@ -87,9 +90,15 @@ void flush_pending_frames(ContextState& c, FlushMode mode) {
   InFrameCode guard;
   t_emitting = &c;
   switch (mode) {
-    case FlushMode::kCollect: c.counter->collect(emit_row, PassCounter::Collect::kAvailable); break;
-    case FlushMode::kWait: c.counter->collect(emit_row, PassCounter::Collect::kWait); break;
-    case FlushMode::kCpuOnly: c.counter->collect(emit_row, PassCounter::Collect::kCpuOnly); break;
+    case FlushMode::kCollect:
+      c.counter->collect(emit_row, PassCounter::Collect::kAvailable);
+      break;
+    case FlushMode::kWait:
+      c.counter->collect(emit_row, PassCounter::Collect::kWait);
+      break;
+    case FlushMode::kCpuOnly:
+      c.counter->collect(emit_row, PassCounter::Collect::kCpuOnly);
+      break;
   }
   t_emitting = nullptr;
   governor_rows_done();

@@ -1,10 +1,10 @@
-#include "window_size.h"
+#include "window_size.hpp"
 
 #include <EGL/egl.h>
 #include <GL/glx.h>
 #include <dlfcn.h>
 
-#include "hook_table.h"
+#include "hook_table.hpp"
 
 namespace glbudget {
 
@@ -22,8 +22,10 @@ void* winsys_function(const char* library, const char* name) {
 
 bool current_window_size(bool egl, int* width, int* height) {
   if (egl) {
-    static auto display = reinterpret_cast<decltype(&eglGetCurrentDisplay)>(winsys_function("libEGL.so.1", "eglGetCurrentDisplay"));
-    static auto surface = reinterpret_cast<decltype(&eglGetCurrentSurface)>(winsys_function("libEGL.so.1", "eglGetCurrentSurface"));
+    static auto display =
+        reinterpret_cast<decltype(&eglGetCurrentDisplay)>(winsys_function("libEGL.so.1", "eglGetCurrentDisplay"));
+    static auto surface =
+        reinterpret_cast<decltype(&eglGetCurrentSurface)>(winsys_function("libEGL.so.1", "eglGetCurrentSurface"));
     static auto query = reinterpret_cast<decltype(&eglQuerySurface)>(winsys_function("libEGL.so.1", "eglQuerySurface"));
     if (!display || !surface || !query) return false;
     EGLDisplay d = display();
@@ -35,8 +37,10 @@ bool current_window_size(bool egl, int* width, int* height) {
     *height = h;
     return w > 0 && h > 0;
   }
-  static auto display = reinterpret_cast<decltype(&glXGetCurrentDisplay)>(winsys_function("libGLX.so.0", "glXGetCurrentDisplay"));
-  static auto drawable = reinterpret_cast<decltype(&glXGetCurrentDrawable)>(winsys_function("libGLX.so.0", "glXGetCurrentDrawable"));
+  static auto display =
+      reinterpret_cast<decltype(&glXGetCurrentDisplay)>(winsys_function("libGLX.so.0", "glXGetCurrentDisplay"));
+  static auto drawable =
+      reinterpret_cast<decltype(&glXGetCurrentDrawable)>(winsys_function("libGLX.so.0", "glXGetCurrentDrawable"));
   static auto query = reinterpret_cast<decltype(&glXQueryDrawable)>(winsys_function("libGLX.so.0", "glXQueryDrawable"));
   if (!display || !drawable || !query) return false;
   Display* d = display();

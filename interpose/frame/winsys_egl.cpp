@@ -2,13 +2,12 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
-#include "context_state.h"
-#include "frame_output.h"
-#include "hook_table.h"
-#include "proc_address.h"
+#include "context_state.hpp"
+#include "frame_output.hpp"
+#include "hook_table.hpp"
+#include "proc_address.hpp"
 
 using namespace glbudget;
-
 
 GLBUDGET_EXPORT __eglMustCastToProperFunctionPointerType eglGetProcAddress(const char* name) {
   auto fn = real_function<decltype(&eglGetProcAddress)>(kHook_eglGetProcAddress);
@@ -76,10 +75,12 @@ static EGLBoolean swap_with_damage(int hook, EGLDisplay dpy, EGLSurface surface,
   return ok;
 }
 
-GLBUDGET_EXPORT EGLBoolean eglSwapBuffersWithDamageKHR(EGLDisplay dpy, EGLSurface surface, const EGLint* rects, EGLint n) {
+GLBUDGET_EXPORT EGLBoolean eglSwapBuffersWithDamageKHR(EGLDisplay dpy, EGLSurface surface, const EGLint* rects,
+                                                       EGLint n) {
   return swap_with_damage(kHook_eglSwapBuffersWithDamageKHR, dpy, surface, rects, n);
 }
 
-GLBUDGET_EXPORT EGLBoolean eglSwapBuffersWithDamageEXT(EGLDisplay dpy, EGLSurface surface, const EGLint* rects, EGLint n) {
+GLBUDGET_EXPORT EGLBoolean eglSwapBuffersWithDamageEXT(EGLDisplay dpy, EGLSurface surface, const EGLint* rects,
+                                                       EGLint n) {
   return swap_with_damage(kHook_eglSwapBuffersWithDamageEXT, dpy, surface, rects, n);
 }

@@ -1,13 +1,12 @@
 // GLX entry points: context life cycle, frame boundaries, GetProcAddress interception.
 #include <GL/glx.h>
 
-#include "context_state.h"
-#include "frame_output.h"
-#include "hook_table.h"
-#include "proc_address.h"
+#include "context_state.hpp"
+#include "frame_output.hpp"
+#include "hook_table.hpp"
+#include "proc_address.hpp"
 
 using namespace glbudget;
-
 
 GLBUDGET_EXPORT __GLXextFuncPtr glXGetProcAddressARB(const GLubyte* name) {
   auto fn = real_function<__GLXextFuncPtr (*)(const GLubyte*)>(kHook_glXGetProcAddressARB);
@@ -31,7 +30,8 @@ GLBUDGET_EXPORT GLXContext glXCreateContext(Display* dpy, XVisualInfo* vis, GLXC
   return c;
 }
 
-GLBUDGET_EXPORT GLXContext glXCreateNewContext(Display* dpy, GLXFBConfig config, int type, GLXContext share, Bool direct) {
+GLBUDGET_EXPORT GLXContext glXCreateNewContext(Display* dpy, GLXFBConfig config, int type, GLXContext share,
+                                               Bool direct) {
   auto fn = real_function<decltype(&glXCreateNewContext)>(kHook_glXCreateNewContext);
   if (!fn) return nullptr;
   GLXContext c = fn(dpy, config, type, share, direct);
@@ -40,7 +40,7 @@ GLBUDGET_EXPORT GLXContext glXCreateNewContext(Display* dpy, GLXFBConfig config,
 }
 
 GLBUDGET_EXPORT GLXContext glXCreateContextAttribsARB(Display* dpy, GLXFBConfig config, GLXContext share, Bool direct,
-                                             const int* attribs) {
+                                                      const int* attribs) {
   using Fn = GLXContext (*)(Display*, GLXFBConfig, GLXContext, Bool, const int*);
   auto fn = real_function<Fn>(kHook_glXCreateContextAttribsARB);
   if (!fn) return nullptr;

@@ -1,10 +1,10 @@
-#include "counter_buffers.h"
+#include "counter_buffers.hpp"
 
 #include <atomic>
 #include <cstring>
 
-#include "dump_registry.h"
-#include "gl_calls.h"
+#include "dump_registry.hpp"
+#include "gl_calls.hpp"
 
 namespace glbudget {
 

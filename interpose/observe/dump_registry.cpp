@@ -1,4 +1,4 @@
-#include "dump_registry.h"
+#include "dump_registry.hpp"
 
 #include <unistd.h>
 
@@ -6,7 +6,7 @@
 #include <mutex>
 #include <set>
 
-#include "options.h"
+#include "options.hpp"
 
 namespace glbudget::dump_registry {
 
@@ -17,10 +17,10 @@ using instrument::StageCounts;
 
 struct Registry {
   std::mutex mu;
-  std::map<std::string, ProgramDump> programs;                            // by hash
-  std::map<std::string, std::map<uint64_t, CounterWords>> counters;       // program -> source -> words
-  std::set<std::string> changed;                                          // programs to rewrite
-  bool write_failed = false;                                              // said once
+  std::map<std::string, ProgramDump> programs;                       // by hash
+  std::map<std::string, std::map<uint64_t, CounterWords>> counters;  // program -> source -> words
+  std::set<std::string> changed;                                     // programs to rewrite
+  bool write_failed = false;                                         // said once
 };
 
 Registry& registry() {
@@ -37,7 +37,8 @@ void report_write(Registry& r, const std::string& error) {
   (void)!write(STDERR_FILENO, line.data(), line.size());
 }
 
-std::optional<instrument::StageAverages> measured_locked(Registry& r, const std::string& hash, instrument::Stage stage) {
+std::optional<instrument::StageAverages> measured_locked(Registry& r, const std::string& hash,
+                                                         instrument::Stage stage) {
   auto it = r.counters.find(hash);
   if (it == r.counters.end() || it->second.empty()) return std::nullopt;
   StageCounts total;

@@ -1,4 +1,4 @@
-#include "frame_log.h"
+#include "frame_log.hpp"
 
 #include <cmath>
 
@@ -20,21 +20,27 @@ namespace glbudget {
 
 int format_row(const FrameRow& r, char* out, int size) {
   char pass[24];
-  if (r.pass == kFixedFunctionPass) snprintf(pass, sizeof pass, "fixed-function");
-  else snprintf(pass, sizeof pass, "%016" PRIx64, r.pass);
+  if (r.pass == kFixedFunctionPass)
+    snprintf(pass, sizeof pass, "fixed-function");
+  else
+    snprintf(pass, sizeof pass, "%016" PRIx64, r.pass);
   char stat[4][24];
   const int64_t v[4] = {r.vertices, r.fragments, r.primitives, r.gpu_ns};
   for (int i = 0; i < 4; ++i) {
-    if (v[i] < 0) stat[i][0] = '\0';
-    else snprintf(stat[i], sizeof stat[i], "%" PRId64, v[i]);
+    if (v[i] < 0)
+      stat[i][0] = '\0';
+    else
+      snprintf(stat[i], sizeof stat[i], "%" PRId64, v[i]);
   }
   char power[128];
   sensors::format_power_fields(r.energy, power, sizeof power);
   char governed[96] = "";
   if (r.decision) {
     auto number = [](double v, const char* format, char* text, size_t size) {
-      if (std::isfinite(v)) snprintf(text, size, format, v);
-      else text[0] = '\0';
+      if (std::isfinite(v))
+        snprintf(text, size, format, v);
+      else
+        text[0] = '\0';
     };
     char p[32], b[32], e[32];
     number(r.predicted_w, "%.4f", p, sizeof p);
@@ -46,8 +52,10 @@ int format_row(const FrameRow& r, char* out, int size) {
   }
   char probe[40] = "";
   if (r.probe) {
-    if (std::isfinite(r.probe_error)) snprintf(probe, sizeof probe, "1,%.6f", r.probe_error);
-    else snprintf(probe, sizeof probe, "1,");
+    if (std::isfinite(r.probe_error))
+      snprintf(probe, sizeof probe, "1,%.6f", r.probe_error);
+    else
+      snprintf(probe, sizeof probe, "1,");
   } else {
     snprintf(probe, sizeof probe, ",");
   }
@@ -68,7 +76,7 @@ struct FrameLog::Impl {
   off_t written = 0;         // bytes of whole rows in the file
   bool open_failed = false;  // or a write failed (a full disk): rows are dropped from then on
   std::vector<FrameRow> writing;
-  std::string text;          // the batch being written, whole rows only
+  std::string text;  // the batch being written, whole rows only
   std::string file_path;
 };
 
@@ -87,17 +95,28 @@ std::string path_for_child(const std::string& path) {
   size_t slash = p.rfind('/');
   size_t dot = p.rfind('.');
   std::string pid = "." + std::to_string(getpid());
-  if (dot != std::string::npos && (slash == std::string::npos || dot > slash)) p.insert(dot, pid);
-  else p += pid;
+  if (dot != std::string::npos && (slash == std::string::npos || dot > slash))
+    p.insert(dot, pid);
+  else
+    p += pid;
   return p;
 }
 }  // namespace
 
 FrameLog::FrameLog() : impl_(new Impl) {
   // Keep the log consistent across fork(): no other thread may hold the locks in the child.
-  pthread_atfork([] { auto& l = get(); l.impl_->file_mu.lock(); l.impl_->queue_mu.lock(); },
-                 [] { auto& l = get(); l.impl_->queue_mu.unlock(); l.impl_->file_mu.unlock(); },
-                 [] { get().forked_child(); });
+  pthread_atfork(
+      [] {
+        auto& l = get();
+        l.impl_->file_mu.lock();
+        l.impl_->queue_mu.lock();
+      },
+      [] {
+        auto& l = get();
+        l.impl_->queue_mu.unlock();
+        l.impl_->file_mu.unlock();
+      },
+      [] { get().forked_child(); });
 }
 
 FrameLog& FrameLog::get() {

@@ -1,6 +1,6 @@
 // Compatibility-profile drawing: glBegin/glEnd and display lists.
-#include "context_state.h"
-#include "hooks_generated.h"
+#include "context_state.hpp"
+#include "hooks_generated.hpp"
 
 namespace glbudget {
 

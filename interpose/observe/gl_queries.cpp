@@ -1,6 +1,6 @@
 // The app's own queries: ours on the same target step aside, and the app never sees ours.
-#include "context_state.h"
-#include "hooks_generated.h"
+#include "context_state.hpp"
+#include "hooks_generated.hpp"
 
 namespace glbudget {
 

@@ -1,10 +1,10 @@
-#include "pass_counter.h"
+#include "pass_counter.hpp"
 
 #include <cstring>
 #include <string_view>
 
-#include "gl_calls.h"
-#include "options.h"
+#include "gl_calls.hpp"
+#include "options.hpp"
 
 namespace glbudget {
 
@@ -12,8 +12,8 @@ thread_local DrawCounter* t_draw = nullptr;
 
 bool DrawCounter::slow_draw(uint64_t n) { return static_cast<PassCounter*>(this)->draw_slow(n); }
 
-const GLenum PassCounter::kStatTargets[kStatCount] = {
-    GL_VERTEX_SHADER_INVOCATIONS_ARB, GL_FRAGMENT_SHADER_INVOCATIONS_ARB, GL_PRIMITIVES_SUBMITTED_ARB};
+const GLenum PassCounter::kStatTargets[kStatCount] = {GL_VERTEX_SHADER_INVOCATIONS_ARB,
+                                                      GL_FRAGMENT_SHADER_INVOCATIONS_ARB, GL_PRIMITIVES_SUBMITTED_ARB};
 
 namespace {
 constexpr size_t kMaxPendingFrames = 8;  // beyond this, a frame's GPU figures are given up
@@ -55,7 +55,8 @@ GlCaps detect_caps() {
   if (!version) return caps;
   std::string_view v(version);
   caps.gles = v.rfind("OpenGL ES", 0) == 0;
-  if (caps.gles) v.remove_prefix(v.find_first_of("0123456789") == std::string_view::npos ? v.size() : v.find_first_of("0123456789"));
+  if (caps.gles)
+    v.remove_prefix(v.find_first_of("0123456789") == std::string_view::npos ? v.size() : v.find_first_of("0123456789"));
   caps.major = v.size() > 0 ? v[0] - '0' : 0;
   caps.minor = v.size() > 2 ? v[2] - '0' : 0;
   auto at_least = [&](int M, int m) { return caps.major > M || (caps.major == M && caps.minor >= m); };
@@ -177,8 +178,7 @@ bool PassCounter::our_query_active(GLenum target) const {
   return i >= 0 && (ours_active_ & (1u << i));
 }
 
-void PassCounter::end_frame(uint64_t frame, int64_t time_ns, int context_index,
-                            const sensors::FrameEnergy& energy) {
+void PassCounter::end_frame(uint64_t frame, int64_t time_ns, int context_index, const sensors::FrameEnergy& energy) {
   if (open_) close_segment();
   building_.number = frame;
   building_.time_ns = time_ns;
@@ -239,11 +239,15 @@ void PassCounter::emit_frame(Frame& f, bool read_gpu, const std::function<void(c
     acc->row.batches += s.batches;
     int64_t* stat[kStatCount] = {&acc->row.vertices, &acc->row.fragments, &acc->row.primitives};
     for (int i = 0; i < kStatCount; ++i) {
-      if (read_gpu && s.stat_query[i]) *stat[i] += read(s.stat_query[i]);
-      else acc->unmeasured[i] = true;
+      if (read_gpu && s.stat_query[i])
+        *stat[i] += read(s.stat_query[i]);
+      else
+        acc->unmeasured[i] = true;
     }
-    if (read_gpu && s.ts_begin && s.ts_end) acc->row.gpu_ns += read(s.ts_end) - read(s.ts_begin);
-    else acc->unmeasured[3] = true;
+    if (read_gpu && s.ts_begin && s.ts_end)
+      acc->row.gpu_ns += read(s.ts_end) - read(s.ts_begin);
+    else
+      acc->unmeasured[3] = true;
   }
   for (Acc& a : rows) {
     int64_t* fields[4] = {&a.row.vertices, &a.row.fragments, &a.row.primitives, &a.row.gpu_ns};

@@ -1,5 +1,5 @@
-#include "shader_instrumentation.h"
-#include "messages.h"
+#include "shader_instrumentation.hpp"
+#include "messages.hpp"
 
 #include <unistd.h>
 
@@ -8,12 +8,12 @@
 #include <optional>
 #include <set>
 
-#include "dump_registry.h"
-#include "gl_calls.h"
-#include "hook_table.h"
-#include "options.h"
-#include "pass_names.h"
-#include "variants.h"
+#include "dump_registry.hpp"
+#include "gl_calls.hpp"
+#include "hook_table.hpp"
+#include "options.hpp"
+#include "pass_names.hpp"
+#include "variants.hpp"
 
 namespace glbudget {
 
@@ -22,20 +22,25 @@ using instrument::Stage;
 
 std::optional<Stage> stage_of(GLenum type) {
   switch (type) {
-    case GL_VERTEX_SHADER: return Stage::vertex;
-    case GL_TESS_CONTROL_SHADER: return Stage::tess_control;
-    case GL_TESS_EVALUATION_SHADER: return Stage::tess_evaluation;
-    case GL_GEOMETRY_SHADER: return Stage::geometry;
-    case GL_FRAGMENT_SHADER: return Stage::fragment;
-    default: return std::nullopt;  // compute: dispatches are not bound to counters
+    case GL_VERTEX_SHADER:
+      return Stage::vertex;
+    case GL_TESS_CONTROL_SHADER:
+      return Stage::tess_control;
+    case GL_TESS_EVALUATION_SHADER:
+      return Stage::tess_evaluation;
+    case GL_GEOMETRY_SHADER:
+      return Stage::geometry;
+    case GL_FRAGMENT_SHADER:
+      return Stage::fragment;
+    default:
+      return std::nullopt;  // compute: dispatches are not bound to counters
   }
 }
 
 bool has_calls(const GlCalls& g) {
-  return g.GetStringi && g.GetShaderiv && g.GetProgramiv && g.GetProgramResourceIndex &&
-         g.ShaderStorageBlockBinding && g.GenBuffers && g.DeleteBuffers && g.BufferData && g.BindBuffer &&
-         g.BindBufferBase && g.CopyBufferSubData && g.MapBufferRange && g.UnmapBuffer && g.FenceSync &&
-         g.ClientWaitSync && g.DeleteSync;
+  return g.GetStringi && g.GetShaderiv && g.GetProgramiv && g.GetProgramResourceIndex && g.ShaderStorageBlockBinding &&
+         g.GenBuffers && g.DeleteBuffers && g.BufferData && g.BindBuffer && g.BindBufferBase && g.CopyBufferSubData &&
+         g.MapBufferRange && g.UnmapBuffer && g.FenceSync && g.ClientWaitSync && g.DeleteSync;
 }
 
 std::unique_ptr<Instrumentation> make_instrumentation(const GlCaps& caps) {
@@ -198,7 +203,8 @@ void after_link(ContextState& c, ShareGroup& g, GLuint program, ProgramInfo& inf
   if (any_instrumented && link_status(program)) {
     if (needs_binding) {
       GLuint block = gl().GetProgramResourceIndex(program, GL_SHADER_STORAGE_BLOCK, instrument::kCounterBlockName);
-      if (block != GL_INVALID_INDEX) gl().ShaderStorageBlockBinding(program, block, static_cast<GLuint>(inst->binding()));
+      if (block != GL_INVALID_INDEX)
+        gl().ShaderStorageBlockBinding(program, block, static_cast<GLuint>(inst->binding()));
     }
     info.instrumented = true;
   } else if (any_instrumented) {
@@ -234,7 +240,8 @@ InstrumentedVariant instrument_variant(Instrumentation& inst, const std::vector<
       out.sources.push_back(source);
       continue;
     }
-    instrument::InstrumentResult r = instrument::instrument_shader({{source}, *stage, inst.binding(), inst.extensions()});
+    instrument::InstrumentResult r =
+        instrument::instrument_shader({{source}, *stage, inst.binding(), inst.extensions()});
     out.sources.push_back(r.ok ? r.instrumented_source : source);
     out.any |= r.ok;
     out.needs_binding |= r.ok && !r.binding_in_source;

@@ -1,4 +1,4 @@
-#include "gpu_ssim.h"
+#include "gpu_ssim.hpp"
 
 #include <algorithm>
 #include <array>
@@ -6,9 +6,9 @@
 #include <stdexcept>
 
 #include "glbudget/quality/ssim.hpp"
-#include "gpu_ssim_gl.h"
-#include "gpu_ssim_shaders.h"
-#include "gpu_ssim_state.h"
+#include "gpu_ssim_gl.hpp"
+#include "gpu_ssim_shaders.hpp"
+#include "gpu_ssim_state.hpp"
 
 namespace glbudget {
 
@@ -157,10 +157,9 @@ bool GpuSsim::Impl::is_srgb_texture(GLuint unit, GLuint texture, int width, int 
   gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &texture_height);
   gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
   if (texture_width < width || texture_height < height)
-    throw std::invalid_argument("GpuSsim: texture " + std::to_string(texture) + " is " +
-                                std::to_string(texture_width) + "x" + std::to_string(texture_height) +
-                                ", smaller than the " + std::to_string(width) + "x" + std::to_string(height) +
-                                " compared");
+    throw std::invalid_argument("GpuSsim: texture " + std::to_string(texture) + " is " + std::to_string(texture_width) +
+                                "x" + std::to_string(texture_height) + ", smaller than the " + std::to_string(width) +
+                                "x" + std::to_string(height) + " compared");
   gl.BindSampler(unit, sampler);
   return is_srgb_format(format);
 }

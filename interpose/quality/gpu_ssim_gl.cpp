@@ -1,4 +1,4 @@
-#include "gpu_ssim_gl.h"
+#include "gpu_ssim_gl.hpp"
 
 #include <cstdio>
 #include <cstring>
@@ -8,11 +8,11 @@ namespace glbudget::gpu_ssim_detail {
 
 bool load_gl_functions(GlProcLoader load, GlFunctions& gl, std::string* missing) {
   bool complete = true;
-#define GLBUDGET_GPU_SSIM_LOAD(name, type)                \
-  gl.name = reinterpret_cast<type>(load("gl" #name));    \
-  if (!gl.name && complete) {                             \
-    complete = false;                                     \
-    if (missing) *missing = "gl" #name;                   \
+#define GLBUDGET_GPU_SSIM_LOAD(name, type)            \
+  gl.name = reinterpret_cast<type>(load("gl" #name)); \
+  if (!gl.name && complete) {                         \
+    complete = false;                                 \
+    if (missing) *missing = "gl" #name;               \
   }
   GLBUDGET_GPU_SSIM_GL_FUNCTIONS(GLBUDGET_GPU_SSIM_LOAD)
 #undef GLBUDGET_GPU_SSIM_LOAD
@@ -86,8 +86,10 @@ bool query_capabilities(const GlFunctions& gl, GlCapabilities& caps, std::string
         "#extension GL_ARB_shader_storage_buffer_object : require\n#define PRECISE precise\n";
     return true;
   }
-  set_why(why_not, "compute shaders need OpenGL 4.3 (or 4.2 with ARB_compute_shader and "
-                   "ARB_shader_storage_buffer_object), the context is \"" + version + "\"");
+  set_why(why_not,
+          "compute shaders need OpenGL 4.3 (or 4.2 with ARB_compute_shader and "
+          "ARB_shader_storage_buffer_object), the context is \"" +
+              version + "\"");
   return false;
 }
 

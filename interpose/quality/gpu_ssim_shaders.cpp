@@ -1,11 +1,11 @@
-#include "gpu_ssim_shaders.h"
+#include "gpu_ssim_shaders.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
 #include "glbudget/quality/ssim.hpp"
-#include "gpu_ssim_state.h"
+#include "gpu_ssim_state.hpp"
 
 namespace glbudget::gpu_ssim_detail {
 
@@ -32,8 +32,9 @@ std::string constants() {
     weights[k] = std::exp(-0.5 / (kSigma * kSigma) * x * x);
     sum += weights[k];
   }
-  std::string text = "const int RADIUS = " + std::to_string(kRadius) + ";\nconst int WINDOW = " +
-                     std::to_string(kWindow) + ";\nconst float WEIGHT[" + std::to_string(kWindow) + "] = float[](";
+  std::string text = "const int RADIUS = " + std::to_string(kRadius) +
+                     ";\nconst int WINDOW = " + std::to_string(kWindow) + ";\nconst float WEIGHT[" +
+                     std::to_string(kWindow) + "] = float[](";
   for (int k = 0; k < kWindow; ++k) text += (k ? ", " : "") + glsl_float(weights[k] / sum);
   text += ");\n";
   const double c1 = (kK1 * kDataRange) * (kK1 * kDataRange), c2 = (kK2 * kDataRange) * (kK2 * kDataRange);
@@ -43,8 +44,8 @@ std::string constants() {
           glsl_float(kLumaBlue) + ");\n";
   // Macros: layout(local_size_*) takes a constant expression only from GLSL 4.40.
   text += "#define TILE " + std::to_string(kTile) + "\n#define GROUP_WIDTH " + std::to_string(kGroupWidth) +
-          "\n#define GROUP_HEIGHT " + std::to_string(kGroupHeight) +
-          "\n#define REDUCE_GROUP " + std::to_string(kReduceGroup) + "\n";
+          "\n#define GROUP_HEIGHT " + std::to_string(kGroupHeight) + "\n#define REDUCE_GROUP " +
+          std::to_string(kReduceGroup) + "\n";
   return text;
 }
 
@@ -83,8 +84,8 @@ const char* kGroupReduce = R"(
 }  // namespace
 
 std::string downscale_shader_source(const GlCapabilities& caps) {
-  return caps.glsl_header + constants() + texture_luma() +
-         "layout(std430, binding = " + binding(kLumaBinding) + ") writeonly buffer Luma { float luma[]; };\n" + R"(
+  return caps.glsl_header + constants() + texture_luma() + "layout(std430, binding = " + binding(kLumaBinding) +
+         ") writeonly buffer Luma { float luma[]; };\n" + R"(
 layout(local_size_x = GROUP_WIDTH, local_size_y = GROUP_HEIGHT) in;
 uniform int scale;
 uniform ivec2 source_size;  // the texels compared

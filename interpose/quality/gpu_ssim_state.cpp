@@ -1,4 +1,4 @@
-#include "gpu_ssim_state.h"
+#include "gpu_ssim_state.hpp"
 
 namespace glbudget::gpu_ssim_detail {
 

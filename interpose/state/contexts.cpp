@@ -2,17 +2,17 @@
 #include <mutex>
 #include <unordered_map>
 
-#include "context_state.h"
-#include "frame_log.h"
-#include "frame_output.h"
-#include "gl_calls.h"
-#include "governing.h"
-#include "messages.h"
-#include "options.h"
-#include "render_targets.h"
-#include "probes.h"
-#include "window_size.h"
-#include "shader_instrumentation.h"
+#include "context_state.hpp"
+#include "frame_log.hpp"
+#include "frame_output.hpp"
+#include "gl_calls.hpp"
+#include "governing.hpp"
+#include "messages.hpp"
+#include "options.hpp"
+#include "render_targets.hpp"
+#include "probes.hpp"
+#include "window_size.hpp"
+#include "shader_instrumentation.hpp"
 
 namespace glbudget {
 
@@ -68,10 +68,12 @@ void initialise(ContextState& c, Registry& r) {
   const bool fbo_blit = c.caps.major >= 3;
   if ((manifest_scales_targets() || manifest_scales_window()) && fbo_blit) {
     c.targets = std::make_unique<TargetScaler>(c.caps.gles);
-    c.counter->set_draw_hook([](void* ctx) {
-      auto* cs = static_cast<ContextState*>(ctx);
-      cs->targets->on_draw(cs->manifest_pass);
-    }, &c);
+    c.counter->set_draw_hook(
+        [](void* ctx) {
+          auto* cs = static_cast<ContextState*>(ctx);
+          cs->targets->on_draw(cs->manifest_pass);
+        },
+        &c);
   }
   apply_configuration(c, configuration_for_frame(1));
   update_pass(c);

@@ -1,16 +1,16 @@
 // Shader and program life cycle: the sources that name a pass, and which pass is bound.
 #include <algorithm>
 
-#include "context_state.h"
-#include "hooks_generated.h"
-#include "pass_names.h"
-#include "apply_gl.h"
-#include "hook_table.h"
-#include "governing.h"
-#include "gl_calls.h"
-#include "shader_instrumentation.h"
-#include "subroutines.h"
-#include "variant_dump.h"
+#include "context_state.hpp"
+#include "hooks_generated.hpp"
+#include "pass_names.hpp"
+#include "apply_gl.hpp"
+#include "hook_table.hpp"
+#include "governing.hpp"
+#include "gl_calls.hpp"
+#include "shader_instrumentation.hpp"
+#include "subroutines.hpp"
+#include "variant_dump.hpp"
 
 namespace glbudget {
 
@@ -19,8 +19,10 @@ std::string join_sources(GLsizei count, const GLchar* const* strings, const GLin
   std::string all;
   for (GLsizei i = 0; strings && i < count; ++i) {
     if (!strings[i]) continue;
-    if (lengths && lengths[i] >= 0) all.append(strings[i], static_cast<size_t>(lengths[i]));
-    else all.append(strings[i]);
+    if (lengths && lengths[i] >= 0)
+      all.append(strings[i], static_cast<size_t>(lengths[i]));
+    else
+      all.append(strings[i]);
   }
   return all;
 }
@@ -74,9 +76,9 @@ void shadow_program(ContextState& c, ShareGroup& g, GLuint program, ProgramInfo&
 namespace {
 // Bits of GL_{VERTEX,FRAGMENT,GEOMETRY,TESS_CONTROL,TESS_EVALUATION,COMPUTE}_SHADER_BIT, and
 // the matching stage names for glGetProgramPipelineiv.
-const GLbitfield kStageBits[6] = {GL_VERTEX_SHADER_BIT, GL_FRAGMENT_SHADER_BIT, GL_GEOMETRY_SHADER_BIT,
+const GLbitfield kStageBits[6] = {GL_VERTEX_SHADER_BIT,       GL_FRAGMENT_SHADER_BIT,        GL_GEOMETRY_SHADER_BIT,
                                   GL_TESS_CONTROL_SHADER_BIT, GL_TESS_EVALUATION_SHADER_BIT, GL_COMPUTE_SHADER_BIT};
-const GLenum kStageNames[6] = {GL_VERTEX_SHADER, GL_FRAGMENT_SHADER, GL_GEOMETRY_SHADER,
+const GLenum kStageNames[6] = {GL_VERTEX_SHADER,       GL_FRAGMENT_SHADER,        GL_GEOMETRY_SHADER,
                                GL_TESS_CONTROL_SHADER, GL_TESS_EVALUATION_SHADER, GL_COMPUTE_SHADER};
 
 std::shared_ptr<const VariantSet> variants_of(ContextState& c, GLuint program) {
@@ -301,7 +303,8 @@ void handle_glUniformBlockBinding(pfn_glUniformBlockBinding real, GLuint program
   if (!c || !c->group->has_variants) return;
   std::lock_guard lock(c->group->mu);
   auto it = c->group->programs.find(program);
-  if (it != c->group->programs.end() && it->second.variants) forward_block_binding(*it->second.variants, index, binding, false);
+  if (it != c->group->programs.end() && it->second.variants)
+    forward_block_binding(*it->second.variants, index, binding, false);
 }
 
 void handle_glShaderStorageBlockBinding(pfn_glShaderStorageBlockBinding real, GLuint program, GLuint index,
@@ -311,7 +314,8 @@ void handle_glShaderStorageBlockBinding(pfn_glShaderStorageBlockBinding real, GL
   if (!c || !c->group->has_variants) return;
   std::lock_guard lock(c->group->mu);
   auto it = c->group->programs.find(program);
-  if (it != c->group->programs.end() && it->second.variants) forward_block_binding(*it->second.variants, index, binding, true);
+  if (it != c->group->programs.end() && it->second.variants)
+    forward_block_binding(*it->second.variants, index, binding, true);
 }
 
 void handle_glBindProgramPipeline(pfn_glBindProgramPipeline real, GLuint pipeline) {
@@ -323,7 +327,6 @@ void handle_glBindProgramPipeline(pfn_glBindProgramPipeline real, GLuint pipelin
   update_pass(*c);
   bind_counters(*c);
 }
-
 
 void bind_pipeline_stages(ContextState& c) {
   if (!c.group->has_variants) return;

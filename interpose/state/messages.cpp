@@ -1,4 +1,4 @@
-#include "messages.h"
+#include "messages.hpp"
 
 #include <unistd.h>
 

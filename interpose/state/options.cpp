@@ -1,4 +1,4 @@
-#include "options.h"
+#include "options.hpp"
 
 #include <unistd.h>
 
@@ -16,11 +16,28 @@ namespace {
 // Variables of the whole design (DESIGN.md), including those read by other parts of glbudget;
 // anything else that starts with GLBUDGET_ is most likely a typo, worth a warning.
 constexpr const char* kKnownVariables[] = {
-    "GLBUDGET_POWER", "GLBUDGET_ERROR", "GLBUDGET_CONFIG", "GLBUDGET_SENSOR", "GLBUDGET_FPS",
-    "GLBUDGET_LOG", "GLBUDGET_DUMP", "GLBUDGET_PROFILE", "GLBUDGET_SENSOR_PERIOD_MS", "GLBUDGET_SYSFS_ROOT",
-    "GLBUDGET_NVML_LIBRARY", "GLBUDGET_INSTRUMENT", "GLBUDGET_FORCE", "GLBUDGET_FORCE_EVERY",
-    "GLBUDGET_PROBE_PERIOD", "GLBUDGET_SELECT_FRAMES", "GLBUDGET_TRANSITION_S", "GLBUDGET_FEEDBACK",
-    "GLBUDGET_DUMP_PROBES", "GLBUDGET_PROBE_SCALE", "GLBUDGET_SHIM", "GLBUDGET_COSTS",
+    "GLBUDGET_POWER",
+    "GLBUDGET_ERROR",
+    "GLBUDGET_CONFIG",
+    "GLBUDGET_SENSOR",
+    "GLBUDGET_FPS",
+    "GLBUDGET_LOG",
+    "GLBUDGET_DUMP",
+    "GLBUDGET_PROFILE",
+    "GLBUDGET_SENSOR_PERIOD_MS",
+    "GLBUDGET_SYSFS_ROOT",
+    "GLBUDGET_NVML_LIBRARY",
+    "GLBUDGET_INSTRUMENT",
+    "GLBUDGET_FORCE",
+    "GLBUDGET_FORCE_EVERY",
+    "GLBUDGET_PROBE_PERIOD",
+    "GLBUDGET_SELECT_FRAMES",
+    "GLBUDGET_TRANSITION_S",
+    "GLBUDGET_FEEDBACK",
+    "GLBUDGET_DUMP_PROBES",
+    "GLBUDGET_PROBE_SCALE",
+    "GLBUDGET_SHIM",
+    "GLBUDGET_COSTS",
     // A test switch, to be documented in README's options table: GL extensions the shim
     // takes as absent (comma-separated), e.g. to run it as on a driver without timer queries.
     "GLBUDGET_TEST_HIDE_EXTENSIONS",
@@ -49,9 +66,12 @@ Options parse_options(char** env, std::string* warnings) {
     } else if (name == "GLBUDGET_DUMP") {
       o.dump_dir = value;
     } else if (name == "GLBUDGET_INSTRUMENT") {
-      if (value == "1" || value == "on") instrument_switch = 1;
-      else if (value == "0" || value == "off" || value.empty()) instrument_switch = 0;
-      else warn(warnings, "GLBUDGET_INSTRUMENT='" + value + "' is not 0/1/on/off; ignored");
+      if (value == "1" || value == "on")
+        instrument_switch = 1;
+      else if (value == "0" || value == "off" || value.empty())
+        instrument_switch = 0;
+      else
+        warn(warnings, "GLBUDGET_INSTRUMENT='" + value + "' is not 0/1/on/off; ignored");
     } else if (name == "GLBUDGET_CONFIG") {
       o.config_path = value;
     } else if (name == "GLBUDGET_COSTS") {
@@ -89,12 +109,17 @@ Options parse_options(char** env, std::string* warnings) {
     } else if (name == "GLBUDGET_DUMP_PROBES") {
       o.dump_probes = value;
     } else if (name == "GLBUDGET_PROBE_SCALE") {
-      if (value == "1" || value == "2" || value == "4") o.probe_scale = value[0] - '0';
-      else warn(warnings, "GLBUDGET_PROBE_SCALE='" + value + "' is not 1, 2 or 4; Wang's rule");
+      if (value == "1" || value == "2" || value == "4")
+        o.probe_scale = value[0] - '0';
+      else
+        warn(warnings, "GLBUDGET_PROBE_SCALE='" + value + "' is not 1, 2 or 4; Wang's rule");
     } else if (name == "GLBUDGET_FEEDBACK") {
-      if (value == "1" || value == "on") o.feedback = true;
-      else if (value == "0" || value == "off") o.feedback = false;
-      else warn(warnings, "GLBUDGET_FEEDBACK='" + value + "' is not 0/1/on/off; on");
+      if (value == "1" || value == "on")
+        o.feedback = true;
+      else if (value == "0" || value == "off")
+        o.feedback = false;
+      else
+        warn(warnings, "GLBUDGET_FEEDBACK='" + value + "' is not 0/1/on/off; on");
     } else if (name == "GLBUDGET_TEST_HIDE_EXTENSIONS") {
       for (size_t start = 0; start <= value.size();) {
         size_t comma = value.find(',', start);

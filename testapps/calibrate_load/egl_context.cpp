@@ -1,4 +1,4 @@
-#include "egl_context.h"
+#include "egl_context.hpp"
 
 #include <EGL/eglext.h>
 #include <GL/glew.h>
@@ -15,8 +15,17 @@ EglContext::EglContext(int width, int height) {
   display_ = get_platform_display ? get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr)
                                   : eglGetDisplay(EGL_DEFAULT_DISPLAY);
   if (display_ == EGL_NO_DISPLAY || !eglInitialize(display_, nullptr, nullptr)) fail("eglInitialize");
-  const EGLint config_attributes[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
-                                      EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_NONE};
+  const EGLint config_attributes[] = {EGL_SURFACE_TYPE,
+                                      EGL_PBUFFER_BIT,
+                                      EGL_RENDERABLE_TYPE,
+                                      EGL_OPENGL_BIT,
+                                      EGL_RED_SIZE,
+                                      8,
+                                      EGL_GREEN_SIZE,
+                                      8,
+                                      EGL_BLUE_SIZE,
+                                      8,
+                                      EGL_NONE};
   EGLConfig config = nullptr;
   EGLint count = 0;
   if (!eglChooseConfig(display_, config_attributes, &config, 1, &count) || count == 0) fail("eglChooseConfig");
@@ -24,9 +33,9 @@ EglContext::EglContext(int width, int height) {
   surface_ = eglCreatePbufferSurface(display_, config, surface_attributes);
   if (surface_ == EGL_NO_SURFACE) fail("eglCreatePbufferSurface");
   if (!eglBindAPI(EGL_OPENGL_API)) fail("eglBindAPI");
-  const EGLint context_attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
-                                       EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                       EGL_NONE};
+  const EGLint context_attributes[] = {
+      EGL_CONTEXT_MAJOR_VERSION,           3,       EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+      EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
   context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, context_attributes);
   if (context_ == EGL_NO_CONTEXT) fail("eglCreateContext (OpenGL 3.3 core)");
   if (!eglMakeCurrent(display_, surface_, surface_, context_)) fail("eglMakeCurrent");

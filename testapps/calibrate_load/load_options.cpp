@@ -1,4 +1,4 @@
-#include "load_options.h"
+#include "load_options.hpp"
 
 #include <charconv>
 #include <cstdio>
@@ -13,9 +13,9 @@ bool number(std::string_view flag, std::string_view text, T& target, T min, T ma
   T value{};
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (error != std::errc() || end != text.data() + text.size() || !(value >= min && value <= max)) {
-    std::fprintf(stderr, "calibrate_load: %.*s '%.*s': expected a number in [%s, %s]\n",
-                 static_cast<int>(flag.size()), flag.data(), static_cast<int>(text.size()), text.data(),
-                 std::to_string(min).c_str(), std::to_string(max).c_str());
+    std::fprintf(stderr, "calibrate_load: %.*s '%.*s': expected a number in [%s, %s]\n", static_cast<int>(flag.size()),
+                 flag.data(), static_cast<int>(text.size()), text.data(), std::to_string(min).c_str(),
+                 std::to_string(max).c_str());
     return false;
   }
   target = value;
@@ -52,25 +52,38 @@ std::optional<LoadOptions> parse_options(int argc, char** argv) {
     }
     const std::string_view value = argv[++i];
     bool ok = false;
-    if (flag == "--batches") ok = number(flag, value, o.batches, std::int64_t{0}, std::int64_t{10'000'000});
-    else if (flag == "--vertices") ok = number(flag, value, o.vertices, std::int64_t{1}, std::int64_t{1'000'000'000});
-    else if (flag == "--fragments") ok = number(flag, value, o.fragments, std::int64_t{0}, std::int64_t{100'000'000'000});
-    else if (flag == "--fps") ok = number(flag, value, o.fps, 0.0, 10000.0);
-    else if (flag == "--seconds") ok = number(flag, value, o.seconds, 0.0, 86400.0);
-    else if (flag == "--frames") ok = number(flag, value, o.frames, std::int64_t{0}, std::int64_t{1'000'000'000});
-    else if (flag == "--width") ok = number(flag, value, o.width, 1, 8192);
-    else if (flag == "--height") ok = number(flag, value, o.height, 1, 8192);
-    else if (flag == "--factor") ok = number(flag, value, o.factor, 1.0, 1000.0);
-    else if (flag == "--steps") ok = number(flag, value, o.steps, 1, 10000);
-    else if (flag == "--stop-when-late") ok = number(flag, value, o.stop_when_late, 0, 10000);
+    if (flag == "--batches")
+      ok = number(flag, value, o.batches, std::int64_t{0}, std::int64_t{10'000'000});
+    else if (flag == "--vertices")
+      ok = number(flag, value, o.vertices, std::int64_t{1}, std::int64_t{1'000'000'000});
+    else if (flag == "--fragments")
+      ok = number(flag, value, o.fragments, std::int64_t{0}, std::int64_t{100'000'000'000});
+    else if (flag == "--fps")
+      ok = number(flag, value, o.fps, 0.0, 10000.0);
+    else if (flag == "--seconds")
+      ok = number(flag, value, o.seconds, 0.0, 86400.0);
+    else if (flag == "--frames")
+      ok = number(flag, value, o.frames, std::int64_t{0}, std::int64_t{1'000'000'000});
+    else if (flag == "--width")
+      ok = number(flag, value, o.width, 1, 8192);
+    else if (flag == "--height")
+      ok = number(flag, value, o.height, 1, 8192);
+    else if (flag == "--factor")
+      ok = number(flag, value, o.factor, 1.0, 1000.0);
+    else if (flag == "--steps")
+      ok = number(flag, value, o.steps, 1, 10000);
+    else if (flag == "--stop-when-late")
+      ok = number(flag, value, o.stop_when_late, 0, 10000);
     else if (flag == "--sweep") {
       using Sweep = LoadOptions::Sweep;
-      o.sweep = value == "batches" ? Sweep::batches : value == "vertices" ? Sweep::vertices
-                : value == "fragments" ? Sweep::fragments : Sweep::none;
+      o.sweep = value == "batches"     ? Sweep::batches
+                : value == "vertices"  ? Sweep::vertices
+                : value == "fragments" ? Sweep::fragments
+                                       : Sweep::none;
       ok = o.sweep != Sweep::none;
       if (!ok) std::fprintf(stderr, "calibrate_load: --sweep '%s': expected batches, vertices or fragments\n", argv[i]);
-    }
-    else std::fprintf(stderr, "calibrate_load: unknown option %s\n%s", argv[i - 1], usage());
+    } else
+      std::fprintf(stderr, "calibrate_load: unknown option %s\n%s", argv[i - 1], usage());
     if (!ok) return std::nullopt;
   }
   return o;

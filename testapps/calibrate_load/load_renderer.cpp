@@ -1,4 +1,4 @@
-#include "load_renderer.h"
+#include "load_renderer.hpp"
 
 #include <algorithm>
 #include <cmath>

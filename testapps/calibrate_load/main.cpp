@@ -9,10 +9,10 @@
 #include <cstdio>
 #include <exception>
 
-#include "egl_context.h"
-#include "frames_in_flight.h"
-#include "load_options.h"
-#include "load_renderer.h"
+#include "egl_context.hpp"
+#include "frames_in_flight.hpp"
+#include "load_options.hpp"
+#include "load_renderer.hpp"
 
 namespace calibrate_load {
 namespace {
@@ -37,10 +37,17 @@ LoadShape step_shape(const LoadOptions& o, int step) {
   const double scale = std::pow(o.factor, step);
   auto grow = [&](std::int64_t& count) { count = std::llround(static_cast<double>(count) * scale); };
   switch (o.sweep) {
-    case LoadOptions::Sweep::batches: grow(shape.batches); break;
-    case LoadOptions::Sweep::vertices: grow(shape.vertices); break;
-    case LoadOptions::Sweep::fragments: grow(shape.fragments); break;
-    case LoadOptions::Sweep::none: break;
+    case LoadOptions::Sweep::batches:
+      grow(shape.batches);
+      break;
+    case LoadOptions::Sweep::vertices:
+      grow(shape.vertices);
+      break;
+    case LoadOptions::Sweep::fragments:
+      grow(shape.fragments);
+      break;
+    case LoadOptions::Sweep::none:
+      break;
   }
   return shape;
 }
@@ -69,8 +76,10 @@ StepResult run_step(const LoadOptions& o, EglContext& context, LoadRenderer& ren
     if (period_ns > 0) sleep_until(deadline);
     deadline += period_ns;
     context.swap_buffers();
-    if (last) in_flight.forget();
-    else in_flight.frame_submitted();
+    if (last)
+      in_flight.forget();
+    else
+      in_flight.frame_submitted();
   }
   r.end_ns = now_ns();
   return r;
@@ -89,7 +98,8 @@ int run(const LoadOptions& o) {
     const LoadShape shape = step_shape(o, step);
     renderer.set_shape(shape);
     const StepResult r = run_step(o, context, renderer, in_flight);
-    const double fps = static_cast<double>(r.frames) * 1e9 / static_cast<double>(std::max<std::int64_t>(1, r.end_ns - r.start_ns));
+    const double fps =
+        static_cast<double>(r.frames) * 1e9 / static_cast<double>(std::max<std::int64_t>(1, r.end_ns - r.start_ns));
     const bool late = o.fps > 0 && fps < 0.5 * o.fps;
     std::printf("step %d batches %lld vertices %lld fragments %lld start_ns %lld end_ns %lld frames %lld late %d%s\n",
                 step, static_cast<long long>(shape.batches), static_cast<long long>(shape.vertices),

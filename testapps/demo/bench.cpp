@@ -1,4 +1,4 @@
-#include "bench.h"
+#include "bench.hpp"
 
 #include <GL/glew.h>
 
@@ -11,8 +11,8 @@
 namespace demo {
 namespace {
 
-const char* const kKnobNames[kKnobCount] = {"resolution", "base shading", "reflections", "shadows", "metals",
-                                            "antialiasing"};
+const char* const kKnobNames[kKnobCount] = {"resolution", "base shading", "reflections",
+                                            "shadows",    "metals",       "antialiasing"};
 
 double process_cpu_ms() {  // llvmpipe renders on this process's threads
   timespec t{};
@@ -68,8 +68,9 @@ void run_bench(Renderer& renderer, GlContext& context, const Scene& scene, const
   const std::vector<Timing> timings = time_round_robin(renderer, context, configs, o);
   const Timing& best = timings[0];
   const Timing& cheapest = timings[1];
-  std::printf("| scene | triangles | objects | draws/frame | best: wall ms (min) | best: CPU ms | cheapest: wall ms (min) "
-              "| cheapest: CPU ms | CPU best/cheapest |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  std::printf(
+      "| scene | triangles | objects | draws/frame | best: wall ms (min) | best: CPU ms | cheapest: wall ms (min) "
+      "| cheapest: CPU ms | CPU best/cheapest |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   std::printf("| %s | %.1fk | %zu | %d | %.0f (%.0f) | %.0f | %.0f (%.0f) | %.0f | %.2f |\n\n", scene.name.c_str(),
               static_cast<double>(scene.triangle_count()) / 1000.0, scene.objects.size(), draws.total(), best.wall_ms,
               best.min_wall_ms, best.cpu_ms, cheapest.wall_ms, cheapest.min_wall_ms, cheapest.cpu_ms,
@@ -79,12 +80,15 @@ void run_bench(Renderer& renderer, GlContext& context, const Scene& scene, const
               scene.name.c_str());
   for (int k = 0; k < kKnobCount; ++k) {
     const Timing& t = timings[static_cast<size_t>(2 + k)];
-    std::printf("| %s (%s) | %.0f | %.0f | %.2f |\n", kKnobNames[k], format_config(configs[static_cast<size_t>(2 + k)]).c_str(),
-                t.wall_ms, t.cpu_ms, t.cpu_ms / best.cpu_ms);
+    std::printf("| %s (%s) | %.0f | %.0f | %.2f |\n", kKnobNames[k],
+                format_config(configs[static_cast<size_t>(2 + k)]).c_str(), t.wall_ms, t.cpu_ms,
+                t.cpu_ms / best.cpu_ms);
   }
-  std::printf("\n(%dx%d, %s, %ld timed frames per row from frame %ld at %.0f fps, rows interleaved frame by frame after one warm-up frame each, detail %.3g; "
-              "wall clock includes glFinish; CPU = this process, where llvmpipe renders)\n",
-              o.width, o.height, context.kind(), o.frames, o.start_frame, o.fps, static_cast<double>(o.detail));
+  std::printf(
+      "\n(%dx%d, %s, %ld timed frames per row from frame %ld at %.0f fps, rows interleaved frame by frame after one "
+      "warm-up frame each, detail %.3g; "
+      "wall clock includes glFinish; CPU = this process, where llvmpipe renders)\n",
+      o.width, o.height, context.kind(), o.frames, o.start_frame, o.fps, static_cast<double>(o.detail));
 }
 
 }  // namespace demo

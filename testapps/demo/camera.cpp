@@ -1,12 +1,11 @@
-#include "camera.h"
+#include "camera.hpp"
 
 #include <cmath>
 #include <numbers>
 
 namespace demo {
 
-Eigen::Matrix4f look_at(const Eigen::Vector3f& eye, const Eigen::Vector3f& target,
-                        const Eigen::Vector3f& up) {
+Eigen::Matrix4f look_at(const Eigen::Vector3f& eye, const Eigen::Vector3f& target, const Eigen::Vector3f& up) {
   const Eigen::Vector3f f = (target - eye).normalized();
   // Looking straight along `up` would make the basis degenerate: pick another up then.
   const Eigen::Vector3f safe_up = std::abs(f.dot(up)) > 0.999f ? Eigen::Vector3f::UnitZ() : up;

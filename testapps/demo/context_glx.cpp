@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "context.h"
+#include "context.hpp"
 
 namespace demo {
 namespace {
@@ -30,9 +30,23 @@ class GlxContext : public GlContext {
 
  private:
   void create(int width, int height) {
-    const int attributes[] = {GLX_X_RENDERABLE, True, GLX_DRAWABLE_TYPE, GLX_WINDOW_BIT, GLX_RENDER_TYPE,
-                              GLX_RGBA_BIT, GLX_RED_SIZE, 8, GLX_GREEN_SIZE, 8, GLX_BLUE_SIZE, 8,
-                              GLX_ALPHA_SIZE, 8, GLX_DOUBLEBUFFER, True, None};
+    const int attributes[] = {GLX_X_RENDERABLE,
+                              True,
+                              GLX_DRAWABLE_TYPE,
+                              GLX_WINDOW_BIT,
+                              GLX_RENDER_TYPE,
+                              GLX_RGBA_BIT,
+                              GLX_RED_SIZE,
+                              8,
+                              GLX_GREEN_SIZE,
+                              8,
+                              GLX_BLUE_SIZE,
+                              8,
+                              GLX_ALPHA_SIZE,
+                              8,
+                              GLX_DOUBLEBUFFER,
+                              True,
+                              None};
     int count = 0;
     GLXFBConfig* configs = glXChooseFBConfig(display_, DefaultScreen(display_), attributes, &count);
     if (!configs || count == 0) throw std::runtime_error("glXChooseFBConfig found no RGBA8 double-buffered config");
@@ -56,8 +70,9 @@ class GlxContext : public GlContext {
     const auto create_context = reinterpret_cast<CreateContextAttribs>(
         glXGetProcAddressARB(reinterpret_cast<const GLubyte*>("glXCreateContextAttribsARB")));
     if (!create_context) throw std::runtime_error("GLX_ARB_create_context is missing");
-    const int context_attributes[] = {GLX_CONTEXT_MAJOR_VERSION_ARB, 3, GLX_CONTEXT_MINOR_VERSION_ARB, 3,
-                                      GLX_CONTEXT_PROFILE_MASK_ARB, GLX_CONTEXT_CORE_PROFILE_BIT_ARB, None};
+    const int context_attributes[] = {
+        GLX_CONTEXT_MAJOR_VERSION_ARB,    3,   GLX_CONTEXT_MINOR_VERSION_ARB, 3, GLX_CONTEXT_PROFILE_MASK_ARB,
+        GLX_CONTEXT_CORE_PROFILE_BIT_ARB, None};
     context_ = create_context(display_, config, nullptr, True, context_attributes);
     if (!context_) throw std::runtime_error("glXCreateContextAttribsARB (OpenGL 3.3 core) failed");
     if (!glXMakeCurrent(display_, window_, context_)) throw std::runtime_error("glXMakeCurrent failed");

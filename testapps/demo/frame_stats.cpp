@@ -1,4 +1,4 @@
-#include "frame_stats.h"
+#include "frame_stats.hpp"
 
 #include <cstdio>
 

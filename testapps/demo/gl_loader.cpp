@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "context.h"
+#include "context.hpp"
 
 namespace demo {
 

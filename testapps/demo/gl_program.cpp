@@ -1,4 +1,4 @@
-#include "gl_program.h"
+#include "gl_program.hpp"
 
 #include <stdexcept>
 

@@ -1,4 +1,4 @@
-#include "gpu_scene.h"
+#include "gpu_scene.hpp"
 
 #include <cstddef>
 
@@ -43,8 +43,7 @@ GpuScene::~GpuScene() {
 }
 
 int GpuScene::draw(const ScenePose& pose, const std::function<bool(const Object&)>& filter, const Program& rigid,
-                   const Program& skinned,
-                   const std::function<void(const Program&, const Object&)>& per_object) const {
+                   const Program& skinned, const std::function<void(const Program&, const Object&)>& per_object) const {
   glBindVertexArray(vao_);
   int draws = 0;
   for (size_t i = 0; i < scene_.objects.size(); ++i) {

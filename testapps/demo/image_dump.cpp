@@ -1,4 +1,4 @@
-#include "image_dump.h"
+#include "image_dump.hpp"
 
 #include <OpenImageIO/imageio.h>
 

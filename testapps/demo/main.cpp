@@ -5,13 +5,13 @@
 #include <iostream>
 #include <stdexcept>
 
-#include "bench.h"
-#include "context.h"
-#include "frame_stats.h"
-#include "image_dump.h"
-#include "options.h"
-#include "renderer.h"
-#include "scenes/registry.h"
+#include "bench.hpp"
+#include "context.hpp"
+#include "frame_stats.hpp"
+#include "image_dump.hpp"
+#include "options.hpp"
+#include "renderer.hpp"
+#include "scenes/registry.hpp"
 
 namespace {
 
@@ -40,8 +40,10 @@ int run(const demo::Options& o) {
     if (!o.dump_dir.empty() && i % o.dump_every == 0) {
       const std::string path = demo::dump_path(o.dump_dir, scene.name, config_text, frame);
       const std::string error = demo::write_rgb_image(path, o.width, o.height, renderer.read_pixels());
-      if (!error.empty()) std::fprintf(stderr, "demo: %s\n", error.c_str());
-      else ++dumped;
+      if (!error.empty())
+        std::fprintf(stderr, "demo: %s\n", error.c_str());
+      else
+        ++dumped;
     }
     context->swap_buffers();
   }

@@ -1,4 +1,4 @@
-#include "mesh.h"
+#include "mesh.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -28,8 +28,7 @@ void Mesh::append(const Mesh& other, const Eigen::Affine3f& transform) {
   const Eigen::Matrix3f rotation = transform.linear();
   for (Vertex v : other.vertices) {
     const Eigen::Vector3f p = transform * Eigen::Vector3f(v.position[0], v.position[1], v.position[2]);
-    const Eigen::Vector3f n =
-        (rotation * Eigen::Vector3f(v.normal[0], v.normal[1], v.normal[2])).normalized();
+    const Eigen::Vector3f n = (rotation * Eigen::Vector3f(v.normal[0], v.normal[1], v.normal[2])).normalized();
     std::copy_n(p.data(), 3, v.position);
     std::copy_n(n.data(), 3, v.normal);
     vertices.push_back(v);
@@ -115,8 +114,7 @@ Mesh sphere(float radius, int triangles) {
   segments_for(triangles, 2.0f, nu, nv);
   return parametric(std::max(nu, 3), std::max(nv, 2), [=](float u, float v) {
     const float phi = u * kTau, theta = v * kPi;
-    const Eigen::Vector3f n(std::sin(theta) * std::cos(phi), -std::cos(theta),
-                            std::sin(theta) * std::sin(phi));
+    const Eigen::Vector3f n(std::sin(theta) * std::cos(phi), -std::cos(theta), std::sin(theta) * std::sin(phi));
     return SurfacePoint{radius * n, n};
   });
 }

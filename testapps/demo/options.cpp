@@ -1,11 +1,11 @@
-#include "options.h"
+#include "options.hpp"
 
 #include <charconv>
 #include <cstdio>
 #include <cstdlib>
 #include <string_view>
 
-#include "scenes/registry.h"
+#include "scenes/registry.hpp"
 
 namespace demo {
 namespace {
@@ -42,8 +42,11 @@ Options parse_options(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string_view flag = argv[i];
-    bool* const switch_flag = flag == "--glx" ? &o.glx : flag == "--stats" ? &o.stats : flag == "--bench" ? &o.bench
-                              : (flag == "--help" || flag == "-h") ? &o.help : nullptr;
+    bool* const switch_flag = flag == "--glx"                      ? &o.glx
+                              : flag == "--stats"                  ? &o.stats
+                              : flag == "--bench"                  ? &o.bench
+                              : (flag == "--help" || flag == "-h") ? &o.help
+                                                                   : nullptr;
     if (switch_flag) {
       *switch_flag = true;
       continue;
@@ -54,19 +57,31 @@ Options parse_options(int argc, char** argv) {
     }
     const std::string_view value = argv[++i];
     if (flag == "--scene") {
-      if (is_scene_name(value)) o.scene = value;
-      else complain(flag, value, "hall, sponza, valley or subway");
-    } else if (flag == "--width") number(flag, value, o.width, 16, 8192);
-    else if (flag == "--height") number(flag, value, o.height, 16, 8192);
-    else if (flag == "--detail") number(flag, value, o.detail, 0.001f, 4.0f);
-    else if (flag == "--frames") number(flag, value, o.frames, 1L, 1000000L);
-    else if (flag == "--start-frame") number(flag, value, o.start_frame, 0L, 100000000L);
-    else if (flag == "--fps") number(flag, value, o.fps, 1.0, 1000.0);
-    else if (flag == "--dump-every") number(flag, value, o.dump_every, 1L, 1000000L);
-    else if (flag == "--dump") o.dump_dir = value;
+      if (is_scene_name(value))
+        o.scene = value;
+      else
+        complain(flag, value, "hall, sponza, valley or subway");
+    } else if (flag == "--width")
+      number(flag, value, o.width, 16, 8192);
+    else if (flag == "--height")
+      number(flag, value, o.height, 16, 8192);
+    else if (flag == "--detail")
+      number(flag, value, o.detail, 0.001f, 4.0f);
+    else if (flag == "--frames")
+      number(flag, value, o.frames, 1L, 1000000L);
+    else if (flag == "--start-frame")
+      number(flag, value, o.start_frame, 0L, 100000000L);
+    else if (flag == "--fps")
+      number(flag, value, o.fps, 1.0, 1000.0);
+    else if (flag == "--dump-every")
+      number(flag, value, o.dump_every, 1L, 1000000L);
+    else if (flag == "--dump")
+      o.dump_dir = value;
     else if (flag == "--config") {
-      if (auto config = parse_config(value)) o.config = *config;
-      else complain(flag, value, "six levels 0..2 separated by commas, e.g. 0,1,2,0,0,1");
+      if (auto config = parse_config(value))
+        o.config = *config;
+      else
+        complain(flag, value, "six levels 0..2 separated by commas, e.g. 0,1,2,0,0,1");
     } else {
       std::fprintf(stderr, "demo: ignoring unknown option '%s'\n", argv[i - 1]);
       --i;  // its "value" may be the next option

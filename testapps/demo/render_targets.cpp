@@ -1,4 +1,4 @@
-#include "render_targets.h"
+#include "render_targets.hpp"
 
 #include <stdexcept>
 #include <string>

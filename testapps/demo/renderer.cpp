@@ -1,4 +1,4 @@
-#include "renderer.h"
+#include "renderer.hpp"
 
 #include <algorithm>
 #include <cmath>

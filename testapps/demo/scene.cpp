@@ -1,4 +1,4 @@
-#include "scene.h"
+#include "scene.hpp"
 
 #include <algorithm>
 
@@ -22,8 +22,7 @@ bool Scene::has_metals() const {
 }
 
 bool Scene::has_reflective_surfaces() const {
-  return std::any_of(objects.begin(), objects.end(),
-                     [](const Object& o) { return o.material.reflectivity > 0.0f; });
+  return std::any_of(objects.begin(), objects.end(), [](const Object& o) { return o.material.reflectivity > 0.0f; });
 }
 
 size_t Scene::size_bytes() const {

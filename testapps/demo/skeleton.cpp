@@ -1,4 +1,4 @@
-#include "skeleton.h"
+#include "skeleton.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -24,8 +24,7 @@ std::array<float, BoneCount> walk_angles(double w) {
 }
 
 // A limb hanging down from `joint`, weighted to `bone`, blending into `parent` at the joint.
-Mesh limb(float radius, float length, const Eigen::Vector3f& joint, uint8_t bone, uint8_t parent,
-          int triangles) {
+Mesh limb(float radius, float length, const Eigen::Vector3f& joint, uint8_t bone, uint8_t parent, int triangles) {
   Mesh part = cylinder(radius, radius * 0.85f, length, triangles);
   for (Vertex& v : part.vertices) {
     const float from_joint = v.position[1] / length;  // 0 at the joint end

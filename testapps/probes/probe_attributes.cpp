@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "probe_shadowing.h"
+#include "probe_shadowing.hpp"
 
 using namespace shadow_probe;
 
@@ -139,23 +139,24 @@ int main(int argc, char** argv) {
   for (int i = 1; i + 1 < argc; i += 2)
     inactive = inactive || (std::strcmp(argv[i], "--scenario") == 0 && std::strcmp(argv[i + 1], "inactive") == 0);
   if (!open_current_window(probe.name(), egl, ContextKind::kCore45, kSide, kSide, &w)) return 2;
-  const GLuint prog = build_program(probe.name(),
-                                    {{GL_VERTEX_SHADER, vertex_source(inactive)}, {GL_FRAGMENT_SHADER, fragment_source(inactive)}},
-                                    [inactive](GLuint p) {
-                                      glBindAttribLocation(p, kPos, "pos");
-                                      glBindAttribLocation(p, kColor, "color");
-                                      glBindAttribLocation(p, kInts, "ints");
-                                      glBindAttribLocation(p, kWeight, "weight");
-                                      glBindFragDataLocation(p, 1, "outA");
-                                      glBindFragDataLocation(p, 0, "outB");
-                                      if (inactive) {  // names this program does not have
-                                        glBindAttribLocation(p, kTangent, "tangent");
-                                        glBindFragDataLocation(p, 4, "outD");
-                                        glBindFragDataLocation(p, 3, "outE");
-                                      }
-                                    });
+  const GLuint prog = build_program(
+      probe.name(), {{GL_VERTEX_SHADER, vertex_source(inactive)}, {GL_FRAGMENT_SHADER, fragment_source(inactive)}},
+      [inactive](GLuint p) {
+        glBindAttribLocation(p, kPos, "pos");
+        glBindAttribLocation(p, kColor, "color");
+        glBindAttribLocation(p, kInts, "ints");
+        glBindAttribLocation(p, kWeight, "weight");
+        glBindFragDataLocation(p, 1, "outA");
+        glBindFragDataLocation(p, 0, "outB");
+        if (inactive) {  // names this program does not have
+          glBindAttribLocation(p, kTangent, "tangent");
+          glBindFragDataLocation(p, 4, "outD");
+          glBindFragDataLocation(p, 3, "outE");
+        }
+      });
   if (!prog) return 2;
-  const std::pair<const char*, GLint> attributes[] = {{"pos", kPos}, {"color", kColor}, {"lay", kLay}, {"ints", kInts}, {"weight", kWeight}};
+  const std::pair<const char*, GLint> attributes[] = {
+      {"pos", kPos}, {"color", kColor}, {"lay", kLay}, {"ints", kInts}, {"weight", kWeight}};
   for (const auto& [name, location] : attributes)
     if (glGetAttribLocation(prog, name) != location) {
       std::fprintf(stderr, "probe_attributes: %s is at %d, not %d\n", name, glGetAttribLocation(prog, name), location);
@@ -214,8 +215,8 @@ int main(int argc, char** argv) {
     glTexStorage2D(GL_TEXTURE_2D, 1, i == 2 ? GL_RGBA32UI : GL_RGBA32F, kSide, kSide);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i), GL_TEXTURE_2D, tex[i], 0);
   }
-  const GLenum draw_buffers[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3,
-                                  GL_COLOR_ATTACHMENT4};
+  const GLenum draw_buffers[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                                  GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4};
   glDrawBuffers(attachments, draw_buffers);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
     std::fprintf(stderr, "probe_attributes: the framebuffer is incomplete\n");

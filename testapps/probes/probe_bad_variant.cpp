@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "probe_shadowing.h"
+#include "probe_shadowing.hpp"
 
 using namespace shadow_probe;
 
@@ -27,7 +27,8 @@ const char* const kFragment =
     "  ivec2 p = ivec2(gl_FragCoord.xy);\n"
     "  int i = p.y * 4 + p.x;\n"
     "  uint bad = uint(BAD);\n"
-    "  o = i == 0 ? uvec4(uint(VARIANT_MARK), 0x600du, 0u, 0u) : i == 1 ? uvec4(u_val, bad, 0x5au, 0u) : uvec4(0xffffffffu);\n"
+    "  o = i == 0 ? uvec4(uint(VARIANT_MARK), 0x600du, 0u, 0u) : i == 1 ? uvec4(u_val, bad, 0x5au, 0u) : "
+    "uvec4(0xffffffffu);\n"
     "}\n";
 
 }  // namespace

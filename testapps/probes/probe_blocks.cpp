@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "probe_shadowing.h"
+#include "probe_shadowing.hpp"
 
 using namespace shadow_probe;
 
@@ -78,7 +78,8 @@ int main(int argc, char** argv) {
   EglFns egl;
   EglWindow w;
   if (!open_current_window(probe.name(), egl, ContextKind::kCore45, 4, 4, &w)) return 2;
-  const GLuint prog = build_program(probe.name(), {{GL_VERTEX_SHADER, quad_vertex_shader()}, {GL_FRAGMENT_SHADER, kFragment}});
+  const GLuint prog =
+      build_program(probe.name(), {{GL_VERTEX_SHADER, quad_vertex_shader()}, {GL_FRAGMENT_SHADER, kFragment}});
   if (!prog) return 2;
   for (int storage = 0; storage < 2; ++storage)
     for (int k = 0; k < kBindings; ++k) {
@@ -110,13 +111,17 @@ int main(int argc, char** argv) {
     report_mark(probe, words, "phase " + std::to_string(p));
     const Bindings b = bindings(p);
     uint32_t expected[4];
-    const std::pair<int, const char*> uniform_blocks[] = {{b.ua, "UA"}, {b.ub, "UB"}, {b.uarr[0], "UArr[0]"},
-                                                          {b.uarr[1], "UArr[1]"}, {7, "UFixed (layout(binding = 7))"}};
+    const std::pair<int, const char*> uniform_blocks[] = {{b.ua, "UA"},
+                                                          {b.ub, "UB"},
+                                                          {b.uarr[0], "UArr[0]"},
+                                                          {b.uarr[1], "UArr[1]"},
+                                                          {7, "UFixed (layout(binding = 7))"}};
     for (int k = 0; k < 5; ++k) {
       buffer_words(false, uniform_blocks[k].first, expected);
       expect_slot(probe, words, 1 + k, expected, uniform_blocks[k].second + std::string(" phase ") + std::to_string(p));
     }
-    const std::pair<int, const char*> storage_blocks[] = {{b.sa, "SA"}, {b.sb, "SB"}, {6, "SFixed (layout(binding = 6))"}};
+    const std::pair<int, const char*> storage_blocks[] = {
+        {b.sa, "SA"}, {b.sb, "SB"}, {6, "SFixed (layout(binding = 6))"}};
     for (int k = 0; k < 3; ++k) {
       buffer_words(true, storage_blocks[k].first, expected);
       expect_slot(probe, words, 6 + k, expected, storage_blocks[k].second + std::string(" phase ") + std::to_string(p));

@@ -5,8 +5,8 @@
 #define GL_GLEXT_PROTOTYPES 1
 #include <cstdio>
 
-#include "common/egl_setup.h"
-#include "common/known_scene.h"
+#include "common/egl_setup.hpp"
+#include "common/known_scene.hpp"
 
 int main(int argc, char** argv) {
   ProbeArgs args = parse_probe_args(argc, argv);

@@ -26,9 +26,9 @@
 #include <cstring>
 #include <vector>
 
-#include "common/egl_setup.h"
-#include "common/direct_gl.h"
-#include "common/known_scene.h"
+#include "common/egl_setup.hpp"
+#include "common/direct_gl.hpp"
+#include "common/known_scene.hpp"
 
 namespace {
 const char* const kVertex =
@@ -82,7 +82,8 @@ GLuint compile(GLenum stage, const char* source, bool* same_source) {
 int main(int argc, char** argv) {
   ProbeArgs args = parse_probe_args(argc, argv);
   bool shared = false;  // options come in pairs, as in parse_probe_args
-  for (int i = 1; i + 1 < argc; i += 2) shared = shared || (std::strcmp(argv[i], "--contexts") == 0 && std::atoi(argv[i + 1]) == 2);
+  for (int i = 1; i + 1 < argc; i += 2)
+    shared = shared || (std::strcmp(argv[i], "--contexts") == 0 && std::atoi(argv[i + 1]) == 2);
   EglFns egl;
   EglWindow w;
   if (!open_current_window("probe_counted", egl, ContextKind::kCore45, args.width, args.height, &w)) return 2;

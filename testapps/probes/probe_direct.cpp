@@ -2,8 +2,8 @@
 #define GL_GLEXT_PROTOTYPES 1
 #include <cstdio>
 
-#include "common/egl_setup.h"
-#include "common/probe_main.h"
+#include "common/egl_setup.hpp"
+#include "common/probe_main.hpp"
 
 int main(int argc, char** argv) {
   ProbeArgs args = parse_probe_args(argc, argv);

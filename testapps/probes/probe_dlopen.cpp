@@ -4,8 +4,8 @@
 
 #include <cstdio>
 
-#include "common/egl_setup.h"
-#include "common/probe_main.h"
+#include "common/egl_setup.hpp"
+#include "common/probe_main.hpp"
 
 int main(int argc, char** argv) {
   ProbeArgs args = parse_probe_args(argc, argv);

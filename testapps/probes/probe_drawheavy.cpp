@@ -11,7 +11,7 @@
 #include <cstring>
 #include <vector>
 
-#include "common/egl_setup.h"
+#include "common/egl_setup.hpp"
 
 static double now_s() {
   timespec ts;
@@ -22,10 +22,14 @@ static double now_s() {
 int main(int argc, char** argv) {
   int draws = 20000, passes = 1, run = 20000, frames = 30, warmup = 5;
   for (int i = 1; i + 1 < argc; i += 2) {
-    if (!strcmp(argv[i], "--draws")) draws = atoi(argv[i + 1]);
-    else if (!strcmp(argv[i], "--passes")) passes = atoi(argv[i + 1]);
-    else if (!strcmp(argv[i], "--run")) run = atoi(argv[i + 1]);
-    else if (!strcmp(argv[i], "--frames")) frames = atoi(argv[i + 1]);
+    if (!strcmp(argv[i], "--draws"))
+      draws = atoi(argv[i + 1]);
+    else if (!strcmp(argv[i], "--passes"))
+      passes = atoi(argv[i + 1]);
+    else if (!strcmp(argv[i], "--run"))
+      run = atoi(argv[i + 1]);
+    else if (!strcmp(argv[i], "--frames"))
+      frames = atoi(argv[i + 1]);
   }
   if (passes < 1) passes = 1;
   if (run < 1) run = 1;
@@ -35,7 +39,8 @@ int main(int argc, char** argv) {
   std::vector<GLuint> programs;
   for (int p = 0; p < passes; ++p) {
     char fs[200];
-    snprintf(fs, sizeof fs, "#version 330 core\nout vec4 c;\nvoid main(){ c = vec4(%d.0/%d.0, 0.5, 0.5, 1.0); }\n", p, passes);
+    snprintf(fs, sizeof fs, "#version 330 core\nout vec4 c;\nvoid main(){ c = vec4(%d.0/%d.0, 0.5, 0.5, 1.0); }\n", p,
+             passes);
     const char* vs = "#version 330 core\nlayout(location=0) in vec2 p;\nvoid main(){ gl_Position = vec4(p,0,1); }\n";
     const char* fsp = fs;
     GLuint prog = glCreateProgram();

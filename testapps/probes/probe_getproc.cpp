@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <cstring>
 
-#include "common/egl_setup.h"
-#include "common/probe_main.h"
+#include "common/egl_setup.hpp"
+#include "common/probe_main.hpp"
 
 int main(int argc, char** argv) {
   ProbeArgs args = parse_probe_args(argc, argv);
@@ -20,6 +20,8 @@ int main(int argc, char** argv) {
     fprintf(stderr, "probe_getproc: no %s\n", missing);
     return 2;
   }
-  ShaderDialect dialect = es == 2 ? ShaderDialect::kEssl100 : es == 3 ? ShaderDialect::kEssl300 : ShaderDialect::kGlsl330Core;
+  ShaderDialect dialect = es == 2   ? ShaderDialect::kEssl100
+                          : es == 3 ? ShaderDialect::kEssl300
+                                    : ShaderDialect::kGlsl330Core;
   return run_known_scene(gl, dialect, args, [&] { egl.SwapBuffers(w.display, w.surface); });
 }

@@ -5,7 +5,7 @@
 
 #include <cstdio>
 
-#include "common/probe_main.h"
+#include "common/probe_main.hpp"
 
 int main(int argc, char** argv) {
   ProbeArgs args = parse_probe_args(argc, argv);
@@ -14,8 +14,21 @@ int main(int argc, char** argv) {
     fprintf(stderr, "probe_glx: cannot open X display\n");
     return 2;
   }
-  const int fb_attribs[] = {GLX_X_RENDERABLE, True, GLX_DRAWABLE_TYPE, GLX_WINDOW_BIT, GLX_RENDER_TYPE, GLX_RGBA_BIT,
-                            GLX_RED_SIZE, 8, GLX_GREEN_SIZE, 8, GLX_BLUE_SIZE, 8, GLX_DOUBLEBUFFER, True, None};
+  const int fb_attribs[] = {GLX_X_RENDERABLE,
+                            True,
+                            GLX_DRAWABLE_TYPE,
+                            GLX_WINDOW_BIT,
+                            GLX_RENDER_TYPE,
+                            GLX_RGBA_BIT,
+                            GLX_RED_SIZE,
+                            8,
+                            GLX_GREEN_SIZE,
+                            8,
+                            GLX_BLUE_SIZE,
+                            8,
+                            GLX_DOUBLEBUFFER,
+                            True,
+                            None};
   int n = 0;
   GLXFBConfig* configs = glXChooseFBConfig(dpy, DefaultScreen(dpy), fb_attribs, &n);
   if (!configs || n < 1) {
@@ -25,13 +38,14 @@ int main(int argc, char** argv) {
   XVisualInfo* vi = glXGetVisualFromFBConfig(dpy, configs[0]);
   XSetWindowAttributes swa{};
   swa.colormap = XCreateColormap(dpy, RootWindow(dpy, vi->screen), vi->visual, AllocNone);
-  Window win = XCreateWindow(dpy, RootWindow(dpy, vi->screen), 0, 0, args.width, args.height, 0, vi->depth,
-                             InputOutput, vi->visual, CWColormap, &swa);
+  Window win = XCreateWindow(dpy, RootWindow(dpy, vi->screen), 0, 0, args.width, args.height, 0, vi->depth, InputOutput,
+                             vi->visual, CWColormap, &swa);
   XMapWindow(dpy, win);
   using CreateAttribs = GLXContext (*)(Display*, GLXFBConfig, GLXContext, Bool, const int*);
   auto create = reinterpret_cast<CreateAttribs>(glXGetProcAddressARB((const GLubyte*)"glXCreateContextAttribsARB"));
-  const int ctx_attribs[] = {GLX_CONTEXT_MAJOR_VERSION_ARB, 3, GLX_CONTEXT_MINOR_VERSION_ARB, 3,
-                             GLX_CONTEXT_PROFILE_MASK_ARB, GLX_CONTEXT_CORE_PROFILE_BIT_ARB, None};
+  const int ctx_attribs[] = {
+      GLX_CONTEXT_MAJOR_VERSION_ARB,    3,   GLX_CONTEXT_MINOR_VERSION_ARB, 3, GLX_CONTEXT_PROFILE_MASK_ARB,
+      GLX_CONTEXT_CORE_PROFILE_BIT_ARB, None};
   GLXContext ctx = create ? create(dpy, configs[0], nullptr, True, ctx_attribs) : nullptr;
   if (!ctx) {
     fprintf(stderr, "probe_glx: cannot create a GL 3.3 core context\n");

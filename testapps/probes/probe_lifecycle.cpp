@@ -10,8 +10,8 @@
 #include <cstdio>
 #include <cstring>
 
-#include "common/egl_setup.h"
-#include "common/known_scene.h"
+#include "common/egl_setup.hpp"
+#include "common/known_scene.hpp"
 
 static int render(const ProbeArgs& args, int frames) {
   EglFns egl;

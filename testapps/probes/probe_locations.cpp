@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "probe_shadowing.h"
+#include "probe_shadowing.hpp"
 
 using namespace shadow_probe;
 
@@ -149,12 +149,13 @@ int main(int argc, char** argv) {
   EglFns egl;
   EglWindow w;
   if (!open_current_window(probe.name(), egl, ContextKind::kCore45, 4, 4, &w)) return 2;
-  const GLuint prog = build_program(probe.name(), {{GL_VERTEX_SHADER, kVertex}, {GL_FRAGMENT_SHADER, kFragment}},
-                                    [](GLuint p) {
-                                      glBindAttribLocation(p, 0, "pos");
-                                      glBindAttribLocation(p, 3, "normal");
-                                    });
-  const GLuint other = build_program(probe.name(), {{GL_VERTEX_SHADER, quad_vertex_shader()}, {GL_FRAGMENT_SHADER, kOtherFragment}});
+  const GLuint prog =
+      build_program(probe.name(), {{GL_VERTEX_SHADER, kVertex}, {GL_FRAGMENT_SHADER, kFragment}}, [](GLuint p) {
+        glBindAttribLocation(p, 0, "pos");
+        glBindAttribLocation(p, 3, "normal");
+      });
+  const GLuint other =
+      build_program(probe.name(), {{GL_VERTEX_SHADER, quad_vertex_shader()}, {GL_FRAGMENT_SHADER, kOtherFragment}});
   if (!prog || !other) return 2;
   GLuint buffers[2] = {};
   glGenBuffers(2, buffers);

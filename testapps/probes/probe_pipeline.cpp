@@ -9,9 +9,9 @@
 #include <cstdio>
 #include <vector>
 
-#include "common/egl_setup.h"
-#include "common/direct_gl.h"
-#include "common/known_scene.h"
+#include "common/egl_setup.hpp"
+#include "common/direct_gl.hpp"
+#include "common/known_scene.hpp"
 
 namespace {
 const char* const kVertex =

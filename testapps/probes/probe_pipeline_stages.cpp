@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "probe_shadowing.h"
+#include "probe_shadowing.hpp"
 
 using namespace shadow_probe;
 
@@ -60,7 +60,8 @@ int main(int argc, char** argv) {
   const GLuint a = shader_program(probe, GL_FRAGMENT_SHADER, fragment('A'));
   const GLuint b = build_program(probe.name(), {{GL_FRAGMENT_SHADER, fragment('B')}},
                                  [](GLuint p) { glProgramParameteri(p, GL_PROGRAM_SEPARABLE, GL_TRUE); });
-  const GLuint c = build_program(probe.name(), {{GL_VERTEX_SHADER, quad_vertex_shader()}, {GL_FRAGMENT_SHADER, fragment('C')}});
+  const GLuint c =
+      build_program(probe.name(), {{GL_VERTEX_SHADER, quad_vertex_shader()}, {GL_FRAGMENT_SHADER, fragment('C')}});
   if (!v || !a || !b || !c) return 2;
   GLuint pipelines[2] = {};
   glGenProgramPipelines(2, pipelines);
@@ -69,7 +70,8 @@ int main(int argc, char** argv) {
   glUseProgramStages(pa, GL_FRAGMENT_SHADER_BIT, a);
   glUseProgramStages(pb, GL_VERTEX_SHADER_BIT, v);
   glUseProgramStages(pb, GL_FRAGMENT_SHADER_BIT, b);
-  const GLint la = glGetUniformLocation(a, "u_val"), lb = glGetUniformLocation(b, "u_val"), lc = glGetUniformLocation(c, "u_val");
+  const GLint la = glGetUniformLocation(a, "u_val"), lb = glGetUniformLocation(b, "u_val"),
+              lc = glGetUniformLocation(c, "u_val");
   if (la < 0 || lb < 0 || lc < 0) {
     std::fprintf(stderr, "probe_pipeline_stages: u_val has no location\n");
     return 2;

@@ -6,8 +6,8 @@
 //  - an INVALID_ENUM raised before a frame is still the first glGetError after it.
 #include <cstdio>
 
-#include "common/egl_setup.h"
-#include "common/known_scene.h"
+#include "common/egl_setup.hpp"
+#include "common/known_scene.hpp"
 
 static int failures = 0;
 static void expect(bool ok, const char* what, long long got, long long want) {
@@ -54,7 +54,8 @@ int main(int argc, char** argv) {
     gl.GetQueryObjectuiv(q[1], GL_QUERY_RESULT, &samples);
     gl.GetQueryObjectuiv(q[2], GL_QUERY_RESULT, &ns);
     expect(fragments == 768, "app's fragment-invocations query", fragments, 768);
-    expect(samples == GLuint(args.width * args.height), "app's samples-passed query", samples, args.width * args.height);
+    expect(samples == GLuint(args.width * args.height), "app's samples-passed query", samples,
+           args.width * args.height);
     expect(ns > 0, "app's time-elapsed query", ns, 1);
     expect(gl.GetError() == GL_NO_ERROR, "glGetError after the swap", 1, 0);
   }

@@ -30,7 +30,7 @@
 #include <string>
 #include <vector>
 
-#include "probe_shadowing.h"
+#include "probe_shadowing.hpp"
 
 using namespace shadow_probe;
 
@@ -41,10 +41,18 @@ std::string fragment(int version) {
   s += version == 3 ? "// relinked: no manifest pass names this source\n" : "// PROBE_RELINK\n";
   s += "#define VARIANT_MARK 0\n";
   switch (version) {
-    case 1: s += "uniform uint u_a;\nuniform uint u_b;\n#define EXTRA 0u\n"; break;
-    case 2: s += "uniform uint u_new;\nuniform uint u_b;\nuniform uint u_a;\n#define EXTRA u_new\n"; break;
-    case 3: s += "uniform uint u_a;\nuniform uint u_b;\n#define EXTRA 0u\n"; break;
-    default: s += "uniform uint u_c[2];\nuniform uint u_a;\nuniform uint u_b;\n#define EXTRA u_c[1]\n"; break;
+    case 1:
+      s += "uniform uint u_a;\nuniform uint u_b;\n#define EXTRA 0u\n";
+      break;
+    case 2:
+      s += "uniform uint u_new;\nuniform uint u_b;\nuniform uint u_a;\n#define EXTRA u_new\n";
+      break;
+    case 3:
+      s += "uniform uint u_a;\nuniform uint u_b;\n#define EXTRA 0u\n";
+      break;
+    default:
+      s += "uniform uint u_c[2];\nuniform uint u_a;\nuniform uint u_b;\n#define EXTRA u_c[1]\n";
+      break;
   }
   s += "out uvec4 o;\n"
        "void main() {\n"
@@ -64,8 +72,8 @@ int main(int argc, char** argv) {
   EglWindow w;
   if (!open_current_window(probe.name(), egl, ContextKind::kCore45, 4, 4, &w)) return 2;
   std::vector<GLuint> shaders;
-  const GLuint prog = build_program(probe.name(), {{GL_VERTEX_SHADER, quad_vertex_shader()}, {GL_FRAGMENT_SHADER, fragment(1)}},
-                                    {}, &shaders);
+  const GLuint prog = build_program(
+      probe.name(), {{GL_VERTEX_SHADER, quad_vertex_shader()}, {GL_FRAGMENT_SHADER, fragment(1)}}, {}, &shaders);
   if (!prog) return 2;
   const GLuint fs = shaders[1];
   bind_fullscreen_quad(4, 4);

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "probe_shadowing.h"
+#include "probe_shadowing.hpp"
 
 using namespace shadow_probe;
 
@@ -70,9 +70,12 @@ constexpr int kUnits = 10;
 // The texel of the texture on `unit`, as the shader's slot shows it.
 void texel_words(int unit, uint32_t out[4]) {
   for (int c = 0; c < 4; ++c) {
-    if (unit < 6) out[c] = float_bits(static_cast<float>(unit * 10 + c + 1));
-    else if (unit < 8) out[c] = 0x80000000u + static_cast<uint32_t>(unit * 16 + c);
-    else out[c] = static_cast<uint32_t>(-(unit * 100 + c + 1));
+    if (unit < 6)
+      out[c] = float_bits(static_cast<float>(unit * 10 + c + 1));
+    else if (unit < 8)
+      out[c] = 0x80000000u + static_cast<uint32_t>(unit * 16 + c);
+    else
+      out[c] = static_cast<uint32_t>(-(unit * 100 + c + 1));
   }
 }
 
@@ -83,9 +86,12 @@ GLuint make_texture(int unit) {
   glBindTexture(GL_TEXTURE_2D, tex);
   uint32_t words[4];
   texel_words(unit, words);
-  if (unit < 6) glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, 1, 1, 0, GL_RGBA, GL_FLOAT, words);
-  else if (unit < 8) glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32UI, 1, 1, 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, words);
-  else glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32I, 1, 1, 0, GL_RGBA_INTEGER, GL_INT, words);
+  if (unit < 6)
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, 1, 1, 0, GL_RGBA, GL_FLOAT, words);
+  else if (unit < 8)
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32UI, 1, 1, 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, words);
+  else
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32I, 1, 1, 0, GL_RGBA_INTEGER, GL_INT, words);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   return tex;
@@ -111,7 +117,8 @@ int main(int argc, char** argv) {
   EglFns egl;
   EglWindow w;
   if (!open_current_window(probe.name(), egl, ContextKind::kCore45, 4, 4, &w)) return 2;
-  const GLuint prog = build_program(probe.name(), {{GL_VERTEX_SHADER, quad_vertex_shader()}, {GL_FRAGMENT_SHADER, kFragment}});
+  const GLuint prog =
+      build_program(probe.name(), {{GL_VERTEX_SHADER, quad_vertex_shader()}, {GL_FRAGMENT_SHADER, kFragment}});
   if (!prog) return 2;
   SlotTarget target;  // before the textures: it binds its own on the active unit
   if (!target.create(4, 4)) return 2;
@@ -171,8 +178,10 @@ int main(int argc, char** argv) {
       glUniform1i(l_b, u.b);
       glUniform1iv(l_u, 1, &u.u);
       glUniform1i(l_i, u.i);
-      if (p % 4 == 0) glUniform1iv(l_arr, 3, u.arr);  // the whole array
-      else for (int k = 0; k < 3; ++k) glUniform1i(l_arr + k, u.arr[k]);  // element by element
+      if (p % 4 == 0)
+        glUniform1iv(l_arr, 3, u.arr);  // the whole array
+      else
+        for (int k = 0; k < 3; ++k) glUniform1i(l_arr + k, u.arr[k]);  // element by element
       glUniform1f(l_x, 100.5f + p);
       glUniform3fv(l_hv, 1, hv);
       glUniform1fv(l_xa, 2, xa);
@@ -182,8 +191,10 @@ int main(int argc, char** argv) {
       glProgramUniform1iv(prog, l_b, 1, &u.b);
       glProgramUniform1i(prog, l_u, u.u);
       glProgramUniform1i(prog, l_i, u.i);
-      if (p % 4 == 1) for (int k = 0; k < 3; ++k) glProgramUniform1i(prog, l_arr + k, u.arr[k]);
-      else glProgramUniform1iv(prog, l_arr, 3, u.arr);
+      if (p % 4 == 1)
+        for (int k = 0; k < 3; ++k) glProgramUniform1i(prog, l_arr + k, u.arr[k]);
+      else
+        glProgramUniform1iv(prog, l_arr, 3, u.arr);
       glProgramUniform1f(prog, l_x, 100.5f + p);
       glProgramUniform3f(prog, l_hv, hv[0], hv[1], hv[2]);
       glProgramUniform1f(prog, l_xa, xa[0]);

@@ -10,16 +10,16 @@
 #include <string>
 #include <vector>
 
-#include "common/egl_setup.h"
-#include "common/direct_gl.h"
-#include "common/known_scene.h"
+#include "common/egl_setup.hpp"
+#include "common/direct_gl.hpp"
+#include "common/known_scene.hpp"
 
 namespace {
 std::string fragment_source(int blocks) {
   std::string s = "#version 430 core\nout vec4 frag;\n";
   for (int i = 0; i < blocks; ++i)
-    s += "layout(std430, binding = " + std::to_string(i) + ") readonly buffer B" + std::to_string(i) + " { vec4 v; } b" +
-         std::to_string(i) + ";\n";
+    s += "layout(std430, binding = " + std::to_string(i) + ") readonly buffer B" + std::to_string(i) +
+         " { vec4 v; } b" + std::to_string(i) + ";\n";
   s += "void main() {\n  vec4 sum = vec4(0.0);\n";
   for (int i = 0; i < blocks; ++i) s += "  sum += b" + std::to_string(i) + ".v;\n";
   s += "  frag = sum;\n}\n";
@@ -56,7 +56,8 @@ int main(int argc, char** argv) {
   std::vector<GLuint> buffers(static_cast<size_t>(blocks));
   glGenBuffers(blocks, buffers.data());
   for (GLint i = 0; i < blocks; ++i) {
-    const float v[4] = {(i + 1) / 255.0f / float(blocks), 0.5f / float(blocks), 0.25f / float(blocks), 1.0f / float(blocks)};
+    const float v[4] = {(i + 1) / 255.0f / float(blocks), 0.5f / float(blocks), 0.25f / float(blocks),
+                        1.0f / float(blocks)};
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(i), buffers[static_cast<size_t>(i)]);
     glBufferData(GL_SHADER_STORAGE_BUFFER, sizeof v, v, GL_STATIC_DRAW);
   }

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "probe_shadowing.h"
+#include "probe_shadowing.hpp"
 
 using namespace shadow_probe;
 
@@ -38,7 +38,8 @@ const char* const kFragment =
     "void main() {\n"
     "  ivec2 p = ivec2(gl_FragCoord.xy);\n"
     "  int i = p.y * 4 + p.x;\n"
-    "  o = i == 0 ? uvec4(uint(VARIANT_MARK), 0x600du, 0u, 0u) : i == 1 ? uvec4(u_pick(), 0u, 0u, 0u) : uvec4(0xffffffffu);\n"
+    "  o = i == 0 ? uvec4(uint(VARIANT_MARK), 0x600du, 0u, 0u) : i == 1 ? uvec4(u_pick(), 0u, 0u, 0u) : "
+    "uvec4(0xffffffffu);\n"
     "}\n";
 
 }  // namespace
@@ -49,7 +50,8 @@ int main(int argc, char** argv) {
   EglFns egl;
   EglWindow w;
   if (!open_current_window(probe.name(), egl, ContextKind::kCore45, 4, 4, &w)) return 2;
-  const GLuint prog = build_program(probe.name(), {{GL_VERTEX_SHADER, quad_vertex_shader()}, {GL_FRAGMENT_SHADER, kFragment}});
+  const GLuint prog =
+      build_program(probe.name(), {{GL_VERTEX_SHADER, quad_vertex_shader()}, {GL_FRAGMENT_SHADER, kFragment}});
   if (!prog) return 2;
   const GLuint index_b = glGetSubroutineIndex(prog, GL_FRAGMENT_SHADER, "pick_b");
   const GLuint index_c = glGetSubroutineIndex(prog, GL_FRAGMENT_SHADER, "pick_c");

@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <thread>
 
-#include "common/egl_setup.h"
-#include "common/known_scene.h"
+#include "common/egl_setup.hpp"
+#include "common/known_scene.hpp"
 
 int main(int argc, char** argv) {
   ProbeArgs args = parse_probe_args(argc, argv);

@@ -3,7 +3,7 @@
 // and not), arrays of basic types, structs, arrays of structs and a struct in a struct, plus
 // two uniforms with initialisers the app never sets (and location -1, set every frame, which GL
 // ignores). The fragment shader writes every component into its own slot of a GL_RGBA32UI
-// target (see probe_shadowing.h), so each read-back is the exact bits the driver's bound
+// target (see probe_shadowing.hpp), so each read-back is the exact bits the driver's bound
 // program saw. (Subroutine uniforms: probe_subroutines.)
 //
 // Each frame: glUseProgram; from frame 1 on a draw that must still show the previous frame's
@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "probe_shadowing.h"
+#include "probe_shadowing.hpp"
 
 using namespace shadow_probe;
 
@@ -44,30 +44,64 @@ struct Type {
 struct Leaf {
   std::string name;  // a GLSL expression: "u_v3", "u_sa[1].b", "u_t.inner.c"
   Type type;
-  int elements = 1;  // > 1: an array of basic type
+  int elements = 1;     // > 1: an array of basic type
   bool declare = true;  // false: a member of a struct declared by hand
 };
 
 const Type kFloat{"float", B::f, 1, 1}, kVec2{"vec2", B::f, 1, 2}, kVec3{"vec3", B::f, 1, 3}, kVec4{"vec4", B::f, 1, 4};
-const Type kInt{"int", B::i, 1, 1}, kIvec2{"ivec2", B::i, 1, 2}, kIvec3{"ivec3", B::i, 1, 3}, kIvec4{"ivec4", B::i, 1, 4};
-const Type kUint{"uint", B::u, 1, 1}, kUvec2{"uvec2", B::u, 1, 2}, kUvec3{"uvec3", B::u, 1, 3}, kUvec4{"uvec4", B::u, 1, 4};
-const Type kBool{"bool", B::b, 1, 1}, kBvec2{"bvec2", B::b, 1, 2}, kBvec3{"bvec3", B::b, 1, 3}, kBvec4{"bvec4", B::b, 1, 4};
-const Type kDouble{"double", B::d, 1, 1}, kDvec2{"dvec2", B::d, 1, 2}, kDvec3{"dvec3", B::d, 1, 3}, kDvec4{"dvec4", B::d, 1, 4};
+const Type kInt{"int", B::i, 1, 1}, kIvec2{"ivec2", B::i, 1, 2}, kIvec3{"ivec3", B::i, 1, 3},
+    kIvec4{"ivec4", B::i, 1, 4};
+const Type kUint{"uint", B::u, 1, 1}, kUvec2{"uvec2", B::u, 1, 2}, kUvec3{"uvec3", B::u, 1, 3},
+    kUvec4{"uvec4", B::u, 1, 4};
+const Type kBool{"bool", B::b, 1, 1}, kBvec2{"bvec2", B::b, 1, 2}, kBvec3{"bvec3", B::b, 1, 3},
+    kBvec4{"bvec4", B::b, 1, 4};
+const Type kDouble{"double", B::d, 1, 1}, kDvec2{"dvec2", B::d, 1, 2}, kDvec3{"dvec3", B::d, 1, 3},
+    kDvec4{"dvec4", B::d, 1, 4};
 
 std::vector<Leaf> leaves() {
-  std::vector<Leaf> l = {
-      {"u_f", kFloat}, {"u_v2", kVec2}, {"u_v3", kVec3}, {"u_v4", kVec4},
-      {"u_i", kInt}, {"u_iv2", kIvec2}, {"u_iv3", kIvec3}, {"u_iv4", kIvec4},
-      {"u_u", kUint}, {"u_uv2", kUvec2}, {"u_uv3", kUvec3}, {"u_uv4", kUvec4},
-      {"u_b", kBool}, {"u_bv2", kBvec2}, {"u_bv3", kBvec3}, {"u_bv4", kBvec4},
-      {"u_m2", {"mat2", B::f, 2, 2}}, {"u_m3", {"mat3", B::f, 3, 3}}, {"u_m4", {"mat4", B::f, 4, 4}},
-      {"u_m2x3", {"mat2x3", B::f, 2, 3}}, {"u_m2x4", {"mat2x4", B::f, 2, 4}}, {"u_m3x2", {"mat3x2", B::f, 3, 2}},
-      {"u_m3x4", {"mat3x4", B::f, 3, 4}}, {"u_m4x2", {"mat4x2", B::f, 4, 2}}, {"u_m4x3", {"mat4x3", B::f, 4, 3}},
-      {"u_d", kDouble}, {"u_dv2", kDvec2}, {"u_dv3", kDvec3}, {"u_dv4", kDvec4},
-      {"u_dm2", {"dmat2", B::d, 2, 2}}, {"u_dm3", {"dmat3", B::d, 3, 3}}, {"u_dm4", {"dmat4", B::d, 4, 4}},
-      {"u_dm2x3", {"dmat2x3", B::d, 2, 3}}, {"u_dm3x2", {"dmat3x2", B::d, 3, 2}}, {"u_dm4x2", {"dmat4x2", B::d, 4, 2}},
-      {"u_fa", kFloat, 4}, {"u_v3a", kVec3, 3}, {"u_ia", kInt, 5}, {"u_uv2a", kUvec2, 2}, {"u_ba", kBool, 3},
-      {"u_m2a", {"mat2", B::f, 2, 2}, 2}, {"u_m3x2a", {"mat3x2", B::f, 3, 2}, 2}, {"u_dv2a", kDvec2, 2}};
+  std::vector<Leaf> l = {{"u_f", kFloat},
+                         {"u_v2", kVec2},
+                         {"u_v3", kVec3},
+                         {"u_v4", kVec4},
+                         {"u_i", kInt},
+                         {"u_iv2", kIvec2},
+                         {"u_iv3", kIvec3},
+                         {"u_iv4", kIvec4},
+                         {"u_u", kUint},
+                         {"u_uv2", kUvec2},
+                         {"u_uv3", kUvec3},
+                         {"u_uv4", kUvec4},
+                         {"u_b", kBool},
+                         {"u_bv2", kBvec2},
+                         {"u_bv3", kBvec3},
+                         {"u_bv4", kBvec4},
+                         {"u_m2", {"mat2", B::f, 2, 2}},
+                         {"u_m3", {"mat3", B::f, 3, 3}},
+                         {"u_m4", {"mat4", B::f, 4, 4}},
+                         {"u_m2x3", {"mat2x3", B::f, 2, 3}},
+                         {"u_m2x4", {"mat2x4", B::f, 2, 4}},
+                         {"u_m3x2", {"mat3x2", B::f, 3, 2}},
+                         {"u_m3x4", {"mat3x4", B::f, 3, 4}},
+                         {"u_m4x2", {"mat4x2", B::f, 4, 2}},
+                         {"u_m4x3", {"mat4x3", B::f, 4, 3}},
+                         {"u_d", kDouble},
+                         {"u_dv2", kDvec2},
+                         {"u_dv3", kDvec3},
+                         {"u_dv4", kDvec4},
+                         {"u_dm2", {"dmat2", B::d, 2, 2}},
+                         {"u_dm3", {"dmat3", B::d, 3, 3}},
+                         {"u_dm4", {"dmat4", B::d, 4, 4}},
+                         {"u_dm2x3", {"dmat2x3", B::d, 2, 3}},
+                         {"u_dm3x2", {"dmat3x2", B::d, 3, 2}},
+                         {"u_dm4x2", {"dmat4x2", B::d, 4, 2}},
+                         {"u_fa", kFloat, 4},
+                         {"u_v3a", kVec3, 3},
+                         {"u_ia", kInt, 5},
+                         {"u_uv2a", kUvec2, 2},
+                         {"u_ba", kBool, 3},
+                         {"u_m2a", {"mat2", B::f, 2, 2}, 2},
+                         {"u_m3x2a", {"mat3x2", B::f, 3, 2}, 2},
+                         {"u_dv2a", kDvec2, 2}};
   // struct S { float a; vec3 b; int c[2]; mat2x3 m; bool f; uvec2 g; };
   auto s_members = [&l](const std::string& prefix) {
     l.push_back({prefix + ".a", kFloat, 1, false});
@@ -187,11 +221,20 @@ void expected_slot(const Leaf& l, const Slot& s, int p, uint32_t out[4]) {
   for (int r = 0; r < rows; ++r) {
     const int c = s.column * rows + r;
     switch (l.type.base) {
-      case B::f: out[r] = float_bits(value_f(p, s.leaf, s.element, c)); break;
-      case B::i: out[r] = static_cast<uint32_t>(value_i(p, s.leaf, s.element, c)); break;
-      case B::u: out[r] = value_u(p, s.leaf, s.element, c); break;
-      case B::b: out[r] = value_b(p, s.leaf, s.element, c) ? 1u : 0u; break;
-      case B::d: break;
+      case B::f:
+        out[r] = float_bits(value_f(p, s.leaf, s.element, c));
+        break;
+      case B::i:
+        out[r] = static_cast<uint32_t>(value_i(p, s.leaf, s.element, c));
+        break;
+      case B::u:
+        out[r] = value_u(p, s.leaf, s.element, c);
+        break;
+      case B::b:
+        out[r] = value_b(p, s.leaf, s.element, c) ? 1u : 0u;
+        break;
+      case B::d:
+        break;
     }
   }
 }
@@ -199,79 +242,150 @@ void expected_slot(const Leaf& l, const Slot& s, int p, uint32_t out[4]) {
 // Calls the vector setter of `n` components of base `call` (f, i, u or d): scalar arguments
 // (count 1) or the v form, glUniform* or glProgramUniform*.
 void set_vector(B call, int n, bool dsa, bool scalar_args, GLuint prog, GLint loc, GLsizei count, const void* data) {
-#define PROBE_VEC(SUF, T)                                                                                      \
-  {                                                                                                            \
-    const T* v = static_cast<const T*>(data);                                                                  \
-    switch (n) {                                                                                               \
-      case 1:                                                                                                  \
-        if (scalar_args) dsa ? glProgramUniform1##SUF(prog, loc, v[0]) : glUniform1##SUF(loc, v[0]);           \
-        else dsa ? glProgramUniform1##SUF##v(prog, loc, count, v) : glUniform1##SUF##v(loc, count, v);         \
-        return;                                                                                                \
-      case 2:                                                                                                  \
-        if (scalar_args) dsa ? glProgramUniform2##SUF(prog, loc, v[0], v[1]) : glUniform2##SUF(loc, v[0], v[1]); \
-        else dsa ? glProgramUniform2##SUF##v(prog, loc, count, v) : glUniform2##SUF##v(loc, count, v);         \
-        return;                                                                                                \
-      case 3:                                                                                                  \
-        if (scalar_args)                                                                                       \
+#define PROBE_VEC(SUF, T)                                                                                     \
+  {                                                                                                           \
+    const T* v = static_cast<const T*>(data);                                                                 \
+    switch (n) {                                                                                              \
+      case 1:                                                                                                 \
+        if (scalar_args)                                                                                      \
+          dsa ? glProgramUniform1##SUF(prog, loc, v[0]) : glUniform1##SUF(loc, v[0]);                         \
+        else                                                                                                  \
+          dsa ? glProgramUniform1##SUF##v(prog, loc, count, v) : glUniform1##SUF##v(loc, count, v);           \
+        return;                                                                                               \
+      case 2:                                                                                                 \
+        if (scalar_args)                                                                                      \
+          dsa ? glProgramUniform2##SUF(prog, loc, v[0], v[1]) : glUniform2##SUF(loc, v[0], v[1]);             \
+        else                                                                                                  \
+          dsa ? glProgramUniform2##SUF##v(prog, loc, count, v) : glUniform2##SUF##v(loc, count, v);           \
+        return;                                                                                               \
+      case 3:                                                                                                 \
+        if (scalar_args)                                                                                      \
           dsa ? glProgramUniform3##SUF(prog, loc, v[0], v[1], v[2]) : glUniform3##SUF(loc, v[0], v[1], v[2]); \
-        else dsa ? glProgramUniform3##SUF##v(prog, loc, count, v) : glUniform3##SUF##v(loc, count, v);         \
-        return;                                                                                                \
-      default:                                                                                                 \
-        if (scalar_args)                                                                                       \
+        else                                                                                                  \
+          dsa ? glProgramUniform3##SUF##v(prog, loc, count, v) : glUniform3##SUF##v(loc, count, v);           \
+        return;                                                                                               \
+      default:                                                                                                \
+        if (scalar_args)                                                                                      \
           dsa ? glProgramUniform4##SUF(prog, loc, v[0], v[1], v[2], v[3])                                     \
-              : glUniform4##SUF(loc, v[0], v[1], v[2], v[3]);                                                  \
-        else dsa ? glProgramUniform4##SUF##v(prog, loc, count, v) : glUniform4##SUF##v(loc, count, v);         \
-        return;                                                                                                \
-    }                                                                                                          \
+              : glUniform4##SUF(loc, v[0], v[1], v[2], v[3]);                                                 \
+        else                                                                                                  \
+          dsa ? glProgramUniform4##SUF##v(prog, loc, count, v) : glUniform4##SUF##v(loc, count, v);           \
+        return;                                                                                               \
+    }                                                                                                         \
   }
   switch (call) {
-    case B::f: PROBE_VEC(f, GLfloat)
-    case B::i: PROBE_VEC(i, GLint)
-    case B::u: PROBE_VEC(ui, GLuint)
-    case B::d: PROBE_VEC(d, GLdouble)
-    case B::b: return;
+    case B::f:
+      PROBE_VEC(f, GLfloat)
+    case B::i:
+      PROBE_VEC(i, GLint)
+    case B::u:
+      PROBE_VEC(ui, GLuint)
+    case B::d:
+      PROBE_VEC(d, GLdouble)
+    case B::b:
+      return;
   }
 #undef PROBE_VEC
 }
 
-void set_matrix_f(int cols, int rows, bool dsa, GLuint prog, GLint loc, GLsizei count, GLboolean transpose, const GLfloat* v) {
+void set_matrix_f(int cols, int rows, bool dsa, GLuint prog, GLint loc, GLsizei count, GLboolean transpose,
+                  const GLfloat* v) {
   using Plain = void (*)(GLint, GLsizei, GLboolean, const GLfloat*);
   using Dsa = void (*)(GLuint, GLint, GLsizei, GLboolean, const GLfloat*);
   Plain plain = nullptr;
   Dsa program = nullptr;
   switch (cols * 10 + rows) {
-    case 22: plain = glUniformMatrix2fv; program = glProgramUniformMatrix2fv; break;
-    case 33: plain = glUniformMatrix3fv; program = glProgramUniformMatrix3fv; break;
-    case 44: plain = glUniformMatrix4fv; program = glProgramUniformMatrix4fv; break;
-    case 23: plain = glUniformMatrix2x3fv; program = glProgramUniformMatrix2x3fv; break;
-    case 24: plain = glUniformMatrix2x4fv; program = glProgramUniformMatrix2x4fv; break;
-    case 32: plain = glUniformMatrix3x2fv; program = glProgramUniformMatrix3x2fv; break;
-    case 34: plain = glUniformMatrix3x4fv; program = glProgramUniformMatrix3x4fv; break;
-    case 42: plain = glUniformMatrix4x2fv; program = glProgramUniformMatrix4x2fv; break;
-    case 43: plain = glUniformMatrix4x3fv; program = glProgramUniformMatrix4x3fv; break;
+    case 22:
+      plain = glUniformMatrix2fv;
+      program = glProgramUniformMatrix2fv;
+      break;
+    case 33:
+      plain = glUniformMatrix3fv;
+      program = glProgramUniformMatrix3fv;
+      break;
+    case 44:
+      plain = glUniformMatrix4fv;
+      program = glProgramUniformMatrix4fv;
+      break;
+    case 23:
+      plain = glUniformMatrix2x3fv;
+      program = glProgramUniformMatrix2x3fv;
+      break;
+    case 24:
+      plain = glUniformMatrix2x4fv;
+      program = glProgramUniformMatrix2x4fv;
+      break;
+    case 32:
+      plain = glUniformMatrix3x2fv;
+      program = glProgramUniformMatrix3x2fv;
+      break;
+    case 34:
+      plain = glUniformMatrix3x4fv;
+      program = glProgramUniformMatrix3x4fv;
+      break;
+    case 42:
+      plain = glUniformMatrix4x2fv;
+      program = glProgramUniformMatrix4x2fv;
+      break;
+    case 43:
+      plain = glUniformMatrix4x3fv;
+      program = glProgramUniformMatrix4x3fv;
+      break;
   }
-  if (dsa) program(prog, loc, count, transpose, v);
-  else plain(loc, count, transpose, v);
+  if (dsa)
+    program(prog, loc, count, transpose, v);
+  else
+    plain(loc, count, transpose, v);
 }
 
-void set_matrix_d(int cols, int rows, bool dsa, GLuint prog, GLint loc, GLsizei count, GLboolean transpose, const GLdouble* v) {
+void set_matrix_d(int cols, int rows, bool dsa, GLuint prog, GLint loc, GLsizei count, GLboolean transpose,
+                  const GLdouble* v) {
   using Plain = void (*)(GLint, GLsizei, GLboolean, const GLdouble*);
   using Dsa = void (*)(GLuint, GLint, GLsizei, GLboolean, const GLdouble*);
   Plain plain = nullptr;
   Dsa program = nullptr;
   switch (cols * 10 + rows) {
-    case 22: plain = glUniformMatrix2dv; program = glProgramUniformMatrix2dv; break;
-    case 33: plain = glUniformMatrix3dv; program = glProgramUniformMatrix3dv; break;
-    case 44: plain = glUniformMatrix4dv; program = glProgramUniformMatrix4dv; break;
-    case 23: plain = glUniformMatrix2x3dv; program = glProgramUniformMatrix2x3dv; break;
-    case 24: plain = glUniformMatrix2x4dv; program = glProgramUniformMatrix2x4dv; break;
-    case 32: plain = glUniformMatrix3x2dv; program = glProgramUniformMatrix3x2dv; break;
-    case 34: plain = glUniformMatrix3x4dv; program = glProgramUniformMatrix3x4dv; break;
-    case 42: plain = glUniformMatrix4x2dv; program = glProgramUniformMatrix4x2dv; break;
-    case 43: plain = glUniformMatrix4x3dv; program = glProgramUniformMatrix4x3dv; break;
+    case 22:
+      plain = glUniformMatrix2dv;
+      program = glProgramUniformMatrix2dv;
+      break;
+    case 33:
+      plain = glUniformMatrix3dv;
+      program = glProgramUniformMatrix3dv;
+      break;
+    case 44:
+      plain = glUniformMatrix4dv;
+      program = glProgramUniformMatrix4dv;
+      break;
+    case 23:
+      plain = glUniformMatrix2x3dv;
+      program = glProgramUniformMatrix2x3dv;
+      break;
+    case 24:
+      plain = glUniformMatrix2x4dv;
+      program = glProgramUniformMatrix2x4dv;
+      break;
+    case 32:
+      plain = glUniformMatrix3x2dv;
+      program = glProgramUniformMatrix3x2dv;
+      break;
+    case 34:
+      plain = glUniformMatrix3x4dv;
+      program = glProgramUniformMatrix3x4dv;
+      break;
+    case 42:
+      plain = glUniformMatrix4x2dv;
+      program = glProgramUniformMatrix4x2dv;
+      break;
+    case 43:
+      plain = glUniformMatrix4x3dv;
+      program = glProgramUniformMatrix4x3dv;
+      break;
   }
-  if (dsa) program(prog, loc, count, transpose, v);
-  else plain(loc, count, transpose, v);
+  if (dsa)
+    program(prog, loc, count, transpose, v);
+  else
+    plain(loc, count, transpose, v);
 }
 
 // Sets elements [e0, e0 + count) of leaf `li` at `loc` to their phase-`p` values.
@@ -294,10 +408,18 @@ void set_elements(const Leaf& l, size_t li, GLuint prog, GLint loc, int e0, int 
     for (int k = 0; k < per; ++k) {
       const int c = source_component(k);
       switch (l.type.base) {
-        case B::f: f.push_back(value_f(p, li, e, c)); break;
-        case B::i: i.push_back(value_i(p, li, e, c)); break;
-        case B::u: u.push_back(value_u(p, li, e, c)); break;
-        case B::d: d.push_back(value_d(p, li, e, c)); break;
+        case B::f:
+          f.push_back(value_f(p, li, e, c));
+          break;
+        case B::i:
+          i.push_back(value_i(p, li, e, c));
+          break;
+        case B::u:
+          u.push_back(value_u(p, li, e, c));
+          break;
+        case B::d:
+          d.push_back(value_d(p, li, e, c));
+          break;
         case B::b: {
           const bool b = value_b(p, li, e, c);
           // Any non-zero value is true, whichever setter.
@@ -310,20 +432,29 @@ void set_elements(const Leaf& l, size_t li, GLuint prog, GLint loc, int e0, int 
     }
   if (cols > 1) {
     const GLboolean t = transpose ? GL_TRUE : GL_FALSE;
-    if (l.type.base == B::f) set_matrix_f(cols, rows, dsa, prog, loc, count, t, f.data());
-    else set_matrix_d(cols, rows, dsa, prog, loc, count, t, d.data());
+    if (l.type.base == B::f)
+      set_matrix_f(cols, rows, dsa, prog, loc, count, t, f.data());
+    else
+      set_matrix_d(cols, rows, dsa, prog, loc, count, t, d.data());
     return;
   }
   switch (l.type.base) {
-    case B::f: return set_vector(B::f, rows, dsa, scalar_args, prog, loc, count, f.data());
-    case B::i: return set_vector(B::i, rows, dsa, scalar_args, prog, loc, count, i.data());
-    case B::u: return set_vector(B::u, rows, dsa, scalar_args, prog, loc, count, u.data());
-    case B::d: return set_vector(B::d, rows, dsa, scalar_args, prog, loc, count, d.data());
+    case B::f:
+      return set_vector(B::f, rows, dsa, scalar_args, prog, loc, count, f.data());
+    case B::i:
+      return set_vector(B::i, rows, dsa, scalar_args, prog, loc, count, i.data());
+    case B::u:
+      return set_vector(B::u, rows, dsa, scalar_args, prog, loc, count, u.data());
+    case B::d:
+      return set_vector(B::d, rows, dsa, scalar_args, prog, loc, count, d.data());
     case B::b:
       switch (p % 3) {
-        case 0: return set_vector(B::i, rows, dsa, scalar_args, prog, loc, count, i.data());
-        case 1: return set_vector(B::f, rows, dsa, scalar_args, prog, loc, count, f.data());
-        default: return set_vector(B::u, rows, dsa, scalar_args, prog, loc, count, u.data());
+        case 0:
+          return set_vector(B::i, rows, dsa, scalar_args, prog, loc, count, i.data());
+        case 1:
+          return set_vector(B::f, rows, dsa, scalar_args, prog, loc, count, f.data());
+        default:
+          return set_vector(B::u, rows, dsa, scalar_args, prog, loc, count, u.data());
       }
   }
 }
@@ -342,8 +473,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "probe_uniforms: %zu slots do not fit\n", table.size());
     return 2;
   }
-  const GLuint prog = build_program(probe.name(), {{GL_VERTEX_SHADER, quad_vertex_shader()},
-                                                   {GL_FRAGMENT_SHADER, fragment_source(all, table)}});
+  const GLuint prog = build_program(
+      probe.name(), {{GL_VERTEX_SHADER, quad_vertex_shader()}, {GL_FRAGMENT_SHADER, fragment_source(all, table)}});
   if (!prog) return 2;
   // The app's locations: element 0 of each leaf, and arrays' elements at loc + i (checked).
   std::vector<GLint> loc(all.size(), -1);
@@ -356,7 +487,8 @@ int main(int argc, char** argv) {
     for (int e = 1; e < all[li].elements; ++e) {
       const std::string name = all[li].name + "[" + std::to_string(e) + "]";
       if (glGetUniformLocation(prog, name.c_str()) != loc[li] + e) {
-        std::fprintf(stderr, "probe_uniforms: %s is not at %s's location + %d\n", name.c_str(), all[li].name.c_str(), e);
+        std::fprintf(stderr, "probe_uniforms: %s is not at %s's location + %d\n", name.c_str(), all[li].name.c_str(),
+                     e);
         return 2;
       }
     }

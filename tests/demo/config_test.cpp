@@ -2,7 +2,7 @@
 
 #include <set>
 
-#include "config.h"
+#include "config.hpp"
 
 using demo::Config;
 using demo::Knob;

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 
-#include "render_fixture.h"
-#include "scenes/registry.h"
+#include "render_fixture.hpp"
+#include "scenes/registry.hpp"
 
 TEST_CASE("all 729 configurations render a non-blank frame without GL errors", "[demo][configurations]") {
   demo_test::gl_context();

@@ -8,8 +8,8 @@
 #include <iterator>
 #include <unistd.h>
 
-#include "render_fixture.h"
-#include "scenes/registry.h"
+#include "render_fixture.hpp"
+#include "scenes/registry.hpp"
 
 TEST_CASE("a frame renders bit-identically when repeated", "[demo][determinism]") {
   demo_test::gl_context();
@@ -36,13 +36,14 @@ std::string slurp(const std::filesystem::path& path) {
 TEST_CASE("two runs of the demo program dump identical images", "[demo][determinism]") {
   const std::filesystem::path program = GLBUDGET_BINARY_DIR "/testapps/demo/demo";
   REQUIRE(std::filesystem::exists(program));
-  const std::filesystem::path root = std::filesystem::temp_directory_path() /
-                                     ("demo_determinism_" + std::to_string(::getpid()));
+  const std::filesystem::path root =
+      std::filesystem::temp_directory_path() / ("demo_determinism_" + std::to_string(::getpid()));
   std::filesystem::remove_all(root);
   for (const char* run : {"a", "b"}) {
     const std::string command = program.string() +
                                 " --scene hall --detail 0.02 --width 96 --height 54 --frames 3 --start-frame 10"
-                                " --config 0,1,0,1,0,0 --dump " + (root / run).string() + " 2>/dev/null";
+                                " --config 0,1,0,1,0,0 --dump " +
+                                (root / run).string() + " 2>/dev/null";
     REQUIRE(std::system(command.c_str()) == 0);
   }
   int compared = 0;
@@ -61,8 +62,8 @@ TEST_CASE("two runs of the demo program dump identical images", "[demo][determin
 TEST_CASE("a GLX window under Xvfb renders the same frames as EGL surfaceless", "[demo][determinism]") {
   REQUIRE(std::system("command -v xvfb-run >/dev/null") == 0);  // xvfb is in scripts/packages.txt
   const std::filesystem::path program = GLBUDGET_BINARY_DIR "/testapps/demo/demo";
-  const std::filesystem::path root = std::filesystem::temp_directory_path() /
-                                     ("demo_glx_" + std::to_string(::getpid()));
+  const std::filesystem::path root =
+      std::filesystem::temp_directory_path() / ("demo_glx_" + std::to_string(::getpid()));
   std::filesystem::remove_all(root);
   const std::string args = " --scene valley --detail 0.02 --width 96 --height 54 --frames 2 --start-frame 5 --dump ";
   const std::string egl = program.string() + args + (root / "egl").string() + " 2>/dev/null";

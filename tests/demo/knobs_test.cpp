@@ -2,8 +2,8 @@
 // can see it (fragments, draws); in-shader knobs reach the driver as #defines and uniforms.
 #include <catch2/catch.hpp>
 
-#include "render_fixture.h"
-#include "scenes/registry.h"
+#include "render_fixture.hpp"
+#include "scenes/registry.hpp"
 
 using demo::Config;
 using demo::Knob;
@@ -27,8 +27,10 @@ GLint uniform_value(GLuint program, const char* name) {
 }
 
 struct Fixture {
-  Fixture() : context(demo_test::gl_context()), scene(*demo::make_scene("hall", 0.05f)),
-              renderer(scene, demo_test::kWidth, demo_test::kHeight) {}
+  Fixture()
+      : context(demo_test::gl_context()),
+        scene(*demo::make_scene("hall", 0.05f)),
+        renderer(scene, demo_test::kWidth, demo_test::kHeight) {}
   demo::GlContext& context;
   demo::Scene scene;
   demo::Renderer renderer;
@@ -117,7 +119,8 @@ TEST_CASE_METHOD(Fixture, "antialiasing: FXAA 32 steps, 2 steps, then no pass", 
   const auto f0 = render(renderer, with(Knob::Antialiasing, 0), kTime);
   const auto f1 = render(renderer, with(Knob::Antialiasing, 1), kTime);
   const auto f2 = render(renderer, with(Knob::Antialiasing, 2), kTime);
-  CHECK(demo_test::fragment_source(f0[Pass::Antialiasing].program).find("#define FXAA_STEPS 32\n") != std::string::npos);
+  CHECK(demo_test::fragment_source(f0[Pass::Antialiasing].program).find("#define FXAA_STEPS 32\n") !=
+        std::string::npos);
   CHECK(demo_test::fragment_source(f1[Pass::Antialiasing].program).find("#define FXAA_STEPS 2\n") != std::string::npos);
   // One invocation per window pixel, give or take llvmpipe's block counting at the edges.
   const auto pixels = static_cast<double>(demo_test::kWidth * demo_test::kHeight);

@@ -1,4 +1,4 @@
-#include "render_fixture.h"
+#include "render_fixture.hpp"
 
 #include <cstdlib>
 #include <memory>

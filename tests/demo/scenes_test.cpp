@@ -5,8 +5,8 @@
 #include <cmath>
 #include <cstring>
 
-#include "gpu_scene.h"
-#include "scenes/registry.h"
+#include "gpu_scene.hpp"
+#include "scenes/registry.hpp"
 
 namespace {
 
@@ -39,7 +39,8 @@ struct PaperRow {
 }  // namespace
 
 TEST_CASE("scenes match the paper's Table 3 at detail 1", "[demo][scenes]") {
-  const PaperRow rows[] = {{"hall", 229.4e3, 23}, {"sponza", 262.1e3, 381}, {"valley", 143.3e3, 61}, {"subway", 526.6e3, 453}};
+  const PaperRow rows[] = {
+      {"hall", 229.4e3, 23}, {"sponza", 262.1e3, 381}, {"valley", 143.3e3, 61}, {"subway", 526.6e3, 453}};
   for (const PaperRow& row : rows) {
     INFO(row.name);
     const auto scene = demo::make_scene(row.name, 1.0f);

@@ -14,91 +14,91 @@ namespace {
 
 // A render scale (area 1, 0.64, 0.36) over a scene pass, and a shadow map scaling itself.
 ConfigurationSpace scaled_space() {
-    std::vector<PassVariants> passes;
-    passes.push_back({"resolution", {{0, 0, 0, 1.0}, {0, 0, 0, 0.64}, {0, 0, 0, 0.36}}, {"scene"}});
-    passes.push_back({"scene", {{10, 100, 2}, {10, 50, 1}}, {}});
-    passes.push_back({"shadows", {{10, 0, 0, 1.0}, {10, 0, 0, 0.25}}, {"shadows"}});
-    return ConfigurationSpace(passes);
+  std::vector<PassVariants> passes;
+  passes.push_back({"resolution", {{0, 0, 0, 1.0}, {0, 0, 0, 0.64}, {0, 0, 0, 0.36}}, {"scene"}});
+  passes.push_back({"scene", {{10, 100, 2}, {10, 50, 1}}, {}});
+  passes.push_back({"shadows", {{10, 0, 0, 1.0}, {10, 0, 0, 0.25}}, {"shadows"}});
+  return ConfigurationSpace(passes);
 }
 
 ConfiguredSample frame(const Configuration& c, double scene_fragments, double shadow_fragments) {
-    return {{15.0, {{"scene", {10, 1000, scene_fragments}}, {"shadows", {5, 500, shadow_fragments}}}}, c};
+  return {{15.0, {{"scene", {10, 1000, scene_fragments}}, {"shadows", {5, 500, shadow_fragments}}}}, c};
 }
 
 }  // namespace
 
 TEST_CASE("fragment scales start as declared and take the measured ratio of a level seen often enough",
           "[model][scales]") {
-    const ConfigurationSpace space = scaled_space();
-    const FragmentScales declared(space);
-    CHECK(declared.at(1, 0, 1) == 0.64);
-    CHECK(declared.at(2, 2, 1) == 0.25);
-    CHECK(declared.at(1, 2, 1) == 1.0);  // the shadow map does not scale the scene
-    CHECK(!declared.measured(1, 0, 2));
+  const ConfigurationSpace space = scaled_space();
+  const FragmentScales declared(space);
+  CHECK(declared.at(1, 0, 1) == 0.64);
+  CHECK(declared.at(2, 2, 1) == 0.25);
+  CHECK(declared.at(1, 2, 1) == 1.0);  // the shadow map does not scale the scene
+  CHECK(!declared.measured(1, 0, 2));
 
-    std::vector<ConfiguredSample> history;
-    for (int t = 0; t < 10; ++t) history.push_back(frame({0, 0, 0}, 1000.0 + t, 4000.0));
-    for (int t = 0; t < 10; ++t) history.push_back(frame({2, 0, 1}, 480.0 + 0.48 * t, 1200.0));
-    for (int t = 0; t < 4; ++t) history.push_back(frame({1, 0, 0}, 10.0, 4000.0));  // too few to measure
-    const FragmentScales measured = measure_fragment_scales(history, space, 5);
-    CHECK(measured.at(1, 0, 0) == 1.0);  // the anchor keeps its declared scale
-    CHECK(measured.at(1, 0, 2) == Approx(0.48));
-    CHECK(measured.measured(1, 0, 2));
-    CHECK(measured.at(1, 0, 1) == 0.64);  // four frames: still declared
-    CHECK(measured.at(2, 2, 1) == Approx(0.3));
+  std::vector<ConfiguredSample> history;
+  for (int t = 0; t < 10; ++t) history.push_back(frame({0, 0, 0}, 1000.0 + t, 4000.0));
+  for (int t = 0; t < 10; ++t) history.push_back(frame({2, 0, 1}, 480.0 + 0.48 * t, 1200.0));
+  for (int t = 0; t < 4; ++t) history.push_back(frame({1, 0, 0}, 10.0, 4000.0));  // too few to measure
+  const FragmentScales measured = measure_fragment_scales(history, space, 5);
+  CHECK(measured.at(1, 0, 0) == 1.0);  // the anchor keeps its declared scale
+  CHECK(measured.at(1, 0, 2) == Approx(0.48));
+  CHECK(measured.measured(1, 0, 2));
+  CHECK(measured.at(1, 0, 1) == 0.64);  // four frames: still declared
+  CHECK(measured.at(2, 2, 1) == Approx(0.3));
 
-    // Without the full-scale level, the largest measured level anchors at its declared scale.
-    std::vector<ConfiguredSample> low(history.begin() + 10, history.begin() + 20);
-    for (int t = 0; t < 10; ++t) low.push_back(frame({1, 0, 1}, 770.0, 1200.0));
-    const FragmentScales anchored = measure_fragment_scales(low, space, 5);
-    CHECK(anchored.at(1, 0, 1) == 0.64);
-    CHECK(anchored.at(1, 0, 2) == Approx(0.64 * 482.16 / 770.0));
+  // Without the full-scale level, the largest measured level anchors at its declared scale.
+  std::vector<ConfiguredSample> low(history.begin() + 10, history.begin() + 20);
+  for (int t = 0; t < 10; ++t) low.push_back(frame({1, 0, 1}, 770.0, 1200.0));
+  const FragmentScales anchored = measure_fragment_scales(low, space, 5);
+  CHECK(anchored.at(1, 0, 1) == 0.64);
+  CHECK(anchored.at(1, 0, 2) == Approx(0.64 * 482.16 / 770.0));
 }
 
 TEST_CASE("fragment scales ignore frames that cannot tell and passes scaled twice", "[model][scales][extremes]") {
-    std::vector<PassVariants> passes;
-    passes.push_back({"resolution", {{0, 0, 0, 1.0}, {0, 0, 0, 0.25}}, {"scene"}});
-    passes.push_back({"scene", {{10, 100, 2}, {0, 0, 0, 1.0, false}}, {"scene"}});  // scaled twice; a level that skips it
-    const ConfigurationSpace twice(passes);
-    std::vector<ConfiguredSample> history;
-    for (int t = 0; t < 10; ++t) {
-        history.push_back({{15.0, {{"scene", {1, 1, 1000.0}}}}, {0, 0}});
-        history.push_back({{15.0, {{"scene", {1, 1, 500.0}}}}, {1, 0}});
-    }
-    CHECK(!measure_fragment_scales(history, twice, 5).measured(1, 0, 1));
+  std::vector<PassVariants> passes;
+  passes.push_back({"resolution", {{0, 0, 0, 1.0}, {0, 0, 0, 0.25}}, {"scene"}});
+  passes.push_back({"scene", {{10, 100, 2}, {0, 0, 0, 1.0, false}}, {"scene"}});  // scaled twice; a level that skips it
+  const ConfigurationSpace twice(passes);
+  std::vector<ConfiguredSample> history;
+  for (int t = 0; t < 10; ++t) {
+    history.push_back({{15.0, {{"scene", {1, 1, 1000.0}}}}, {0, 0}});
+    history.push_back({{15.0, {{"scene", {1, 1, 500.0}}}}, {1, 0}});
+  }
+  CHECK(!measure_fragment_scales(history, twice, 5).measured(1, 0, 1));
 
-    const ConfigurationSpace space = scaled_space();
-    std::vector<ConfiguredSample> broken;
-    for (int t = 0; t < 10; ++t) {
-        broken.push_back(frame({0, 0, 0}, 1000.0, 4000.0));
-        broken.push_back(frame({2, 0, 0}, std::nan(""), 4000.0));  // not measured
-        broken.push_back(frame({2, 0, 0}, 0.0, 4000.0));           // drew nothing
-        broken.push_back(frame({7, 0, 0}, 10.0, 4000.0));          // outside the space
-    }
-    const FragmentScales scales = measure_fragment_scales(broken, space, 5);
-    CHECK(!scales.measured(1, 0, 2));
-    CHECK(scales.at(1, 0, 2) == 0.36);
-    CHECK(measure_fragment_scales({}, space).at(1, 0, 2) == 0.36);
+  const ConfigurationSpace space = scaled_space();
+  std::vector<ConfiguredSample> broken;
+  for (int t = 0; t < 10; ++t) {
+    broken.push_back(frame({0, 0, 0}, 1000.0, 4000.0));
+    broken.push_back(frame({2, 0, 0}, std::nan(""), 4000.0));  // not measured
+    broken.push_back(frame({2, 0, 0}, 0.0, 4000.0));           // drew nothing
+    broken.push_back(frame({7, 0, 0}, 10.0, 4000.0));          // outside the space
+  }
+  const FragmentScales scales = measure_fragment_scales(broken, space, 5);
+  CHECK(!scales.measured(1, 0, 2));
+  CHECK(scales.at(1, 0, 2) == 0.36);
+  CHECK(measure_fragment_scales({}, space).at(1, 0, 2) == 0.36);
 }
 
 TEST_CASE("the predictor converts counts between levels with the measured scales", "[model][scales]") {
-    const ConfigurationSpace space = scaled_space();
-    PowerModel model(synthetic_profile());
-    model.set("scene", {0.0, 0.0, 50.0});
-    model.set("shadows", {0.0, 0.0, 10.0});
-    ConfigurationPredictor predictor(space, model, {2, 0, 0}, {});
-    // A frame at render scale 0.6 drew 480 fragments where full scale draws 1000.
-    const std::vector<PassFrame> counts{{"scene", {10, 1000, 4.8e6}}, {"shadows", {5, 500, 1.0e6}}};
-    FragmentScales scales(space);
-    scales.set(1, 0, 2, 0.48);
-    predictor.set_fragment_scales(scales);
-    predictor.set_frame(counts, {2, 0, 0});
-    PowerModel full = model;
-    const std::vector<PassFrame> at_full{{"scene", {10, 1000, 1.0e7}}, {"shadows", {5, 500, 1.0e6}}};
-    CHECK(predictor.predict({0, 0, 0}) == Approx(full.predict_power(at_full)).epsilon(1e-12));
-    // With the declared area the same frame would claim 4.8e6 / 0.36 fragments at full scale.
-    predictor.set_fragment_scales(FragmentScales(space));
-    predictor.set_frame(counts, {2, 0, 0});
-    const std::vector<PassFrame> by_area{{"scene", {10, 1000, 4.8e6 / 0.36}}, {"shadows", {5, 500, 1.0e6}}};
-    CHECK(predictor.predict({0, 0, 0}) == Approx(full.predict_power(by_area)).epsilon(1e-12));
+  const ConfigurationSpace space = scaled_space();
+  PowerModel model(synthetic_profile());
+  model.set("scene", {0.0, 0.0, 50.0});
+  model.set("shadows", {0.0, 0.0, 10.0});
+  ConfigurationPredictor predictor(space, model, {2, 0, 0}, {});
+  // A frame at render scale 0.6 drew 480 fragments where full scale draws 1000.
+  const std::vector<PassFrame> counts{{"scene", {10, 1000, 4.8e6}}, {"shadows", {5, 500, 1.0e6}}};
+  FragmentScales scales(space);
+  scales.set(1, 0, 2, 0.48);
+  predictor.set_fragment_scales(scales);
+  predictor.set_frame(counts, {2, 0, 0});
+  PowerModel full = model;
+  const std::vector<PassFrame> at_full{{"scene", {10, 1000, 1.0e7}}, {"shadows", {5, 500, 1.0e6}}};
+  CHECK(predictor.predict({0, 0, 0}) == Approx(full.predict_power(at_full)).epsilon(1e-12));
+  // With the declared area the same frame would claim 4.8e6 / 0.36 fragments at full scale.
+  predictor.set_fragment_scales(FragmentScales(space));
+  predictor.set_frame(counts, {2, 0, 0});
+  const std::vector<PassFrame> by_area{{"scene", {10, 1000, 4.8e6 / 0.36}}, {"shadows", {5, 500, 1.0e6}}};
+  CHECK(predictor.predict({0, 0, 0}) == Approx(full.predict_power(by_area)).epsilon(1e-12));
 }

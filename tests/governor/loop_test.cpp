@@ -31,7 +31,7 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr std::int64_t kFrameNs = 16'666'667;  // 60 fps
 constexpr int kFps = 60;
-constexpr double kNoiseW = 0.2;                // the sensor's noise (0.5 % of P_M - P_m)
+constexpr double kNoiseW = 0.2;  // the sensor's noise (0.5 % of P_M - P_m)
 // How far above a budget the truth may be and still count as within it: twice the hidden
 // model's noise per frame, sqrt(0.2^2 + 0.27^2) W, the sensor's and that of the frames' 10 %
 // jitter in counts (0.27 W measured along the camera path below). A selection sees one frame.
@@ -43,57 +43,57 @@ constexpr int kConverged = 10 * kFps;
 // Errors that do not follow power: passes weigh differently and the middle level of some is
 // nearly free, so the search has to trade.
 ErrorTable test_errors(const model::ConfigurationSpace& space) {
-    ErrorTable table(space);
-    const double worst[] = {0.04, 0.02, 0.03, 0.015, 0.008, 0.01};
-    const double middle[] = {0.3, 0.5, 0.1, 0.6, 0.4, 0.2};
-    for (std::size_t i = 0; i < 6; ++i) {
-        REQUIRE(table.set(i, 1, middle[i] * worst[i]));
-        REQUIRE(table.set(i, 2, worst[i]));
-    }
-    return table;
+  ErrorTable table(space);
+  const double worst[] = {0.04, 0.02, 0.03, 0.015, 0.008, 0.01};
+  const double middle[] = {0.3, 0.5, 0.1, 0.6, 0.4, 0.2};
+  for (std::size_t i = 0; i < 6; ++i) {
+    REQUIRE(table.set(i, 1, middle[i] * worst[i]));
+    REQUIRE(table.set(i, 2, worst[i]));
+  }
+  return table;
 }
 
 // The hidden model's power of every configuration for one frame's counts, from per-pass
 // per-level loads (alpha is additive over passes).
 struct Truth {
-    const HiddenModel& hidden;
-    std::vector<std::vector<double>> alpha;  // [pass][level]
+  const HiddenModel& hidden;
+  std::vector<std::vector<double>> alpha;  // [pass][level]
 
-    Truth(const HiddenModel& h, const std::vector<model::PassFrame>& frame) : hidden(h) {
-        const model::PlatformProfile profile = model::testing::synthetic_profile();
-        for (std::size_t i = 0; i < hidden.space.pass_count(); ++i) {
-            std::vector<double> levels;
-            for (std::size_t l = 0; l < hidden.space.passes()[i].levels.size(); ++l) {
-                levels.push_back(model::pass_alpha(profile, hidden.coefficients(i, static_cast<int>(l)), frame[i].counts));
-            }
-            alpha.push_back(levels);
-        }
+  Truth(const HiddenModel& h, const std::vector<model::PassFrame>& frame) : hidden(h) {
+    const model::PlatformProfile profile = model::testing::synthetic_profile();
+    for (std::size_t i = 0; i < hidden.space.pass_count(); ++i) {
+      std::vector<double> levels;
+      for (std::size_t l = 0; l < hidden.space.passes()[i].levels.size(); ++l) {
+        levels.push_back(model::pass_alpha(profile, hidden.coefficients(i, static_cast<int>(l)), frame[i].counts));
+      }
+      alpha.push_back(levels);
     }
-    double power(const Configuration& c) const {
-        double a = 0.0;
-        for (std::size_t i = 0; i < alpha.size(); ++i) a += alpha[i][static_cast<std::size_t>(c[i])];
-        return model::power_from_alpha(model::testing::synthetic_profile(), a);
+  }
+  double power(const Configuration& c) const {
+    double a = 0.0;
+    for (std::size_t i = 0; i < alpha.size(); ++i) a += alpha[i][static_cast<std::size_t>(c[i])];
+    return model::power_from_alpha(model::testing::synthetic_profile(), a);
+  }
+  double extreme(bool highest) const {
+    double a = 0.0;
+    for (const std::vector<double>& levels : alpha) {
+      a += highest ? *std::max_element(levels.begin(), levels.end()) : *std::min_element(levels.begin(), levels.end());
     }
-    double extreme(bool highest) const {
-        double a = 0.0;
-        for (const std::vector<double>& levels : alpha) {
-            a += highest ? *std::max_element(levels.begin(), levels.end()) : *std::min_element(levels.begin(), levels.end());
-        }
-        return model::power_from_alpha(model::testing::synthetic_profile(), a);
-    }
-    // The budget in watts the truth gives for this frame.
-    double budget_w(const Budget& budget) const {
-        if (budget.kind == Budget::Kind::Watts) return budget.value;
-        if (budget.kind == Budget::Kind::Off) return std::numeric_limits<double>::infinity();
-        return (1.0 - budget.value) * extreme(false) + budget.value * extreme(true);
-    }
+    return model::power_from_alpha(model::testing::synthetic_profile(), a);
+  }
+  // The budget in watts the truth gives for this frame.
+  double budget_w(const Budget& budget) const {
+    if (budget.kind == Budget::Kind::Watts) return budget.value;
+    if (budget.kind == Budget::Kind::Off) return std::numeric_limits<double>::infinity();
+    return (1.0 - budget.value) * extreme(false) + budget.value * extreme(true);
+  }
 };
 
 struct Step {
-    FrameRecord record;
-    Decision decision;
-    double true_power_w = 0.0;
-    Configuration target;  // the governor's target after the frame
+  FrameRecord record;
+  Decision decision;
+  double true_power_w = 0.0;
+  Configuration target;  // the governor's target after the frame
 };
 
 // The app: draws frame k in the configuration of decision k - 1 (the first in `start`), along
@@ -102,490 +102,492 @@ struct Step {
 // second's mean power moves by up to 1.2 W in 3 s, slow enough for a selection every 200
 // frames to follow; at the path's own speed its power swings by 10 W in 2 s.
 class App {
-public:
-    // `unseen`: power a configuration draws beyond what the hidden model (and so the counts)
-    // explain, e.g. a level whose saving the model misjudges; measured, never predicted.
-    App(GovernorSettings settings, Configuration start = Configuration(6, 0), unsigned seed = 7, int slow = 64,
-        std::function<double(const Configuration&)> unseen = {})
-        : unseen_(std::move(unseen)),
-          hidden_(model::testing::six_pass_hidden_model()),
-          scene_(hidden_, kNoiseW, seed),
-          governor_(model::testing::synthetic_profile(), hidden_.space, test_errors(hidden_.space), settings),
-          drawn_(std::move(start)),
-          slow_(slow) {}
+ public:
+  // `unseen`: power a configuration draws beyond what the hidden model (and so the counts)
+  // explain, e.g. a level whose saving the model misjudges; measured, never predicted.
+  App(GovernorSettings settings, Configuration start = Configuration(6, 0), unsigned seed = 7, int slow = 64,
+      std::function<double(const Configuration&)> unseen = {})
+      : unseen_(std::move(unseen)),
+        hidden_(model::testing::six_pass_hidden_model()),
+        scene_(hidden_, kNoiseW, seed),
+        governor_(model::testing::synthetic_profile(), hidden_.space, test_errors(hidden_.space), settings),
+        drawn_(std::move(start)),
+        slow_(slow) {}
 
-    // `power` overrides the measured power (NaN: missing); `probe` marks a probe frame, whose
-    // power and counts are those of twice the frame.
-    Step step(std::optional<double> power = std::nullopt, bool probe = false) {
-        Step s;
-        s.record.frame = frame_;
-        s.record.time_ns = static_cast<std::int64_t>(frame_) * kFrameNs;
-        s.record.configuration = drawn_;
-        s.record.probe = probe;
-        const model::FrameSample sample = scene_.sample(static_cast<int>(frame_) / slow_, drawn_);
-        s.record.passes = sample.passes;
-        s.record.power_w = power ? *power : sample.power_w;
-        s.true_power_w = scene_.true_power(sample.passes, drawn_);
-        if (unseen_) {
-            s.true_power_w += unseen_(drawn_);
-            if (!power) s.record.power_w += unseen_(drawn_);
-        }
-        if (probe) {
-            for (model::PassFrame& p : s.record.passes) p.counts.fragments *= 2.0;
-            s.record.power_w = 1000.0;
-        }
-        s.decision = governor_.on_frame(s.record);
-        s.target = governor_.target();
-        drawn_ = s.decision.next;
-        ++frame_;
-        return s;
+  // `power` overrides the measured power (NaN: missing); `probe` marks a probe frame, whose
+  // power and counts are those of twice the frame.
+  Step step(std::optional<double> power = std::nullopt, bool probe = false) {
+    Step s;
+    s.record.frame = frame_;
+    s.record.time_ns = static_cast<std::int64_t>(frame_) * kFrameNs;
+    s.record.configuration = drawn_;
+    s.record.probe = probe;
+    const model::FrameSample sample = scene_.sample(static_cast<int>(frame_) / slow_, drawn_);
+    s.record.passes = sample.passes;
+    s.record.power_w = power ? *power : sample.power_w;
+    s.true_power_w = scene_.true_power(sample.passes, drawn_);
+    if (unseen_) {
+      s.true_power_w += unseen_(drawn_);
+      if (!power) s.record.power_w += unseen_(drawn_);
     }
-    std::vector<Step> run(int frames) {
-        std::vector<Step> steps;
-        for (int k = 0; k < frames; ++k) steps.push_back(step());
-        return steps;
+    if (probe) {
+      for (model::PassFrame& p : s.record.passes) p.counts.fragments *= 2.0;
+      s.record.power_w = 1000.0;
     }
+    s.decision = governor_.on_frame(s.record);
+    s.target = governor_.target();
+    drawn_ = s.decision.next;
+    ++frame_;
+    return s;
+  }
+  std::vector<Step> run(int frames) {
+    std::vector<Step> steps;
+    for (int k = 0; k < frames; ++k) steps.push_back(step());
+    return steps;
+  }
 
-    Governor& governor() { return governor_; }
-    const HiddenModel& hidden() const { return hidden_; }
+  Governor& governor() { return governor_; }
+  const HiddenModel& hidden() const { return hidden_; }
 
-private:
-    std::function<double(const Configuration&)> unseen_;
-    HiddenModel hidden_;
-    SceneGenerator scene_;
-    Governor governor_;
-    Configuration drawn_;
-    std::uint64_t frame_ = 0;
-    int slow_;
+ private:
+  std::function<double(const Configuration&)> unseen_;
+  HiddenModel hidden_;
+  SceneGenerator scene_;
+  Governor governor_;
+  Configuration drawn_;
+  std::uint64_t frame_ = 0;
+  int slow_;
 };
 
 GovernorSettings power_budget(const std::string& text) {
-    GovernorSettings settings;
-    settings.power = *model::parse_budget(text);
-    return settings;
+  GovernorSettings settings;
+  settings.power = *model::parse_budget(text);
+  return settings;
 }
 
 bool has_note(const Governor& governor, const std::string& part) {
-    for (const std::string& note : governor.notes()) {
-        if (note.find(part) != std::string::npos) return true;
-    }
-    return false;
+  for (const std::string& note : governor.notes()) {
+    if (note.find(part) != std::string::npos) return true;
+  }
+  return false;
 }
 
 // Share of the 1-s windows after convergence in which the selected configuration's mean true
 // power is within the mean of the frames' true budgets. (What is drawn during a transition
 // passes between the old and the new configuration, and may exceed both: the paper's filter.)
 double share_of_windows_within(const App& app, const std::vector<Step>& steps, const Budget& budget) {
-    int windows = 0, within = 0;
-    for (std::size_t start = kConverged; start + kFps <= steps.size(); start += kFps) {
-        double power = 0.0, limit = 0.0;
-        for (std::size_t k = start; k < start + kFps; ++k) {
-            power += Truth(app.hidden(), steps[k].record.passes).power(steps[k].target);
-            limit += Truth(app.hidden(), steps[k].record.passes).budget_w(budget);
-        }
-        ++windows;
-        if (power <= limit + kToleranceW * kFps) ++within;
+  int windows = 0, within = 0;
+  for (std::size_t start = kConverged; start + kFps <= steps.size(); start += kFps) {
+    double power = 0.0, limit = 0.0;
+    for (std::size_t k = start; k < start + kFps; ++k) {
+      power += Truth(app.hidden(), steps[k].record.passes).power(steps[k].target);
+      limit += Truth(app.hidden(), steps[k].record.passes).budget_w(budget);
     }
-    return windows ? static_cast<double>(within) / windows : 0.0;
+    ++windows;
+    if (power <= limit + kToleranceW * kFps) ++within;
+  }
+  return windows ? static_cast<double>(within) / windows : 0.0;
 }
 
 // At every selection after convergence: the target's true power is within the budget, and no
 // configuration with lower estimated error is safely (by the tolerance) within it too.
 void check_selections(const App& app, const Governor& governor, const std::vector<Step>& steps, const Budget& budget) {
-    std::vector<double> errors;
-    governor.errors().estimate_all(errors);
-    int checked = 0;
-    for (std::size_t k = kConverged; k < steps.size(); ++k) {
-        if (steps[k].decision.event != Event::select) continue;
-        ++checked;
-        const Truth truth(app.hidden(), steps[k].record.passes);
-        const double limit = truth.budget_w(budget);
-        const Configuration& chosen = steps[k].target;
-        const double chosen_error = governor.errors().estimate(chosen);
-        double lowest_safe = std::numeric_limits<double>::infinity();
-        for (std::size_t i = 0; i < errors.size(); ++i) {
-            if (truth.power(governor.space().decode(i)) <= limit - kToleranceW) lowest_safe = std::min(lowest_safe, errors[i]);
-        }
-        INFO("frame " << k << ": chosen error " << chosen_error << ", power " << truth.power(chosen) << " W, budget "
-                      << limit << " W");
-        CHECK(truth.power(chosen) <= limit + kToleranceW);
-        CHECK(chosen_error <= lowest_safe + 1e-12);
+  std::vector<double> errors;
+  governor.errors().estimate_all(errors);
+  int checked = 0;
+  for (std::size_t k = kConverged; k < steps.size(); ++k) {
+    if (steps[k].decision.event != Event::select) continue;
+    ++checked;
+    const Truth truth(app.hidden(), steps[k].record.passes);
+    const double limit = truth.budget_w(budget);
+    const Configuration& chosen = steps[k].target;
+    const double chosen_error = governor.errors().estimate(chosen);
+    double lowest_safe = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < errors.size(); ++i) {
+      if (truth.power(governor.space().decode(i)) <= limit - kToleranceW)
+        lowest_safe = std::min(lowest_safe, errors[i]);
     }
-    CHECK(checked >= 5);
+    INFO("frame " << k << ": chosen error " << chosen_error << ", power " << truth.power(chosen) << " W, budget "
+                  << limit << " W");
+    CHECK(truth.power(chosen) <= limit + kToleranceW);
+    CHECK(chosen_error <= lowest_safe + 1e-12);
+  }
+  CHECK(checked >= 5);
 }
 
 }  // namespace
 
 TEST_CASE("power budgets: within the budget after convergence, at the lowest feasible error", "[loop]") {
-    // A share of the range moves with the scene; watts do not, so between two selections (200
-    // frames) the scene's drift would add to a watts budget's overshoot, but a refit that finds
-    // the chosen configuration over the budget selects again at once: the watts budget keeps
-    // up with the same camera speed.
-    for (const auto& [text, slow] : {std::pair{"40%", 64}, {"50%", 64}, {"60%", 64}, {"50W", 64}}) {
-        INFO("budget " << text);
-        const GovernorSettings settings = power_budget(text);
-        App app(settings, Configuration(6, 0), 7, slow);
-        const std::vector<Step> steps = app.run(60 * kFps);
-        CHECK(app.governor().selections() >= 15);
-        const double share = share_of_windows_within(app, steps, settings.power);
-        INFO("share of 1-s windows within the budget " << share);
-        CHECK(share >= 0.95);
-        check_selections(app, app.governor(), steps, settings.power);
-        for (std::size_t k = kConverged; k < steps.size(); ++k) CHECK(steps[k].decision.within_budget);
-    }
+  // A share of the range moves with the scene; watts do not, so between two selections (200
+  // frames) the scene's drift would add to a watts budget's overshoot, but a refit that finds
+  // the chosen configuration over the budget selects again at once: the watts budget keeps
+  // up with the same camera speed.
+  for (const auto& [text, slow] : {std::pair{"40%", 64}, {"50%", 64}, {"60%", 64}, {"50W", 64}}) {
+    INFO("budget " << text);
+    const GovernorSettings settings = power_budget(text);
+    App app(settings, Configuration(6, 0), 7, slow);
+    const std::vector<Step> steps = app.run(60 * kFps);
+    CHECK(app.governor().selections() >= 15);
+    const double share = share_of_windows_within(app, steps, settings.power);
+    INFO("share of 1-s windows within the budget " << share);
+    CHECK(share >= 0.95);
+    check_selections(app, app.governor(), steps, settings.power);
+    for (std::size_t k = kConverged; k < steps.size(); ++k) CHECK(steps[k].decision.within_budget);
+  }
 }
 
 TEST_CASE("budgets at the extremes: 0 %, 100 %, watts under P_m and over P_M", "[loop][extremes]") {
-    SECTION("0 %: the cheapest configuration") {
-        App app(power_budget("0%"));
-        const std::vector<Step> steps = app.run(30 * kFps);
-        for (std::size_t k = kConverged; k < steps.size(); k += 7) {
-            const Truth truth(app.hidden(), steps[k].record.passes);
-            CHECK(truth.power(steps[k].target) <= truth.extreme(false) + kToleranceW);
-        }
-        CHECK(steps.back().target == Configuration(6, 2));
-        CHECK(steps.back().decision.within_budget);
+  SECTION("0 %: the cheapest configuration") {
+    App app(power_budget("0%"));
+    const std::vector<Step> steps = app.run(30 * kFps);
+    for (std::size_t k = kConverged; k < steps.size(); k += 7) {
+      const Truth truth(app.hidden(), steps[k].record.passes);
+      CHECK(truth.power(steps[k].target) <= truth.extreme(false) + kToleranceW);
     }
-    SECTION("100 %: the best configuration") {
-        App app(power_budget("100%"), Configuration(6, 2));
-        const std::vector<Step> steps = app.run(30 * kFps);
-        for (std::size_t k = kConverged; k < steps.size(); ++k) CHECK(steps[k].decision.next == Configuration(6, 0));
-        CHECK(steps.back().decision.est_error == 0.0);
+    CHECK(steps.back().target == Configuration(6, 2));
+    CHECK(steps.back().decision.within_budget);
+  }
+  SECTION("100 %: the best configuration") {
+    App app(power_budget("100%"), Configuration(6, 2));
+    const std::vector<Step> steps = app.run(30 * kFps);
+    for (std::size_t k = kConverged; k < steps.size(); ++k) CHECK(steps[k].decision.next == Configuration(6, 0));
+    CHECK(steps.back().decision.est_error == 0.0);
+  }
+  SECTION("watts under P_m: nothing fits, the cheapest is drawn and said to be over") {
+    App app(power_budget("10W"));
+    const std::vector<Step> steps = app.run(30 * kFps);
+    CHECK(steps.back().decision.budget_w == 10.0);
+    CHECK_FALSE(steps.back().decision.within_budget);
+    for (std::size_t k = kConverged; k < steps.size(); k += 7) {
+      const Truth truth(app.hidden(), steps[k].record.passes);
+      CHECK(truth.power(steps[k].target) <= truth.extreme(false) + kToleranceW);
     }
-    SECTION("watts under P_m: nothing fits, the cheapest is drawn and said to be over") {
-        App app(power_budget("10W"));
-        const std::vector<Step> steps = app.run(30 * kFps);
-        CHECK(steps.back().decision.budget_w == 10.0);
-        CHECK_FALSE(steps.back().decision.within_budget);
-        for (std::size_t k = kConverged; k < steps.size(); k += 7) {
-            const Truth truth(app.hidden(), steps[k].record.passes);
-            CHECK(truth.power(steps[k].target) <= truth.extreme(false) + kToleranceW);
-        }
-    }
-    SECTION("watts over P_M: the best configuration") {
-        App app(power_budget("100W"), Configuration(6, 1));
-        const std::vector<Step> steps = app.run(30 * kFps);
-        CHECK(steps.back().decision.next == Configuration(6, 0));
-        CHECK(steps.back().decision.within_budget);
-        CHECK(steps.back().decision.budget_w == 100.0);
-    }
+  }
+  SECTION("watts over P_M: the best configuration") {
+    App app(power_budget("100W"), Configuration(6, 1));
+    const std::vector<Step> steps = app.run(30 * kFps);
+    CHECK(steps.back().decision.next == Configuration(6, 0));
+    CHECK(steps.back().decision.within_budget);
+    CHECK(steps.back().decision.budget_w == 100.0);
+  }
 }
 
 TEST_CASE("error budgets alone: the lowest power within the error", "[loop]") {
-    for (double error_budget : {0.0, 0.02, 0.05, 1.0}) {
-        INFO("error budget " << error_budget);
-        GovernorSettings settings;
-        settings.error_budget = error_budget;
-        App app(settings);
-        const std::vector<Step> steps = app.run(30 * kFps);
-        Governor& governor = app.governor();
-        CHECK(governor.governing());
-        std::vector<double> errors;
-        governor.errors().estimate_all(errors);
-        int checked = 0;
-        for (std::size_t k = kConverged; k < steps.size(); ++k) {
-            if (steps[k].decision.event != Event::select) continue;
-            ++checked;
-            const Truth truth(app.hidden(), steps[k].record.passes);
-            double lowest = std::numeric_limits<double>::infinity();
-            for (std::size_t i = 0; i < errors.size(); ++i) {
-                if (errors[i] <= error_budget) lowest = std::min(lowest, truth.power(governor.space().decode(i)));
-            }
-            CHECK(governor.errors().estimate(steps[k].target) <= error_budget);
-            CHECK(truth.power(steps[k].target) <= lowest + kToleranceW);
-            CHECK(steps[k].decision.within_budget);
-            CHECK(std::isinf(steps[k].decision.budget_w));
-        }
-        CHECK(checked >= 5);
-        if (error_budget == 0.0) CHECK(steps.back().target == Configuration(6, 0));
-        if (error_budget == 1.0) CHECK(steps.back().target == Configuration(6, 2));
+  for (double error_budget : {0.0, 0.02, 0.05, 1.0}) {
+    INFO("error budget " << error_budget);
+    GovernorSettings settings;
+    settings.error_budget = error_budget;
+    App app(settings);
+    const std::vector<Step> steps = app.run(30 * kFps);
+    Governor& governor = app.governor();
+    CHECK(governor.governing());
+    std::vector<double> errors;
+    governor.errors().estimate_all(errors);
+    int checked = 0;
+    for (std::size_t k = kConverged; k < steps.size(); ++k) {
+      if (steps[k].decision.event != Event::select) continue;
+      ++checked;
+      const Truth truth(app.hidden(), steps[k].record.passes);
+      double lowest = std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < errors.size(); ++i) {
+        if (errors[i] <= error_budget) lowest = std::min(lowest, truth.power(governor.space().decode(i)));
+      }
+      CHECK(governor.errors().estimate(steps[k].target) <= error_budget);
+      CHECK(truth.power(steps[k].target) <= lowest + kToleranceW);
+      CHECK(steps[k].decision.within_budget);
+      CHECK(std::isinf(steps[k].decision.budget_w));
     }
+    CHECK(checked >= 5);
+    if (error_budget == 0.0) CHECK(steps.back().target == Configuration(6, 0));
+    if (error_budget == 1.0) CHECK(steps.back().target == Configuration(6, 2));
+  }
 }
 
 TEST_CASE("select_within_error: ties, NaN and nothing admitted", "[loop][extremes]") {
-    const std::vector<double> power{30.0, 25.0, 25.0, kNaN, 20.0};
-    const std::vector<double> error{0.0, 0.02, 0.01, 0.0, kNaN};
-    model::Selection s = select_within_error(power, error, 0.02);
-    CHECK(s.index == 2);  // 25 W at 0.01 before 25 W at 0.02; NaN error and NaN power never
-    CHECK(s.within_budget);
-    CHECK(std::isinf(s.budget_w));
-    s = select_within_error(power, error, -1.0);
-    CHECK(s.index == 0);  // the lowest error
-    CHECK_FALSE(s.within_budget);
+  const std::vector<double> power{30.0, 25.0, 25.0, kNaN, 20.0};
+  const std::vector<double> error{0.0, 0.02, 0.01, 0.0, kNaN};
+  model::Selection s = select_within_error(power, error, 0.02);
+  CHECK(s.index == 2);  // 25 W at 0.01 before 25 W at 0.02; NaN error and NaN power never
+  CHECK(s.within_budget);
+  CHECK(std::isinf(s.budget_w));
+  s = select_within_error(power, error, -1.0);
+  CHECK(s.index == 0);  // the lowest error
+  CHECK_FALSE(s.within_budget);
 }
 
 TEST_CASE("the power budget wins when both are set", "[loop]") {
-    GovernorSettings both = power_budget("40%");
-    both.error_budget = 0.0;  // alone, this would ask for the best configuration
-    App with_both(both);
-    App power_only(power_budget("40%"));
-    CHECK(has_note(with_both.governor(), "power budget wins"));
-    CHECK_FALSE(has_note(power_only.governor(), "power budget wins"));
-    for (int k = 0; k < 20 * kFps; ++k) {
-        const Step a = with_both.step();
-        const Step b = power_only.step();
-        REQUIRE(a.decision.next == b.decision.next);
-        REQUIRE(a.target == b.target);
-    }
-    CHECK(with_both.governor().target() != Configuration(6, 0));
+  GovernorSettings both = power_budget("40%");
+  both.error_budget = 0.0;  // alone, this would ask for the best configuration
+  App with_both(both);
+  App power_only(power_budget("40%"));
+  CHECK(has_note(with_both.governor(), "power budget wins"));
+  CHECK_FALSE(has_note(power_only.governor(), "power budget wins"));
+  for (int k = 0; k < 20 * kFps; ++k) {
+    const Step a = with_both.step();
+    const Step b = power_only.step();
+    REQUIRE(a.decision.next == b.decision.next);
+    REQUIRE(a.target == b.target);
+  }
+  CHECK(with_both.governor().target() != Configuration(6, 0));
 }
 
 TEST_CASE("the temporal filter moves one pass level at a time over transition_s", "[loop]") {
-    GovernorSettings settings = power_budget("0%");
-    App app(settings, Configuration(6, 0));
-    Step previous = app.step();
-    std::optional<std::int64_t> start_ns;
-    Configuration from, to;
-    std::vector<Configuration> seen;
-    for (int k = 1; k < 10 * kFps; ++k) {
-        const Step s = app.step();
-        for (std::size_t i = 0; i < 6; ++i) REQUIRE(std::abs(s.decision.next[i] - previous.decision.next[i]) <= 1);
-        if (!start_ns && s.decision.event == Event::select) {
-            start_ns = s.record.time_ns;
-            from = previous.decision.next;
-            to = s.target;
-            REQUIRE(to != from);
-            CHECK(s.decision.next == from);  // t = 0
-        } else if (start_ns && app.governor().selections() == 1) {
-            const double t = static_cast<double>(s.record.time_ns - *start_ns) * 1e-9;
-            CHECK(s.decision.next == model::blend_configurations(from, to, t, settings.transition_s));
-            if (t < settings.transition_s) {
-                CHECK(app.governor().transitioning());
-                // Unless the model's own events (which come first) happened at that frame.
-                const Event e = s.decision.event;
-                if (e != Event::refit && e != Event::fit && e != Event::check) CHECK(e == Event::transition);
-            } else {
-                CHECK(s.decision.next == to);
-                CHECK_FALSE(app.governor().transitioning());
-            }
-            if (seen.empty() || seen.back() != s.decision.next) seen.push_back(s.decision.next);
-        }
-        previous = s;
+  GovernorSettings settings = power_budget("0%");
+  App app(settings, Configuration(6, 0));
+  Step previous = app.step();
+  std::optional<std::int64_t> start_ns;
+  Configuration from, to;
+  std::vector<Configuration> seen;
+  for (int k = 1; k < 10 * kFps; ++k) {
+    const Step s = app.step();
+    for (std::size_t i = 0; i < 6; ++i) REQUIRE(std::abs(s.decision.next[i] - previous.decision.next[i]) <= 1);
+    if (!start_ns && s.decision.event == Event::select) {
+      start_ns = s.record.time_ns;
+      from = previous.decision.next;
+      to = s.target;
+      REQUIRE(to != from);
+      CHECK(s.decision.next == from);  // t = 0
+    } else if (start_ns && app.governor().selections() == 1) {
+      const double t = static_cast<double>(s.record.time_ns - *start_ns) * 1e-9;
+      CHECK(s.decision.next == model::blend_configurations(from, to, t, settings.transition_s));
+      if (t < settings.transition_s) {
+        CHECK(app.governor().transitioning());
+        // Unless the model's own events (which come first) happened at that frame.
+        const Event e = s.decision.event;
+        if (e != Event::refit && e != Event::fit && e != Event::check) CHECK(e == Event::transition);
+      } else {
+        CHECK(s.decision.next == to);
+        CHECK_FALSE(app.governor().transitioning());
+      }
+      if (seen.empty() || seen.back() != s.decision.next) seen.push_back(s.decision.next);
     }
-    REQUIRE(start_ns);
-    CHECK(to == Configuration(6, 2));
-    // 0 -> 2 in every pass: through level 1, at t/T = 1/4 and 3/4.
-    CHECK(seen == std::vector<Configuration>{Configuration(6, 0), Configuration(6, 1), Configuration(6, 2)});
+    previous = s;
+  }
+  REQUIRE(start_ns);
+  CHECK(to == Configuration(6, 2));
+  // 0 -> 2 in every pass: through level 1, at t/T = 1/4 and 3/4.
+  CHECK(seen == std::vector<Configuration>{Configuration(6, 0), Configuration(6, 1), Configuration(6, 2)});
 }
 
 TEST_CASE("a transition of 0 s switches at once", "[loop][extremes]") {
-    GovernorSettings settings = power_budget("0%");
-    settings.transition_s = 0.0;
-    App app(settings);
-    for (int k = 0; k < 2 * kFps; ++k) {
-        const Step s = app.step();
-        if (s.decision.event == Event::select) {
-            CHECK(s.decision.next == s.target);
-            return;
-        }
+  GovernorSettings settings = power_budget("0%");
+  settings.transition_s = 0.0;
+  App app(settings);
+  for (int k = 0; k < 2 * kFps; ++k) {
+    const Step s = app.step();
+    if (s.decision.event == Event::select) {
+      CHECK(s.decision.next == s.target);
+      return;
     }
-    FAIL("no selection");
+  }
+  FAIL("no selection");
 }
 
 TEST_CASE("probe frames are not learnt", "[loop]") {
-    // The same frames with probes (every 10th, with absurd power and counts) and without.
-    App with_probes(power_budget("40%"));
-    std::vector<Step> steps;
-    for (int k = 0; k < 20 * kFps; ++k) steps.push_back(with_probes.step(std::nullopt, k % 10 == 5));
-    Governor without(model::testing::synthetic_profile(), with_probes.hidden().space,
-                     test_errors(with_probes.hidden().space), power_budget("40%"));
-    int compared = 0;
-    for (const Step& s : steps) {
-        if (s.record.probe) {
-            CHECK(std::isnan(s.decision.predicted_w));
-            CHECK(s.decision.event != Event::select);
-            continue;
-        }
-        const Decision d = without.on_frame(s.record);
-        REQUIRE(d.next == s.decision.next);
-        REQUIRE(d.event == s.decision.event);
-        REQUIRE((d.predicted_w == s.decision.predicted_w || (std::isnan(d.predicted_w) && std::isnan(s.decision.predicted_w))));
-        ++compared;
+  // The same frames with probes (every 10th, with absurd power and counts) and without.
+  App with_probes(power_budget("40%"));
+  std::vector<Step> steps;
+  for (int k = 0; k < 20 * kFps; ++k) steps.push_back(with_probes.step(std::nullopt, k % 10 == 5));
+  Governor without(model::testing::synthetic_profile(), with_probes.hidden().space,
+                   test_errors(with_probes.hidden().space), power_budget("40%"));
+  int compared = 0;
+  for (const Step& s : steps) {
+    if (s.record.probe) {
+      CHECK(std::isnan(s.decision.predicted_w));
+      CHECK(s.decision.event != Event::select);
+      continue;
     }
-    CHECK(compared == 18 * kFps);
-    CHECK(without.model().fits() == with_probes.governor().model().fits());
-    CHECK(without.selections() == with_probes.governor().selections());
+    const Decision d = without.on_frame(s.record);
+    REQUIRE(d.next == s.decision.next);
+    REQUIRE(d.event == s.decision.event);
+    REQUIRE(
+        (d.predicted_w == s.decision.predicted_w || (std::isnan(d.predicted_w) && std::isnan(s.decision.predicted_w))));
+    ++compared;
+  }
+  CHECK(compared == 18 * kFps);
+  CHECK(without.model().fits() == with_probes.governor().model().fits());
+  CHECK(without.selections() == with_probes.governor().selections());
 }
 
 TEST_CASE("power missing for hold_after_missing_power frames holds the configuration", "[loop]") {
-    App app(power_budget("40%"));
-    Step previous = app.run(15 * kFps).back();
-    for (int spell = 0; spell < 2; ++spell) {
-        Configuration held;
-        for (int missing = 1; missing <= 5 * kFps; ++missing) {
-            const Step s = app.step(kNaN);
-            if (missing < 30) {
-                CHECK(s.decision.event != Event::hold);
-                CHECK_FALSE(app.governor().holding());
-            } else {
-                if (missing == 30) held = previous.decision.next;  // a transition stops where it is
-                CHECK(s.decision.event == Event::hold);
-                CHECK(app.governor().holding());
-                CHECK_FALSE(app.governor().transitioning());
-                CHECK(s.decision.next == held);
-                CHECK(app.governor().target() == held);
-                CHECK(std::isfinite(s.decision.predicted_w));  // counts are still predicted
-            }
-            previous = s;
-        }
-        const Step back = app.step();
-        CHECK(back.decision.event != Event::hold);
+  App app(power_budget("40%"));
+  Step previous = app.run(15 * kFps).back();
+  for (int spell = 0; spell < 2; ++spell) {
+    Configuration held;
+    for (int missing = 1; missing <= 5 * kFps; ++missing) {
+      const Step s = app.step(kNaN);
+      if (missing < 30) {
+        CHECK(s.decision.event != Event::hold);
         CHECK_FALSE(app.governor().holding());
-        previous = app.run(5 * kFps).back();
+      } else {
+        if (missing == 30) held = previous.decision.next;  // a transition stops where it is
+        CHECK(s.decision.event == Event::hold);
+        CHECK(app.governor().holding());
+        CHECK_FALSE(app.governor().transitioning());
+        CHECK(s.decision.next == held);
+        CHECK(app.governor().target() == held);
+        CHECK(std::isfinite(s.decision.predicted_w));  // counts are still predicted
+      }
+      previous = s;
     }
-    int holding_notes = 0;
-    for (const std::string& note : app.governor().notes()) holding_notes += note.find("holding") != std::string::npos;
-    CHECK(holding_notes == 1);
+    const Step back = app.step();
+    CHECK(back.decision.event != Event::hold);
+    CHECK_FALSE(app.governor().holding());
+    previous = app.run(5 * kFps).back();
+  }
+  int holding_notes = 0;
+  for (const std::string& note : app.governor().notes()) holding_notes += note.find("holding") != std::string::npos;
+  CHECK(holding_notes == 1);
 }
 
 TEST_CASE("a sensor that never gives power: no fit, no selection, a hold", "[loop][extremes]") {
-    App app(power_budget("40%"), Configuration{1, 0, 2, 0, 0, 1});
-    for (int k = 0; k < 100; ++k) {
-        const Step s = app.step(kNaN);
-        CHECK(s.decision.next == Configuration{1, 0, 2, 0, 0, 1});
-        CHECK(std::isnan(s.decision.predicted_w));
-        CHECK(std::isnan(s.decision.budget_w));  // a share of the range needs predictions
-        CHECK(s.decision.event == (k >= 29 ? Event::hold : Event::none));
-    }
-    CHECK(app.governor().selections() == 0);
+  App app(power_budget("40%"), Configuration{1, 0, 2, 0, 0, 1});
+  for (int k = 0; k < 100; ++k) {
+    const Step s = app.step(kNaN);
+    CHECK(s.decision.next == Configuration{1, 0, 2, 0, 0, 1});
+    CHECK(std::isnan(s.decision.predicted_w));
+    CHECK(std::isnan(s.decision.budget_w));  // a share of the range needs predictions
+    CHECK(s.decision.event == (k >= 29 ? Event::hold : Event::none));
+  }
+  CHECK(app.governor().selections() == 0);
 }
 
 TEST_CASE("without a budget nothing changes", "[loop]") {
-    const Configuration forced{1, 0, 2, 0, 0, 1};
-    App app(GovernorSettings{}, forced);
-    CHECK_FALSE(app.governor().governing());
-    CHECK(has_note(app.governor(), "observing only"));
-    bool fitted = false;
-    for (const Step& s : app.run(20 * kFps)) {
-        CHECK(s.decision.next == forced);
-        CHECK(s.decision.event != Event::select);
-        CHECK(s.decision.event != Event::transition);
-        CHECK(std::isinf(s.decision.budget_w));
-        fitted = fitted || s.decision.event == Event::fit;
-    }
-    CHECK(fitted);  // it still learns, for the log
-    CHECK(app.governor().selections() == 0);
+  const Configuration forced{1, 0, 2, 0, 0, 1};
+  App app(GovernorSettings{}, forced);
+  CHECK_FALSE(app.governor().governing());
+  CHECK(has_note(app.governor(), "observing only"));
+  bool fitted = false;
+  for (const Step& s : app.run(20 * kFps)) {
+    CHECK(s.decision.next == forced);
+    CHECK(s.decision.event != Event::select);
+    CHECK(s.decision.event != Event::transition);
+    CHECK(std::isinf(s.decision.budget_w));
+    fitted = fitted || s.decision.event == Event::fit;
+  }
+  CHECK(fitted);  // it still learns, for the log
+  CHECK(app.governor().selections() == 0);
 
-    // A frame outside the space is passed through as it is.
-    FrameRecord odd;
-    odd.configuration = {7};
-    odd.power_w = 30.0;
-    const Decision d = app.governor().on_frame(odd);
-    CHECK(d.next == Configuration{7});
-    CHECK(std::isnan(d.est_error));
+  // A frame outside the space is passed through as it is.
+  FrameRecord odd;
+  odd.configuration = {7};
+  odd.power_w = 30.0;
+  const Decision d = app.governor().on_frame(odd);
+  CHECK(d.next == Configuration{7});
+  CHECK(std::isnan(d.est_error));
 }
 
 TEST_CASE("an invalid error budget is ignored with a note", "[loop][extremes]") {
-    for (double bad : {-0.1, kNaN, std::numeric_limits<double>::infinity()}) {
-        GovernorSettings settings;
-        settings.error_budget = bad;
-        App app(settings);
-        CHECK_FALSE(app.governor().governing());
-        CHECK(has_note(app.governor(), "error budget"));
-    }
+  for (double bad : {-0.1, kNaN, std::numeric_limits<double>::infinity()}) {
+    GovernorSettings settings;
+    settings.error_budget = bad;
+    App app(settings);
+    CHECK_FALSE(app.governor().governing());
+    CHECK(has_note(app.governor(), "error budget"));
+  }
 }
 
 TEST_CASE("per-step timings are kept", "[loop]") {
-    App app(power_budget("40%"));
-    app.run(20 * kFps);
-    const StepTimes& times = app.governor().step_times();
-    CHECK(times.predict_frame.count == 20 * kFps);
-    CHECK(times.learn.count == 20 * kFps);
-    CHECK(times.fit.count == app.governor().model().fits());
-    CHECK(times.predict_all.count == app.governor().selections());
-    CHECK(times.estimate_errors.count == app.governor().selections());
-    CHECK(times.select.count == app.governor().selections());
-    for (const RunningStats* s : {&times.learn, &times.fit, &times.predict_all, &times.select}) {
-        CHECK(s->mean_us > 0.0);
-        CHECK(s->mean_us <= s->max_us);
-        CHECK(s->last_us <= s->max_us);
-    }
-    CHECK(describe(times).find("predict all") != std::string::npos);
-    CHECK(std::string(event_name(Event::transition)) == "transition");
+  App app(power_budget("40%"));
+  app.run(20 * kFps);
+  const StepTimes& times = app.governor().step_times();
+  CHECK(times.predict_frame.count == 20 * kFps);
+  CHECK(times.learn.count == 20 * kFps);
+  CHECK(times.fit.count == app.governor().model().fits());
+  CHECK(times.predict_all.count == app.governor().selections());
+  CHECK(times.estimate_errors.count == app.governor().selections());
+  CHECK(times.select.count == app.governor().selections());
+  for (const RunningStats* s : {&times.learn, &times.fit, &times.predict_all, &times.select}) {
+    CHECK(s->mean_us > 0.0);
+    CHECK(s->mean_us <= s->max_us);
+    CHECK(s->last_us <= s->max_us);
+  }
+  CHECK(describe(times).find("predict all") != std::string::npos);
+  CHECK(std::string(event_name(Event::transition)) == "transition");
 }
 
 TEST_CASE("running statistics", "[loop]") {
-    RunningStats stats;
-    for (double us : {4.0, 1.0, 7.0}) stats.add(us);
-    CHECK(stats.count == 3);
-    CHECK(stats.last_us == 7.0);
-    CHECK(stats.mean_us == Approx(4.0));
-    CHECK(stats.max_us == 7.0);
+  RunningStats stats;
+  for (double us : {4.0, 1.0, 7.0}) stats.add(us);
+  CHECK(stats.count == 3);
+  CHECK(stats.last_us == 7.0);
+  CHECK(stats.mean_us == Approx(4.0));
+  CHECK(stats.max_us == 7.0);
 }
 
 TEST_CASE("the stand-in error table", "[loop][errors]") {
-    std::vector<model::PassVariants> passes;
-    for (std::size_t levels : {3, 1, 2, 5}) {
-        passes.push_back({"p" + std::to_string(levels), std::vector<model::VariantCost>(levels), {}});
-    }
-    const model::ConfigurationSpace space(passes);
-    ErrorTable table(space);
-    CHECK(table.fits(space));
-    CHECK(table.size() == space.size());
-    CHECK(table.error(0, 0) == 0.0);
-    CHECK(table.error(0, 1) == Approx(0.005));
-    CHECK(table.error(0, 2) == Approx(0.01));
-    CHECK(table.error(1, 0) == 0.0);
-    CHECK(table.error(3, 1) == Approx(0.0025));
-    CHECK(table.error(3, 4) == Approx(0.01));
-    CHECK(ErrorTable::stand_in(2, 3) == Approx(0.01));
-    CHECK(ErrorTable::stand_in(0, 1) == 0.0);
-    CHECK_FALSE(table.is_stand_in(0, 0));
-    CHECK(table.is_stand_in(0, 1));
-    CHECK(table.stand_in_passes() == std::vector<std::string>{"p3", "p2", "p5"});
+  std::vector<model::PassVariants> passes;
+  for (std::size_t levels : {3, 1, 2, 5}) {
+    passes.push_back({"p" + std::to_string(levels), std::vector<model::VariantCost>(levels), {}});
+  }
+  const model::ConfigurationSpace space(passes);
+  ErrorTable table(space);
+  CHECK(table.fits(space));
+  CHECK(table.size() == space.size());
+  CHECK(table.error(0, 0) == 0.0);
+  CHECK(table.error(0, 1) == Approx(0.005));
+  CHECK(table.error(0, 2) == Approx(0.01));
+  CHECK(table.error(1, 0) == 0.0);
+  CHECK(table.error(3, 1) == Approx(0.0025));
+  CHECK(table.error(3, 4) == Approx(0.01));
+  CHECK(ErrorTable::stand_in(2, 3) == Approx(0.01));
+  CHECK(ErrorTable::stand_in(0, 1) == 0.0);
+  CHECK_FALSE(table.is_stand_in(0, 0));
+  CHECK(table.is_stand_in(0, 1));
+  CHECK(table.stand_in_passes() == std::vector<std::string>{"p3", "p2", "p5"});
 
-    CHECK(table.set(0, 1, 0.2));
-    CHECK(table.set(0, 2, 0.3));
-    CHECK_FALSE(table.set(0, 0, 0.1));  // the reference
-    CHECK_FALSE(table.set(0, 3, 0.1));
-    CHECK_FALSE(table.set(9, 1, 0.1));
-    CHECK_FALSE(table.set(2, 1, kNaN));
-    CHECK_FALSE(table.set(2, 1, -0.1));
-    CHECK(table.stand_in_passes() == std::vector<std::string>{"p2", "p5"});
-    CHECK(std::isnan(table.estimate({0, 0, 0})));
-    CHECK(std::isnan(table.estimate({0, 1, 0, 0})));
+  CHECK(table.set(0, 1, 0.2));
+  CHECK(table.set(0, 2, 0.3));
+  CHECK_FALSE(table.set(0, 0, 0.1));  // the reference
+  CHECK_FALSE(table.set(0, 3, 0.1));
+  CHECK_FALSE(table.set(9, 1, 0.1));
+  CHECK_FALSE(table.set(2, 1, kNaN));
+  CHECK_FALSE(table.set(2, 1, -0.1));
+  CHECK(table.stand_in_passes() == std::vector<std::string>{"p2", "p5"});
+  CHECK(std::isnan(table.estimate({0, 0, 0})));
+  CHECK(std::isnan(table.estimate({0, 1, 0, 0})));
 
-    std::vector<double> all{1.0, 2.0};  // stale contents are overwritten
-    table.estimate_all(all);
-    REQUIRE(all.size() == space.size());
-    for (std::size_t i = 0; i < all.size(); ++i) {
-        const Configuration c = space.decode(i);
-        double sum = 0.0;
-        for (std::size_t p = 0; p < c.size(); ++p) sum += table.error(p, c[p]);
-        CHECK(all[i] == Approx(sum).margin(1e-15));
-        CHECK(table.estimate(c) == Approx(sum).margin(1e-15));
-    }
-    CHECK(all[0] == 0.0);
+  std::vector<double> all{1.0, 2.0};  // stale contents are overwritten
+  table.estimate_all(all);
+  REQUIRE(all.size() == space.size());
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const Configuration c = space.decode(i);
+    double sum = 0.0;
+    for (std::size_t p = 0; p < c.size(); ++p) sum += table.error(p, c[p]);
+    CHECK(all[i] == Approx(sum).margin(1e-15));
+    CHECK(table.estimate(c) == Approx(sum).margin(1e-15));
+  }
+  CHECK(all[0] == 0.0);
 
-    std::vector<model::PassVariants> renamed = passes;
-    renamed[1].pass = "other";
-    CHECK_FALSE(table.fits(model::ConfigurationSpace(renamed)));
-    renamed = passes;
-    renamed[2].levels.resize(3);
-    CHECK_FALSE(table.fits(model::ConfigurationSpace(renamed)));
+  std::vector<model::PassVariants> renamed = passes;
+  renamed[1].pass = "other";
+  CHECK_FALSE(table.fits(model::ConfigurationSpace(renamed)));
+  renamed = passes;
+  renamed[2].levels.resize(3);
+  CHECK_FALSE(table.fits(model::ConfigurationSpace(renamed)));
 
-    const ErrorTable empty{model::ConfigurationSpace{}};
-    std::vector<double> one;
-    empty.estimate_all(one);
-    CHECK(one == std::vector<double>{0.0});
+  const ErrorTable empty{model::ConfigurationSpace{}};
+  std::vector<double> one;
+  empty.estimate_all(one);
+  CHECK(one == std::vector<double>{0.0});
 }
 
 TEST_CASE("the governor says when its errors are stand-ins, and replaces a table that does not fit", "[loop][errors]") {
-    const HiddenModel hidden = model::testing::six_pass_hidden_model();
-    const Governor stand_in(model::testing::synthetic_profile(), hidden.space, ErrorTable(hidden.space),
-                            power_budget("40%"));
-    CHECK(has_note(stand_in, "stand-in"));
-    CHECK(has_note(stand_in, "resolution, shading, reflections, shadows, metals, antialiasing"));
-    const Governor measured(model::testing::synthetic_profile(), hidden.space, test_errors(hidden.space),
-                            power_budget("40%"));
-    CHECK(measured.notes().empty());
-    const Governor mismatched(model::testing::synthetic_profile(), hidden.space, ErrorTable{}, power_budget("40%"));
-    CHECK(has_note(mismatched, "does not match"));
-    CHECK(mismatched.errors().fits(hidden.space));
+  const HiddenModel hidden = model::testing::six_pass_hidden_model();
+  const Governor stand_in(model::testing::synthetic_profile(), hidden.space, ErrorTable(hidden.space),
+                          power_budget("40%"));
+  CHECK(has_note(stand_in, "stand-in"));
+  CHECK(has_note(stand_in, "resolution, shading, reflections, shadows, metals, antialiasing"));
+  const Governor measured(model::testing::synthetic_profile(), hidden.space, test_errors(hidden.space),
+                          power_budget("40%"));
+  CHECK(measured.notes().empty());
+  const Governor mismatched(model::testing::synthetic_profile(), hidden.space, ErrorTable{}, power_budget("40%"));
+  CHECK(has_note(mismatched, "does not match"));
+  CHECK(mismatched.errors().fits(hidden.space));
 }
 
 TEST_CASE("errors from the manifest, stand-ins where a level has none", "[loop][errors]") {
-    const manifest::LoadResult loaded = manifest::parse_manifest(R"toml([[pass]]
+  const manifest::LoadResult loaded = manifest::parse_manifest(R"toml([[pass]]
 name = "a"
 [[pass.level]]
 [[pass.level]]
@@ -596,20 +598,21 @@ name = "b"
 [[pass.level]]
 [[pass.level]]
 error = 0.2
-)toml", "m.toml");
-    REQUIRE(loaded.manifest);
-    const ErrorTable table = errors_from_manifest(*loaded.manifest);
-    CHECK(table.error(0, 1) == 0.03);
-    CHECK_FALSE(table.is_stand_in(0, 1));
-    CHECK(table.error(0, 2) == Approx(0.01));
-    CHECK(table.is_stand_in(0, 2));
-    CHECK(table.error(1, 1) == 0.2);
-    CHECK(table.stand_in_passes() == std::vector<std::string>{"a"});
-    CHECK(table.fits(space_from_manifest(*loaded.manifest)));
+)toml",
+                                                               "m.toml");
+  REQUIRE(loaded.manifest);
+  const ErrorTable table = errors_from_manifest(*loaded.manifest);
+  CHECK(table.error(0, 1) == 0.03);
+  CHECK_FALSE(table.is_stand_in(0, 1));
+  CHECK(table.error(0, 2) == Approx(0.01));
+  CHECK(table.is_stand_in(0, 2));
+  CHECK(table.error(1, 1) == 0.2);
+  CHECK(table.stand_in_passes() == std::vector<std::string>{"a"});
+  CHECK(table.fits(space_from_manifest(*loaded.manifest)));
 }
 
 TEST_CASE("space_from_manifest with measured costs", "[loop][manifest]") {
-    const manifest::LoadResult loaded = manifest::parse_manifest(R"toml(
+  const manifest::LoadResult loaded = manifest::parse_manifest(R"toml(
 [[pass]]
 name = "a"
 match = { source = "A" }
@@ -626,247 +629,251 @@ draws = false
 name = "c"
 match = { source = "C" }
 [[pass.level]]
-)toml", "m.toml");
-    REQUIRE(loaded.manifest);
-    // "a" measured; "b" measured with another number of levels; "c" absent; "z" not in the manifest.
-    const auto table = model::parse_variant_table(R"json({"passes": [
+)toml",
+                                                               "m.toml");
+  REQUIRE(loaded.manifest);
+  // "a" measured; "b" measured with another number of levels; "c" absent; "z" not in the manifest.
+  const auto table = model::parse_variant_table(R"json({"passes": [
         {"name": "a", "levels": [{"hashes": ["0000000000000001"], "ins_v": 10, "ins_f": 300, "tex_f": 4},
                                  {"hashes": ["0000000000000002"], "ins_v": 10, "ins_f": 30, "tex_f": 1}]},
         {"name": "b", "levels": [{"hashes": ["0000000000000003"], "ins_v": 1, "ins_f": 2, "tex_f": 3}]},
-        {"name": "z", "levels": [{"hashes": ["0000000000000004"], "ins_f": 7}]}]})json", "t.json");
-    REQUIRE(table);
-    std::vector<std::string> problems;
-    const model::ConfigurationSpace space = space_from_manifest(*loaded.manifest, *table, problems);
-    REQUIRE(space.pass_count() == 3);
-    const auto& a = space.passes()[0].levels;
-    CHECK(a[0].ins_v == 10.0);
-    CHECK(a[0].ins_f == 300.0);
-    CHECK(a[0].tex_f == 4.0);
-    CHECK(a[1].ins_f == 30.0);
-    CHECK(a[1].tex_f == 1.0);
-    const auto& b = space.passes()[1].levels;
-    CHECK(b[0].ins_f == 0.0);
-    CHECK_FALSE(b[1].draws);  // the manifest's, whatever the table says
-    CHECK(space.passes()[2].levels[0].ins_f == 0.0);
-    REQUIRE(problems.size() == 1);
-    CHECK(problems[0].find("pass 'b' has 2 levels in the manifest and 1 in the measured costs") != std::string::npos);
-    // The same space as without costs in everything but the costs.
-    CHECK(space.size() == space_from_manifest(*loaded.manifest).size());
+        {"name": "z", "levels": [{"hashes": ["0000000000000004"], "ins_f": 7}]}]})json",
+                                                "t.json");
+  REQUIRE(table);
+  std::vector<std::string> problems;
+  const model::ConfigurationSpace space = space_from_manifest(*loaded.manifest, *table, problems);
+  REQUIRE(space.pass_count() == 3);
+  const auto& a = space.passes()[0].levels;
+  CHECK(a[0].ins_v == 10.0);
+  CHECK(a[0].ins_f == 300.0);
+  CHECK(a[0].tex_f == 4.0);
+  CHECK(a[1].ins_f == 30.0);
+  CHECK(a[1].tex_f == 1.0);
+  const auto& b = space.passes()[1].levels;
+  CHECK(b[0].ins_f == 0.0);
+  CHECK_FALSE(b[1].draws);  // the manifest's, whatever the table says
+  CHECK(space.passes()[2].levels[0].ins_f == 0.0);
+  REQUIRE(problems.size() == 1);
+  CHECK(problems[0].find("pass 'b' has 2 levels in the manifest and 1 in the measured costs") != std::string::npos);
+  // The same space as without costs in everything but the costs.
+  CHECK(space.size() == space_from_manifest(*loaded.manifest).size());
 }
 
 TEST_CASE("space_from_manifest on the demo's manifest", "[loop][manifest]") {
-    const manifest::LoadResult loaded =
-        manifest::load_manifest(std::string(GLBUDGET_SOURCE_DIR) + "/testapps/demo/glbudget.toml");
-    REQUIRE(loaded.manifest);
-    const model::ConfigurationSpace space = space_from_manifest(*loaded.manifest);
-    REQUIRE(space.pass_count() == 6);
-    CHECK(space.size() == 729);
-    const std::vector<std::string> names{"resolution", "base", "reflections", "shadows", "metals", "antialiasing"};
-    for (std::size_t i = 0; i < 6; ++i) {
-        const model::PassVariants& pass = space.passes()[i];
-        CHECK(pass.pass == names[i]);
-        REQUIRE(pass.levels.size() == 3);
-        CHECK(pass.scales == loaded.manifest->passes[i].scales);
-        for (const model::VariantCost& cost : pass.levels) {
-            CHECK(cost.ins_v == 0.0);
-            CHECK(cost.ins_f == 0.0);
-            CHECK(cost.tex_f == 0.0);
-            CHECK(cost.draws);
-        }
+  const manifest::LoadResult loaded =
+      manifest::load_manifest(std::string(GLBUDGET_SOURCE_DIR) + "/testapps/demo/glbudget.toml");
+  REQUIRE(loaded.manifest);
+  const model::ConfigurationSpace space = space_from_manifest(*loaded.manifest);
+  REQUIRE(space.pass_count() == 6);
+  CHECK(space.size() == 729);
+  const std::vector<std::string> names{"resolution", "base", "reflections", "shadows", "metals", "antialiasing"};
+  for (std::size_t i = 0; i < 6; ++i) {
+    const model::PassVariants& pass = space.passes()[i];
+    CHECK(pass.pass == names[i]);
+    REQUIRE(pass.levels.size() == 3);
+    CHECK(pass.scales == loaded.manifest->passes[i].scales);
+    for (const model::VariantCost& cost : pass.levels) {
+      CHECK(cost.ins_v == 0.0);
+      CHECK(cost.ins_f == 0.0);
+      CHECK(cost.tex_f == 0.0);
+      CHECK(cost.draws);
     }
-    const auto& resolution = space.passes()[0];
-    CHECK(resolution.scales == std::vector<std::string>{"base", "metals", "reflections"});
-    CHECK(resolution.levels[0].fragment_scale == 1.0);
-    CHECK(resolution.levels[1].fragment_scale == Approx(0.64));
-    CHECK(resolution.levels[2].fragment_scale == Approx(0.36));
-    const auto& shadows = space.passes()[3];
-    CHECK(shadows.scales == std::vector<std::string>{"shadows"});
-    CHECK(shadows.levels[1].fragment_scale == Approx(0.25));
-    CHECK(shadows.levels[2].fragment_scale == Approx(0.0625));
-    CHECK(space.passes()[1].levels[2].fragment_scale == 1.0);
+  }
+  const auto& resolution = space.passes()[0];
+  CHECK(resolution.scales == std::vector<std::string>{"base", "metals", "reflections"});
+  CHECK(resolution.levels[0].fragment_scale == 1.0);
+  CHECK(resolution.levels[1].fragment_scale == Approx(0.64));
+  CHECK(resolution.levels[2].fragment_scale == Approx(0.36));
+  const auto& shadows = space.passes()[3];
+  CHECK(shadows.scales == std::vector<std::string>{"shadows"});
+  CHECK(shadows.levels[1].fragment_scale == Approx(0.25));
+  CHECK(shadows.levels[2].fragment_scale == Approx(0.0625));
+  CHECK(space.passes()[1].levels[2].fragment_scale == 1.0);
 
-    // The demo's manifest gives no errors yet: all stand-ins.
-    const ErrorTable errors = errors_from_manifest(*loaded.manifest);
-    CHECK(errors.fits(space));
-    CHECK(errors.stand_in_passes().size() == 6);
+  // The demo's manifest gives no errors yet: all stand-ins.
+  const ErrorTable errors = errors_from_manifest(*loaded.manifest);
+  CHECK(errors.fits(space));
+  CHECK(errors.stand_in_passes().size() == 6);
 
-    // A level that skips its draws.
-    const manifest::LoadResult skipping =
-        manifest::parse_manifest("[[pass]]\nname = \"r\"\n[[pass.level]]\n[[pass.level]]\ndraws = false\n", "m.toml");
-    REQUIRE(skipping.manifest);
-    const model::ConfigurationSpace skip_space = space_from_manifest(*skipping.manifest);
-    REQUIRE(skip_space.passes()[0].levels.size() == 2);
-    CHECK_FALSE(skip_space.passes()[0].levels[1].draws);
+  // A level that skips its draws.
+  const manifest::LoadResult skipping =
+      manifest::parse_manifest("[[pass]]\nname = \"r\"\n[[pass.level]]\n[[pass.level]]\ndraws = false\n", "m.toml");
+  REQUIRE(skipping.manifest);
+  const model::ConfigurationSpace skip_space = space_from_manifest(*skipping.manifest);
+  REQUIRE(skip_space.passes()[0].levels.size() == 2);
+  CHECK_FALSE(skip_space.passes()[0].levels[1].draws);
 }
 
 TEST_CASE("a governor over a manifest's space with a render scale, driven from its manifest", "[loop][manifest]") {
-    const manifest::LoadResult loaded =
-        manifest::load_manifest(std::string(GLBUDGET_SOURCE_DIR) + "/testapps/demo/glbudget.toml");
-    REQUIRE(loaded.manifest);
-    const model::ConfigurationSpace space = space_from_manifest(*loaded.manifest);
-    Governor governor(model::testing::synthetic_profile(), space, errors_from_manifest(*loaded.manifest),
-                      power_budget("50%"));
-    // Power falls with every pass's fragments; the render scale and shadow-map size take
-    // fragments away, the other passes' levels cost the same (no instrumentation yet).
-    Configuration drawn(6, 0);
-    std::mt19937_64 random(5);
-    std::normal_distribution<double> noise(0.0, 0.1);
-    for (std::uint64_t k = 0; k < 600; ++k) {
-        FrameRecord record;
-        record.frame = k;
-        record.time_ns = static_cast<std::int64_t>(k) * kFrameNs;
-        record.configuration = drawn;
-        double alpha = 0.0;
-        for (std::size_t i = 0; i < 6; ++i) {
-            double scale = 1.0;
-            for (std::size_t s = 0; s < 6; ++s) {
-                const auto& scales = space.passes()[s].scales;
-                if (std::find(scales.begin(), scales.end(), space.passes()[i].pass) != scales.end()) {
-                    scale *= space.passes()[s].levels[static_cast<std::size_t>(drawn[s])].fragment_scale;
-                }
-            }
-            const double wave = 1.0 + 0.3 * std::sin(0.01 * static_cast<double>(k) + static_cast<double>(i));
-            const model::PassCounts counts{100.0 * wave, 1e6 * wave, 1e8 * scale * wave};
-            record.passes.push_back({space.passes()[i].pass, counts});
-            alpha += 0.4 * counts.fragments / 4e8 + 1.0 * counts.batches / 5000.0;
+  const manifest::LoadResult loaded =
+      manifest::load_manifest(std::string(GLBUDGET_SOURCE_DIR) + "/testapps/demo/glbudget.toml");
+  REQUIRE(loaded.manifest);
+  const model::ConfigurationSpace space = space_from_manifest(*loaded.manifest);
+  Governor governor(model::testing::synthetic_profile(), space, errors_from_manifest(*loaded.manifest),
+                    power_budget("50%"));
+  // Power falls with every pass's fragments; the render scale and shadow-map size take
+  // fragments away, the other passes' levels cost the same (no instrumentation yet).
+  Configuration drawn(6, 0);
+  std::mt19937_64 random(5);
+  std::normal_distribution<double> noise(0.0, 0.1);
+  for (std::uint64_t k = 0; k < 600; ++k) {
+    FrameRecord record;
+    record.frame = k;
+    record.time_ns = static_cast<std::int64_t>(k) * kFrameNs;
+    record.configuration = drawn;
+    double alpha = 0.0;
+    for (std::size_t i = 0; i < 6; ++i) {
+      double scale = 1.0;
+      for (std::size_t s = 0; s < 6; ++s) {
+        const auto& scales = space.passes()[s].scales;
+        if (std::find(scales.begin(), scales.end(), space.passes()[i].pass) != scales.end()) {
+          scale *= space.passes()[s].levels[static_cast<std::size_t>(drawn[s])].fragment_scale;
         }
-        record.power_w = model::power_from_alpha(model::testing::synthetic_profile(), alpha) + noise(random);
-        const Decision d = governor.on_frame(record);
-        REQUIRE(space.contains(d.next));
-        drawn = d.next;
+      }
+      const double wave = 1.0 + 0.3 * std::sin(0.01 * static_cast<double>(k) + static_cast<double>(i));
+      const model::PassCounts counts{100.0 * wave, 1e6 * wave, 1e8 * scale * wave};
+      record.passes.push_back({space.passes()[i].pass, counts});
+      alpha += 0.4 * counts.fragments / 4e8 + 1.0 * counts.batches / 5000.0;
     }
-    CHECK(governor.selections() >= 2);
-    // Only the render scale and the shadow map save power here; at 50 % one of them is lowered.
-    CHECK(governor.target() != Configuration(6, 0));
-    CHECK((governor.target()[0] > 0 || governor.target()[3] > 0));
-    CHECK(has_note(governor, "stand-in"));
+    record.power_w = model::power_from_alpha(model::testing::synthetic_profile(), alpha) + noise(random);
+    const Decision d = governor.on_frame(record);
+    REQUIRE(space.contains(d.next));
+    drawn = d.next;
+  }
+  CHECK(governor.selections() >= 2);
+  // Only the render scale and the shadow map save power here; at 50 % one of them is lowered.
+  CHECK(governor.target() != Configuration(6, 0));
+  CHECK((governor.target()[0] > 0 || governor.target()[3] > 0));
+  CHECK(has_note(governor, "stand-in"));
 }
 
 TEST_CASE("a configuration predicted over the budget for a few frames is selected again at once", "[loop]") {
-    // The camera at a quarter of the other tests' slowness: the scene's power drifts fast, and a
-    // watts budget does not move with it. Waiting out select_frames (200 frames) after the scene
-    // got heavier leaves more windows over the budget than selecting again once the model has
-    // predicted the chosen configuration over it for 10 frames (the default).
-    auto run = [](std::size_t reselect, std::size_t* early) {
-        GovernorSettings settings = power_budget("50%");
-        settings.reselect_over_budget_frames = reselect;
-        settings.feedback.enabled = false;  // it selects again too, after a window over the budget
-        App app(settings, Configuration(6, 0), 7, 16);
-        const std::vector<Step> steps = app.run(60 * kFps);
-        std::uint64_t last = 0;
-        *early = 0;
-        for (const Step& s : steps) {
-            if (s.decision.event != Event::select) continue;
-            if (last && s.record.frame - last < settings.select_frames) ++*early;
-            last = s.record.frame;
-        }
-        return share_of_windows_within(app, steps, settings.power);
-    };
-    std::size_t early_on = 0, early_off = 0;
-    const double on = run(10, &early_on), off = run(0, &early_off);
-    INFO("share of 1-s windows within the budget: " << on << " selecting again, " << off << " every 200 frames");
-    CHECK(early_off == 0);
-    CHECK(early_on >= 1);
-    CHECK(on > off);
+  // The camera at a quarter of the other tests' slowness: the scene's power drifts fast, and a
+  // watts budget does not move with it. Waiting out select_frames (200 frames) after the scene
+  // got heavier leaves more windows over the budget than selecting again once the model has
+  // predicted the chosen configuration over it for 10 frames (the default).
+  auto run = [](std::size_t reselect, std::size_t* early) {
+    GovernorSettings settings = power_budget("50%");
+    settings.reselect_over_budget_frames = reselect;
+    settings.feedback.enabled = false;  // it selects again too, after a window over the budget
+    App app(settings, Configuration(6, 0), 7, 16);
+    const std::vector<Step> steps = app.run(60 * kFps);
+    std::uint64_t last = 0;
+    *early = 0;
+    for (const Step& s : steps) {
+      if (s.decision.event != Event::select) continue;
+      if (last && s.record.frame - last < settings.select_frames) ++*early;
+      last = s.record.frame;
+    }
+    return share_of_windows_within(app, steps, settings.power);
+  };
+  std::size_t early_on = 0, early_off = 0;
+  const double on = run(10, &early_on), off = run(0, &early_off);
+  INFO("share of 1-s windows within the budget: " << on << " selecting again, " << off << " every 200 frames");
+  CHECK(early_off == 0);
+  CHECK(early_on >= 1);
+  CHECK(on > off);
 }
 
-TEST_CASE("measured power corrects what the model cannot see, and keeps windows within the budget", "[loop][feedback]") {
-    // Every cheaper level draws 0.3 W more than the counts say (fixed costs the model does not
-    // know, as a render scale's): open loop, the governor counts on savings that do not come;
-    // the feedback measures them, corrects every configuration additively, keeps a margin of
-    // the measured spread and selects again after a window over the budget.
-    const auto unseen = [](const Configuration& c) {
-        double w = 0.0;
-        for (int level : c) w += 0.3 * level;
-        return w;
-    };
-    auto run = [&](const char* budget, bool feedback, double* mean_excess) {
-        GovernorSettings settings = power_budget(budget);
-        settings.feedback.enabled = feedback;
-        App app(settings, Configuration(6, 0), 7, 1 << 20, unseen);  // a still camera: the model's bias, not the scene's drift
-        const std::vector<Step> steps = app.run(90 * kFps);
-        // The metric of bench/governor/evaluate_budgets.py: a 1-s window's mean measured power
-        // against the mean budget the governor gave.
-        int windows = 0, within = 0;
-        double excess = 0.0;
-        for (std::size_t start = kConverged; start + kFps <= steps.size(); start += kFps) {
-            double power = 0.0, limit = 0.0;
-            for (std::size_t k = start; k < start + kFps; ++k) {
-                power += steps[k].true_power_w / kFps;
-                limit += steps[k].decision.budget_w / kFps;
-            }
-            ++windows;
-            within += power <= limit;
-            excess += std::max(0.0, power - limit);
-        }
-        *mean_excess = excess / windows;
-        if (feedback) {
-            CHECK(app.governor().feedback().windows() > 15);
-            CHECK(app.governor().feedback().margin_w() > 0.0);
-            CHECK(app.governor().feedback().margin_w() < 2.0);
-        }
-        return static_cast<double>(within) / windows;
-    };
-    // What the feedback cannot remove here is the temporal filter's passage through
-    // intermediate configurations after each selection (a third of the run) and the frames'
-    // 10 % jitter: the gain is in how far windows go over the budget.
-    double total_on = 0.0, total_off = 0.0;
-    for (const char* budget : {"40%", "50%", "60%"}) {
-        double excess_on = 0.0, excess_off = 0.0;
-        const double on = run(budget, true, &excess_on), off = run(budget, false, &excess_off);
-        INFO("budget " << budget << ": 1-s windows within it " << on << " with feedback (mean excess " << excess_on
-                       << " W), " << off << " open loop (" << excess_off << " W)");
-        CHECK(on >= off - 0.05);
-        total_on += excess_on;
-        total_off += excess_off;
+TEST_CASE("measured power corrects what the model cannot see, and keeps windows within the budget",
+          "[loop][feedback]") {
+  // Every cheaper level draws 0.3 W more than the counts say (fixed costs the model does not
+  // know, as a render scale's): open loop, the governor counts on savings that do not come;
+  // the feedback measures them, corrects every configuration additively, keeps a margin of
+  // the measured spread and selects again after a window over the budget.
+  const auto unseen = [](const Configuration& c) {
+    double w = 0.0;
+    for (int level : c) w += 0.3 * level;
+    return w;
+  };
+  auto run = [&](const char* budget, bool feedback, double* mean_excess) {
+    GovernorSettings settings = power_budget(budget);
+    settings.feedback.enabled = feedback;
+    App app(settings, Configuration(6, 0), 7, 1 << 20,
+            unseen);  // a still camera: the model's bias, not the scene's drift
+    const std::vector<Step> steps = app.run(90 * kFps);
+    // The metric of bench/governor/evaluate_budgets.py: a 1-s window's mean measured power
+    // against the mean budget the governor gave.
+    int windows = 0, within = 0;
+    double excess = 0.0;
+    for (std::size_t start = kConverged; start + kFps <= steps.size(); start += kFps) {
+      double power = 0.0, limit = 0.0;
+      for (std::size_t k = start; k < start + kFps; ++k) {
+        power += steps[k].true_power_w / kFps;
+        limit += steps[k].decision.budget_w / kFps;
+      }
+      ++windows;
+      within += power <= limit;
+      excess += std::max(0.0, power - limit);
     }
-    CHECK(total_on < 0.8 * total_off);
+    *mean_excess = excess / windows;
+    if (feedback) {
+      CHECK(app.governor().feedback().windows() > 15);
+      CHECK(app.governor().feedback().margin_w() > 0.0);
+      CHECK(app.governor().feedback().margin_w() < 2.0);
+    }
+    return static_cast<double>(within) / windows;
+  };
+  // What the feedback cannot remove here is the temporal filter's passage through
+  // intermediate configurations after each selection (a third of the run) and the frames'
+  // 10 % jitter: the gain is in how far windows go over the budget.
+  double total_on = 0.0, total_off = 0.0;
+  for (const char* budget : {"40%", "50%", "60%"}) {
+    double excess_on = 0.0, excess_off = 0.0;
+    const double on = run(budget, true, &excess_on), off = run(budget, false, &excess_off);
+    INFO("budget " << budget << ": 1-s windows within it " << on << " with feedback (mean excess " << excess_on
+                   << " W), " << off << " open loop (" << excess_off << " W)");
+    CHECK(on >= off - 0.05);
+    total_on += excess_on;
+    total_off += excess_off;
+  }
+  CHECK(total_on < 0.8 * total_off);
 }
 
 TEST_CASE("power feedback: windows, residuals, the margin and the additive correction", "[loop][feedback]") {
-    PowerFeedback feedback{FeedbackSettings{}};
-    const Configuration a{0, 0}, b{2, 0};
-    CHECK(feedback.bias(a) == 0.0);
-    CHECK(feedback.margin_w() == 0.0);
-    // One window at a: residual +1 W exactly (no scatter within), closed by the frame at 1 s.
-    std::int64_t t = 0;
-    std::optional<PowerFeedback::Window> closed;
-    for (int k = 0; k <= 10; ++k, t += 100'000'000) closed = feedback.add(a, t, 11.0, 10.0);
-    REQUIRE(closed);
-    CHECK(closed->frames == 11);
-    CHECK(closed->measured_w == Approx(11.0));
-    CHECK(feedback.residual(a) == Approx(1.0));
-    CHECK(feedback.bias(a) == Approx(1.0));
-    // One configuration measured: an offset for all.
-    CHECK(feedback.bias(Configuration{1, 2}) == Approx(1.0));
-    // A second, -1 W, without scatter: the first pass's level 2 is 2 W cheaper than predicted,
-    // for every configuration drawing it; a level never drawn keeps the offset.
-    feedback.interrupt();
-    for (int k = 0; k <= 10; ++k, t += 100'000'000) closed = feedback.add(b, t, 9.0, 10.0);
-    REQUIRE(closed);
-    CHECK(feedback.bias(b) == Approx(-1.0).margin(1e-3));
-    CHECK(feedback.bias(Configuration{2, 2}) == Approx(-1.0).margin(1e-3));
-    CHECK(feedback.bias(Configuration{1, 0}) == Approx(1.0).margin(1e-3));
-    // a again, 0.5 W off its residual: the spread of windows is 0.5 W, and with a prior of
-    // 5 % of ~10.5 W a 2-W term measured once is shrunk towards the offset.
-    feedback.interrupt();
-    for (int k = 0; k <= 10; ++k, t += 100'000'000) closed = feedback.add(a, t, 11.5, 10.0);
-    REQUIRE(closed);
-    CHECK(feedback.spread_w() == Approx(0.5));
-    CHECK(feedback.margin_w() == Approx(1.6449 * 0.5).epsilon(1e-3));
-    CHECK(feedback.residual(a) == Approx(1.25));
-    CHECK(feedback.bias(b) < -0.05);
-    CHECK(feedback.bias(b) > -1.0);
-    CHECK(feedback.bias(a) > feedback.bias(b));
-    std::vector<double> predicted(9, 10.0);
-    const model::ConfigurationSpace space({{"p", {{}, {}, {}}, {}}, {"q", {{}, {}, {}}, {}}});
-    feedback.correct(space, predicted);
-    CHECK(predicted[space.index_of(b)] == Approx(10.0 + feedback.bias(b)));
-    CHECK(predicted[space.index_of(a)] == Approx(10.0 + feedback.bias(a)));
-    // NaN power is no frame; time going back restarts the window; off: nothing.
-    CHECK_FALSE(feedback.add(a, t, std::nan(""), 10.0));
-    CHECK_FALSE(feedback.add(a, t - 5'000'000'000, 10.0, 10.0));
-    PowerFeedback off(FeedbackSettings{false});
-    for (int k = 0; k <= 10; ++k) CHECK_FALSE(off.add(a, k * 100'000'000LL, 11.0, 10.0));
-    CHECK(off.bias(a) == 0.0);
+  PowerFeedback feedback{FeedbackSettings{}};
+  const Configuration a{0, 0}, b{2, 0};
+  CHECK(feedback.bias(a) == 0.0);
+  CHECK(feedback.margin_w() == 0.0);
+  // One window at a: residual +1 W exactly (no scatter within), closed by the frame at 1 s.
+  std::int64_t t = 0;
+  std::optional<PowerFeedback::Window> closed;
+  for (int k = 0; k <= 10; ++k, t += 100'000'000) closed = feedback.add(a, t, 11.0, 10.0);
+  REQUIRE(closed);
+  CHECK(closed->frames == 11);
+  CHECK(closed->measured_w == Approx(11.0));
+  CHECK(feedback.residual(a) == Approx(1.0));
+  CHECK(feedback.bias(a) == Approx(1.0));
+  // One configuration measured: an offset for all.
+  CHECK(feedback.bias(Configuration{1, 2}) == Approx(1.0));
+  // A second, -1 W, without scatter: the first pass's level 2 is 2 W cheaper than predicted,
+  // for every configuration drawing it; a level never drawn keeps the offset.
+  feedback.interrupt();
+  for (int k = 0; k <= 10; ++k, t += 100'000'000) closed = feedback.add(b, t, 9.0, 10.0);
+  REQUIRE(closed);
+  CHECK(feedback.bias(b) == Approx(-1.0).margin(1e-3));
+  CHECK(feedback.bias(Configuration{2, 2}) == Approx(-1.0).margin(1e-3));
+  CHECK(feedback.bias(Configuration{1, 0}) == Approx(1.0).margin(1e-3));
+  // a again, 0.5 W off its residual: the spread of windows is 0.5 W, and with a prior of
+  // 5 % of ~10.5 W a 2-W term measured once is shrunk towards the offset.
+  feedback.interrupt();
+  for (int k = 0; k <= 10; ++k, t += 100'000'000) closed = feedback.add(a, t, 11.5, 10.0);
+  REQUIRE(closed);
+  CHECK(feedback.spread_w() == Approx(0.5));
+  CHECK(feedback.margin_w() == Approx(1.6449 * 0.5).epsilon(1e-3));
+  CHECK(feedback.residual(a) == Approx(1.25));
+  CHECK(feedback.bias(b) < -0.05);
+  CHECK(feedback.bias(b) > -1.0);
+  CHECK(feedback.bias(a) > feedback.bias(b));
+  std::vector<double> predicted(9, 10.0);
+  const model::ConfigurationSpace space({{"p", {{}, {}, {}}, {}}, {"q", {{}, {}, {}}, {}}});
+  feedback.correct(space, predicted);
+  CHECK(predicted[space.index_of(b)] == Approx(10.0 + feedback.bias(b)));
+  CHECK(predicted[space.index_of(a)] == Approx(10.0 + feedback.bias(a)));
+  // NaN power is no frame; time going back restarts the window; off: nothing.
+  CHECK_FALSE(feedback.add(a, t, std::nan(""), 10.0));
+  CHECK_FALSE(feedback.add(a, t - 5'000'000'000, 10.0, 10.0));
+  PowerFeedback off(FeedbackSettings{false});
+  for (int k = 0; k <= 10; ++k) CHECK_FALSE(off.add(a, k * 100'000'000LL, 11.0, 10.0));
+  CHECK(off.bias(a) == 0.0);
 }

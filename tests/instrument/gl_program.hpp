@@ -12,16 +12,16 @@
 namespace glbudget::test {
 
 struct CompiledShader {
-    GLuint id = 0;
-    bool ok = false;
-    std::string log;
+  GLuint id = 0;
+  bool ok = false;
+  std::string log;
 };
 CompiledShader compile_shader(GLenum type, const std::string& source);
 
 struct LinkedProgram {
-    GLuint id = 0;
-    bool ok = false;
-    std::string log;
+  GLuint id = 0;
+  bool ok = false;
+  std::string log;
 };
 LinkedProgram link_program(const std::vector<GLuint>& shaders);
 
@@ -35,18 +35,18 @@ std::vector<int> logged_lines(const std::string& log);
 
 // A square RGBA8 target with a quad (attribute "position") and a gradient texture on unit 0.
 class QuadTarget {
-public:
-    static constexpr int kSize = 64;  // the tests' hand counts assume 64×64 fragments
-    explicit QuadTarget(int size = kSize);
-    ~QuadTarget();
-    QuadTarget(const QuadTarget&) = delete;
-    QuadTarget& operator=(const QuadTarget&) = delete;
-    std::vector<std::uint8_t> draw(GLuint program);
-    void draw_without_readback(GLuint program);
+ public:
+  static constexpr int kSize = 64;  // the tests' hand counts assume 64×64 fragments
+  explicit QuadTarget(int size = kSize);
+  ~QuadTarget();
+  QuadTarget(const QuadTarget&) = delete;
+  QuadTarget& operator=(const QuadTarget&) = delete;
+  std::vector<std::uint8_t> draw(GLuint program);
+  void draw_without_readback(GLuint program);
 
-private:
-    int size_;
-    GLuint framebuffer_ = 0, colour_ = 0, texture_ = 0, vertex_array_ = 0, vertices_ = 0;
+ private:
+  int size_;
+  GLuint framebuffer_ = 0, colour_ = 0, texture_ = 0, vertex_array_ = 0, vertices_ = 0;
 };
 
 }  // namespace glbudget::test

@@ -9,12 +9,12 @@
 namespace glbudget::test {
 
 inline std::string shader_file(const std::string& name) {
-    const std::string path = std::string(GLBUDGET_SOURCE_DIR) + "/tests/instrument/shaders/" + name;
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw std::runtime_error("cannot read " + path);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
+  const std::string path = std::string(GLBUDGET_SOURCE_DIR) + "/tests/instrument/shaders/" + name;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 }  // namespace glbudget::test

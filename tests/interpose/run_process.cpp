@@ -1,4 +1,4 @@
-#include "run_process.h"
+#include "run_process.hpp"
 
 #include <fcntl.h>
 #include <spawn.h>

@@ -85,7 +85,8 @@ inline Rgba8 with_noise(Rgba8 image, float amplitude, std::uint32_t seed) {
     for (int x = 0; x < image.width; ++x)
       for (int c = 0; c < 3; ++c) {
         std::uint8_t& value = image.at(x, y)[c];
-        value = to_byte(value + amplitude * hash_noise(static_cast<std::uint32_t>(x * 3 + c), static_cast<std::uint32_t>(y), seed));
+        value = to_byte(
+            value + amplitude * hash_noise(static_cast<std::uint32_t>(x * 3 + c), static_cast<std::uint32_t>(y), seed));
       }
   return image;
 }
@@ -136,7 +137,8 @@ inline Rgba8 noise(int width, int height, std::uint32_t seed) {  // uniform 0..2
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x)
       for (int c = 0; c < 4; ++c)
-        image.at(x, y)[c] = to_byte(127.5f + 127.5f * hash_noise(static_cast<std::uint32_t>(x * 4 + c), static_cast<std::uint32_t>(y), seed));
+        image.at(x, y)[c] = to_byte(
+            127.5f + 127.5f * hash_noise(static_cast<std::uint32_t>(x * 4 + c), static_cast<std::uint32_t>(y), seed));
   return image;
 }
 

@@ -79,15 +79,16 @@ Measured measure(PowerSensor& sensor, int busy_threads, std::chrono::millisecond
 
 }  // namespace
 
-TEST_CASE("the cpu sensor reads more power when the process burns two cores than when idle",
-          "[cpu]") {
+TEST_CASE("the cpu sensor reads more power when the process burns two cores than when idle", "[cpu]") {
   auto sensor = cpu_sensor();
   CHECK(sensor->name() == "cpu");
   CHECK(sensor->is_estimate());
   const Measured idle = measure(*sensor, 0, 300ms);
   const Measured busy = measure(*sensor, 2, 300ms);
-  INFO("idle " << idle.sensor_w << " W, burning " << busy.sensor_w << " W (burners' own CPU "
-               "time predicts " << busy.expected_w << " W)");
+  INFO("idle " << idle.sensor_w << " W, burning " << busy.sensor_w
+               << " W (burners' own CPU "
+                  "time predicts "
+               << busy.expected_w << " W)");
   CHECK(idle.sensor_w >= idle_w - 1e-9);
   CHECK(idle.sensor_w < idle_w + 2.0);
   // The burners get two full cores only on an otherwise idle machine; whatever they got, the

@@ -39,12 +39,11 @@ TEST_CASE("power readings are integrated with the trapezoid rule", "[integrator]
   CHECK(integrator.faults().total() == 0);
 }
 
-TEST_CASE("NaN, infinity, negative and implausible samples are dropped and counted",
-          "[integrator][faults]") {
+TEST_CASE("NaN, infinity, negative and implausible samples are dropped and counted", "[integrator][faults]") {
   EnergyIntegrator integrator(IntegratorLimits{1000.0, 1'000 * ms});
   integrator.accept(0, power(10.0));
-  const double bad[] = {std::numeric_limits<double>::quiet_NaN(),
-                        std::numeric_limits<double>::infinity(), -1.0, 1000.5};
+  const double bad[] = {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), -1.0,
+                        1000.5};
   std::int64_t t = 0;
   for (double value : bad) {
     const auto outcome = integrator.accept(t += 10 * ms, power(value));
@@ -106,8 +105,7 @@ TEST_CASE("an unchanged counter waits, then stalls after the timeout", "[integra
   CHECK(resumed.point->energy_j == 0.0);
 }
 
-TEST_CASE("a silent source stalls; read errors and garbage reads are counted",
-          "[integrator][faults]") {
+TEST_CASE("a silent source stalls; read errors and garbage reads are counted", "[integrator][faults]") {
   EnergyIntegrator integrator(IntegratorLimits{5000.0, 100 * ms});
   integrator.accept(0, power(5.0));
   CHECK_FALSE(integrator.accept(50 * ms, status(ReadStatus::no_new_data)).fault);
@@ -190,8 +188,7 @@ TEST_CASE("a source failing from its first read publishes nothing", "[integrator
   CHECK(first.point->energy_j == 0.0);
 }
 
-TEST_CASE("no frame is charged across an outage, however the swaps fall around it",
-          "[integrator][timeline][faults]") {
+TEST_CASE("no frame is charged across an outage, however the swaps fall around it", "[integrator][timeline][faults]") {
   // A counter rising at 5 W that vanishes from 20 to 60 ms. A swap during the outage, or just
   // after the source returns (one good sample: no rate yet), has no energy; from the second
   // good sample on, the curve is exact again. Before the fix, the marker and the first good

@@ -15,8 +15,7 @@ TEST_CASE("an empty timeline knows nothing", "[timeline]") {
   CHECK_FALSE(timeline.energy_at(0, 10 * ms));
 }
 
-TEST_CASE("energy is interpolated between points and extrapolated past the last",
-          "[timeline]") {
+TEST_CASE("energy is interpolated between points and extrapolated past the last", "[timeline]") {
   EnergyTimeline timeline;
   timeline.publish({0, 0.0, 0});
   timeline.publish({10 * ms, 1.0, 0});
@@ -54,7 +53,7 @@ TEST_CASE("no slope is taken across a segment boundary", "[timeline]") {
   CHECK(e->energy_j == 5.0);
   CHECK(e->segment == 1);
   CHECK_FALSE(timeline.energy_at(5 * ms, 10 * ms));  // inside the break: unknown
-  e = timeline.energy_at(0, 10 * ms);  // the old segment's last point is still known
+  e = timeline.energy_at(0, 10 * ms);                // the old segment's last point is still known
   REQUIRE(e);
   CHECK(e->segment == 0);
   timeline.publish({20 * ms, 6.0, 1});

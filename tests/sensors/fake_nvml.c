@@ -9,8 +9,13 @@
 
 typedef int nvmlReturn_t;
 typedef struct nvmlDevice_st* nvmlDevice_t;
-enum { SUCCESS = 0, ERROR_INVALID_ARGUMENT = 2, ERROR_NOT_SUPPORTED = 3, ERROR_DRIVER_NOT_LOADED = 9,
-       ERROR_GPU_IS_LOST = 15 };
+enum {
+  SUCCESS = 0,
+  ERROR_INVALID_ARGUMENT = 2,
+  ERROR_NOT_SUPPORTED = 3,
+  ERROR_DRIVER_NOT_LOADED = 9,
+  ERROR_GPU_IS_LOST = 15
+};
 
 static int mode_is(const char* mode) {
   const char* value = getenv("FAKE_NVML_MODE");
@@ -26,11 +31,16 @@ nvmlReturn_t nvmlShutdown(void) { return SUCCESS; }
 
 const char* nvmlErrorString(nvmlReturn_t code) {
   switch (code) {
-    case ERROR_NOT_SUPPORTED: return "Not Supported";
-    case ERROR_DRIVER_NOT_LOADED: return "Driver Not Loaded";
-    case ERROR_GPU_IS_LOST: return "GPU is lost";
-    case ERROR_INVALID_ARGUMENT: return "Invalid Argument";
-    default: return "Unknown Error";
+    case ERROR_NOT_SUPPORTED:
+      return "Not Supported";
+    case ERROR_DRIVER_NOT_LOADED:
+      return "Driver Not Loaded";
+    case ERROR_GPU_IS_LOST:
+      return "GPU is lost";
+    case ERROR_INVALID_ARGUMENT:
+      return "Invalid Argument";
+    default:
+      return "Unknown Error";
   }
 }
 

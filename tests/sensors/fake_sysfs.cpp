@@ -31,8 +31,8 @@ void FakeSysfs::add_hwmon(int number, const std::string& name) const {
   write("class/hwmon/hwmon" + std::to_string(number) + "/name", name);
 }
 
-void FakeSysfs::add_rapl_zone(const std::string& zone, const std::string& name,
-                              std::uint64_t energy_uj, std::uint64_t max_range_uj) const {
+void FakeSysfs::add_rapl_zone(const std::string& zone, const std::string& name, std::uint64_t energy_uj,
+                              std::uint64_t max_range_uj) const {
   write("class/powercap/" + zone + "/name", name);
   write("class/powercap/" + zone + "/energy_uj", std::to_string(energy_uj));
   write("class/powercap/" + zone + "/max_energy_range_uj", std::to_string(max_range_uj));

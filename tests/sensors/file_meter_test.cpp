@@ -34,8 +34,7 @@ void write_all(int fd, const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("the file sensor reads a FIFO without blocking, before and after the meter starts",
-          "[file]") {
+TEST_CASE("the file sensor reads a FIFO without blocking, before and after the meter starts", "[file]") {
   FakeSysfs dir;  // just a temporary directory
   const std::string fifo = (dir.root() / "meter").string();
   REQUIRE(mkfifo(fifo.c_str(), 0600) == 0);
@@ -62,8 +61,7 @@ TEST_CASE("the file sensor reads a FIFO without blocking, before and after the m
   CHECK(source.read(0).status == ReadStatus::no_new_data);
 }
 
-TEST_CASE("bad lines and timestamps that go backwards are discarded and counted",
-          "[file][faults]") {
+TEST_CASE("bad lines and timestamps that go backwards are discarded and counted", "[file][faults]") {
   FakeSysfs dir;
   const std::string fifo = (dir.root() / "meter").string();
   REQUIRE(mkfifo(fifo.c_str(), 0600) == 0);

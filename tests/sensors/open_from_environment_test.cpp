@@ -52,13 +52,14 @@ TEST_CASE("bad or unavailable GLBUDGET_SENSOR values fall back to auto", "[envir
   }
 }
 
-TEST_CASE("GLBUDGET_SENSOR_PERIOD_MS sets the sampling period; bad values keep the default",
-          "[environment]") {
+TEST_CASE("GLBUDGET_SENSOR_PERIOD_MS sets the sampling period; bad values keep the default", "[environment]") {
   FakeSysfs sysfs;
   using std::chrono::milliseconds;
-  const std::pair<const char*, milliseconds> cases[] = {
-      {"0", milliseconds(5)}, {"abc", milliseconds(5)}, {"5000", milliseconds(5)},
-      {"2", milliseconds(2)}, {"1000", milliseconds(1000)}};
+  const std::pair<const char*, milliseconds> cases[] = {{"0", milliseconds(5)},
+                                                        {"abc", milliseconds(5)},
+                                                        {"5000", milliseconds(5)},
+                                                        {"2", milliseconds(2)},
+                                                        {"1000", milliseconds(1000)}};
   for (const auto& [period, expected] : cases) {
     INFO(period);
     setenv("GLBUDGET_SENSOR_PERIOD_MS", period, 1);

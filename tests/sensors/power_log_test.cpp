@@ -18,8 +18,7 @@ std::string format(const FrameEnergy& frame) {
 
 TEST_CASE("power log fields: measured, estimated, and missing", "[log]") {
   CHECK(format(FrameEnergy{true, 0.5, 30.0, "rapl", false, 0}) == "30,0.5,rapl");
-  CHECK(format(FrameEnergy{true, 1.23456789e-3, 12.3456789, "cpu", true, 0}) ==
-        "12.3457,0.00123456789,cpu~estimate");
+  CHECK(format(FrameEnergy{true, 1.23456789e-3, 12.3456789, "cpu", true, 0}) == "12.3457,0.00123456789,cpu~estimate");
   const double nan = std::numeric_limits<double>::quiet_NaN();
   CHECK(format(FrameEnergy{false, nan, nan, "nvml", false, 4}) == ",,nvml");
   CHECK(power_log_columns == "power_w,energy_j,sensor");

@@ -22,9 +22,12 @@ class ConstantPowerSource final : public Source {
   bool is_estimate() const override { return true; }
   Reading read(std::int64_t now_ns) override {
     switch (mode_.load()) {
-      case Mode::nan: return Reading{ReadStatus::ok, ReadingKind::energy_j, NAN, {}};
-      case Mode::vanished: return Reading{ReadStatus::read_error, ReadingKind::energy_j, 0, "gone"};
-      case Mode::normal: break;
+      case Mode::nan:
+        return Reading{ReadStatus::ok, ReadingKind::energy_j, NAN, {}};
+      case Mode::vanished:
+        return Reading{ReadStatus::read_error, ReadingKind::energy_j, 0, "gone"};
+      case Mode::normal:
+        break;
     }
     return Reading{ReadStatus::ok, ReadingKind::energy_j, watts_ * static_cast<double>(now_ns) * 1e-9, {}};
   }
@@ -94,8 +97,7 @@ TEST_CASE("garbage samples are counted in the frames that see them", "[sensor][f
   CHECK(sensor.on_swap(monotonic_now_ns()).dropped_samples == 0);
 }
 
-TEST_CASE("a vanished sensor yields invalid frames, and valid ones when it returns",
-          "[sensor][faults]") {
+TEST_CASE("a vanished sensor yields invalid frames, and valid ones when it returns", "[sensor][faults]") {
   std::atomic mode{ConstantPowerSource::Mode::normal};
   PowerSensor sensor(std::make_unique<ConstantPowerSource>(5.0, mode), fast());
   REQUIRE(swap_until_valid(sensor));

@@ -81,8 +81,7 @@ TEST_CASE("i915 and xe read energy1_input", "[intel]") {
   }
 }
 
-TEST_CASE("a hwmon attribute that vanishes or returns garbage is reported, not thrown",
-          "[intel][faults]") {
+TEST_CASE("a hwmon attribute that vanishes or returns garbage is reported, not thrown", "[intel][faults]") {
   FakeSysfs sysfs;
   sysfs.add_hwmon(0, "xe");
   sysfs.write("class/hwmon/hwmon0/energy1_input", "1000000");

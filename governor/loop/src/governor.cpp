@@ -13,43 +13,52 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 double microseconds_since(Clock::time_point start) {
-    return std::chrono::duration<double, std::micro>(Clock::now() - start).count();
+  return std::chrono::duration<double, std::micro>(Clock::now() - start).count();
 }
 
 std::string configuration_text(const model::Configuration& configuration) {
-    std::string text;
-    for (std::size_t i = 0; i < configuration.size(); ++i) {
-        text += (i ? "," : "") + std::to_string(configuration[i]);
-    }
-    return text.empty() ? "(none)" : text;
+  std::string text;
+  for (std::size_t i = 0; i < configuration.size(); ++i) {
+    text += (i ? "," : "") + std::to_string(configuration[i]);
+  }
+  return text.empty() ? "(none)" : text;
 }
 
 std::string budget_text(const model::Budget& budget) {
-    std::ostringstream text;
-    if (budget.kind == model::Budget::Kind::ShareOfRange) text << budget.value * 100.0 << "%";
-    else text << budget.value << " W";
-    return text.str();
+  std::ostringstream text;
+  if (budget.kind == model::Budget::Kind::ShareOfRange)
+    text << budget.value * 100.0 << "%";
+  else
+    text << budget.value << " W";
+  return text.str();
 }
 
 std::string joined(const std::vector<std::string>& names) {
-    std::string text;
-    for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
-    return text;
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+  return text;
 }
 
 }  // namespace
 
 const char* event_name(Event event) {
-    switch (event) {
-    case Event::none: return "none";
-    case Event::fit: return "fit";
-    case Event::check: return "check";
-    case Event::refit: return "refit";
-    case Event::select: return "select";
-    case Event::transition: return "transition";
-    case Event::hold: return "hold";
-    }
-    return "none";
+  switch (event) {
+    case Event::none:
+      return "none";
+    case Event::fit:
+      return "fit";
+    case Event::check:
+      return "check";
+    case Event::refit:
+      return "refit";
+    case Event::select:
+      return "select";
+    case Event::transition:
+      return "transition";
+    case Event::hold:
+      return "hold";
+  }
+  return "none";
 }
 
 Governor::Governor(model::PlatformProfile profile, model::ConfigurationSpace space, ErrorTable errors,
@@ -59,222 +68,225 @@ Governor::Governor(model::PlatformProfile profile, model::ConfigurationSpace spa
       settings_(settings),
       model_(profile, space_, settings.fit, settings.history),
       feedback_(settings.feedback) {
-    if (!errors_.fits(space_)) {
-        notes_.push_back("the error table does not match the configuration space (" +
-                         std::to_string(errors_.pass_count()) + " passes for " + std::to_string(space_.pass_count()) +
-                         "); using the stand-in errors");
-        errors_ = ErrorTable(space_);
-    }
-    std::optional<double> error_budget = settings_.error_budget;
-    if (error_budget && !(std::isfinite(*error_budget) && *error_budget >= 0.0)) {
-        std::ostringstream text;
-        text << "error budget " << *error_budget << " is not a number >= 0 (1 - SSIM); ignoring it";
-        notes_.push_back(text.str());
-        error_budget.reset();
-    }
-    settings_.error_budget = error_budget;
+  if (!errors_.fits(space_)) {
+    notes_.push_back("the error table does not match the configuration space (" + std::to_string(errors_.pass_count()) +
+                     " passes for " + std::to_string(space_.pass_count()) + "); using the stand-in errors");
+    errors_ = ErrorTable(space_);
+  }
+  std::optional<double> error_budget = settings_.error_budget;
+  if (error_budget && !(std::isfinite(*error_budget) && *error_budget >= 0.0)) {
+    std::ostringstream text;
+    text << "error budget " << *error_budget << " is not a number >= 0 (1 - SSIM); ignoring it";
+    notes_.push_back(text.str());
+    error_budget.reset();
+  }
+  settings_.error_budget = error_budget;
 
-    if (settings_.power.kind != model::Budget::Kind::Off) {
-        aim_ = Aim::power;
-        if (error_budget) {
-            std::ostringstream text;
-            text << "both a power budget (" << budget_text(settings_.power) << ") and an error budget ("
-                 << *error_budget << ") are set: the power budget wins, the error budget is ignored";
-            notes_.push_back(text.str());
-        }
-    } else if (error_budget) {
-        aim_ = Aim::error;
-    } else {
-        notes_.push_back("no power or error budget: observing only, the configuration is never changed");
+  if (settings_.power.kind != model::Budget::Kind::Off) {
+    aim_ = Aim::power;
+    if (error_budget) {
+      std::ostringstream text;
+      text << "both a power budget (" << budget_text(settings_.power) << ") and an error budget (" << *error_budget
+           << ") are set: the power budget wins, the error budget is ignored";
+      notes_.push_back(text.str());
     }
-    governing_ = aim_ != Aim::observe;
+  } else if (error_budget) {
+    aim_ = Aim::error;
+  } else {
+    notes_.push_back("no power or error budget: observing only, the configuration is never changed");
+  }
+  governing_ = aim_ != Aim::observe;
 
-    const std::vector<std::string> stand_ins = errors_.stand_in_passes();
-    if (!stand_ins.empty()) {
-        notes_.push_back("error estimates use a stand-in for passes without measured errors (" + joined(stand_ins) +
-                         "): 0.01 at a pass's cheapest level, linear in the level; give their levels an `error` "
-                         "in the manifest");
-    }
-    budget_w_ = initial_budget_w();
+  const std::vector<std::string> stand_ins = errors_.stand_in_passes();
+  if (!stand_ins.empty()) {
+    notes_.push_back("error estimates use a stand-in for passes without measured errors (" + joined(stand_ins) +
+                     "): 0.01 at a pass's cheapest level, linear in the level; give their levels an `error` "
+                     "in the manifest");
+  }
+  budget_w_ = initial_budget_w();
 }
 
 double Governor::initial_budget_w() const {
-    if (aim_ == Aim::power && settings_.power.kind == model::Budget::Kind::Watts) return settings_.power.value;
-    if (aim_ == Aim::power) return std::numeric_limits<double>::quiet_NaN();
-    return std::numeric_limits<double>::infinity();
+  if (aim_ == Aim::power && settings_.power.kind == model::Budget::Kind::Watts) return settings_.power.value;
+  if (aim_ == Aim::power) return std::numeric_limits<double>::quiet_NaN();
+  return std::numeric_limits<double>::infinity();
 }
 
 void Governor::start(const FrameRecord& record) {
-    started_ = true;
-    last_selection_frame_ = record.frame;
-    if (space_.contains(record.configuration)) {
-        current_ = record.configuration;
-    } else {
-        current_ = model::Configuration(space_.pass_count(), 0);
-        if (governing_) {
-            notes_.push_back("the first frame was drawn in configuration " + configuration_text(record.configuration) +
-                             ", outside the space of " + std::to_string(space_.pass_count()) +
-                             " passes; starting from the best configuration");
-        }
+  started_ = true;
+  last_selection_frame_ = record.frame;
+  if (space_.contains(record.configuration)) {
+    current_ = record.configuration;
+  } else {
+    current_ = model::Configuration(space_.pass_count(), 0);
+    if (governing_) {
+      notes_.push_back("the first frame was drawn in configuration " + configuration_text(record.configuration) +
+                       ", outside the space of " + std::to_string(space_.pass_count()) +
+                       " passes; starting from the best configuration");
     }
-    target_ = current_;
+  }
+  target_ = current_;
 }
 
 // The model sees every frame but probe frames, which drew more than the frame; it learns only
 // from frames with power.
 model::OnlineFitter::Event Governor::see(const FrameRecord& record, Decision& decision) {
-    if (record.probe) return model::OnlineFitter::Event::None;
-    sample_.power_w = record.power_w;
-    sample_.passes.assign(record.passes.begin(), record.passes.end());
-    Clock::time_point start = Clock::now();
-    decision.predicted_w = model_.predict_frame(sample_, record.configuration);
-    times_.predict_frame.add(microseconds_since(start));
-    if (!std::isfinite(record.power_w)) return model::OnlineFitter::Event::None;
+  if (record.probe) return model::OnlineFitter::Event::None;
+  sample_.power_w = record.power_w;
+  sample_.passes.assign(record.passes.begin(), record.passes.end());
+  Clock::time_point start = Clock::now();
+  decision.predicted_w = model_.predict_frame(sample_, record.configuration);
+  times_.predict_frame.add(microseconds_since(start));
+  if (!std::isfinite(record.power_w)) return model::OnlineFitter::Event::None;
 
-    const std::size_t fits_before = model_.fits();
-    start = Clock::now();
-    const model::OnlineFitter::Event event = model_.learn(sample_, record.configuration, decision.predicted_w);
-    const double us = microseconds_since(start);
-    times_.learn.add(us);
-    if (model_.fits() != fits_before) {
-        times_.fit.add(us);
-        // The new coefficients take effect from the next frame given to the model: give it this
-        // one again, so that a selection now predicts with them (the first fit has no frame yet).
-        model_.predict_frame(sample_, record.configuration);
-    }
-    return event;
+  const std::size_t fits_before = model_.fits();
+  start = Clock::now();
+  const model::OnlineFitter::Event event = model_.learn(sample_, record.configuration, decision.predicted_w);
+  const double us = microseconds_since(start);
+  times_.learn.add(us);
+  if (model_.fits() != fits_before) {
+    times_.fit.add(us);
+    // The new coefficients take effect from the next frame given to the model: give it this
+    // one again, so that a selection now predicts with them (the first fit has no frame yet).
+    model_.predict_frame(sample_, record.configuration);
+  }
+  return event;
 }
 
 bool Governor::selection_due(const FrameRecord& record) const {
-    if (!model_.fitted() || record.probe) return false;
-    if (selections_ == 0 || reselect_now_) return true;
-    // Beyond the paper: when the model predicts the chosen configuration over the budget for
-    // reselect_over_budget_frames frames in a row (the scene got heavier, or a refit learnt that it costs
-    // more), select again at once instead of waiting out select_frames over budget.
-    if (settings_.reselect_over_budget_frames > 0 && over_budget_frames_ >= settings_.reselect_over_budget_frames)
-        return true;
-    // A frame number that went backwards (a new counter) is taken as a due selection.
-    return record.frame < last_selection_frame_ || record.frame - last_selection_frame_ >= settings_.select_frames;
+  if (!model_.fitted() || record.probe) return false;
+  if (selections_ == 0 || reselect_now_) return true;
+  // Beyond the paper: when the model predicts the chosen configuration over the budget for
+  // reselect_over_budget_frames frames in a row (the scene got heavier, or a refit learnt that it costs
+  // more), select again at once instead of waiting out select_frames over budget.
+  if (settings_.reselect_over_budget_frames > 0 && over_budget_frames_ >= settings_.reselect_over_budget_frames)
+    return true;
+  // A frame number that went backwards (a new counter) is taken as a due selection.
+  return record.frame < last_selection_frame_ || record.frame - last_selection_frame_ >= settings_.select_frames;
 }
 
 void Governor::select(const FrameRecord& record) {
-    Clock::time_point start = Clock::now();
-    model_.predict_all(power_);
-    times_.predict_all.add(microseconds_since(start));
+  Clock::time_point start = Clock::now();
+  model_.predict_all(power_);
+  times_.predict_all.add(microseconds_since(start));
 
-    start = Clock::now();
-    errors_.estimate_all(error_);
-    times_.estimate_errors.add(microseconds_since(start));
+  start = Clock::now();
+  errors_.estimate_all(error_);
+  times_.estimate_errors.add(microseconds_since(start));
 
-    start = Clock::now();
-    margin_w_ = 0.0;
-    if (aim_ == Aim::power) {
-        feedback_.correct(space_, power_);
-        // 100 % of the range admits the best configuration by definition: no margin below it.
-        const bool whole_range = settings_.power.kind == model::Budget::Kind::ShareOfRange && settings_.power.value >= 1.0;
-        margin_w_ = whole_range ? 0.0 : feedback_.margin_w();
-    }
-    const model::Selection selection = aim_ == Aim::power
-                                           ? model::select_configuration(power_, error_, settings_.power, margin_w_)
-                                           : select_within_error(power_, error_, *settings_.error_budget);
-    times_.select.add(microseconds_since(start));
+  start = Clock::now();
+  margin_w_ = 0.0;
+  if (aim_ == Aim::power) {
+    feedback_.correct(space_, power_);
+    // 100 % of the range admits the best configuration by definition: no margin below it.
+    const bool whole_range = settings_.power.kind == model::Budget::Kind::ShareOfRange && settings_.power.value >= 1.0;
+    margin_w_ = whole_range ? 0.0 : feedback_.margin_w();
+  }
+  const model::Selection selection = aim_ == Aim::power
+                                         ? model::select_configuration(power_, error_, settings_.power, margin_w_)
+                                         : select_within_error(power_, error_, *settings_.error_budget);
+  times_.select.add(microseconds_since(start));
 
-    ++selections_;
-    reselect_now_ = false;
-    last_selection_frame_ = record.frame;
-    chosen_index_ = selection.index;
-    budget_w_ = selection.budget_w;
-    within_budget_ = selection.within_budget;
-    model::Configuration chosen = space_.decode(selection.index);
-    if (chosen == target_) return;
-    // A new target mid-transition starts from where the transition has got to (and a target
-    // that is where it has got to ends it).
-    transitioning_ = chosen != current_;
-    transition_from_ = current_;
-    target_ = std::move(chosen);
-    transition_start_ns_ = record.time_ns;
+  ++selections_;
+  reselect_now_ = false;
+  last_selection_frame_ = record.frame;
+  chosen_index_ = selection.index;
+  budget_w_ = selection.budget_w;
+  within_budget_ = selection.within_budget;
+  model::Configuration chosen = space_.decode(selection.index);
+  if (chosen == target_) return;
+  // A new target mid-transition starts from where the transition has got to (and a target
+  // that is where it has got to ends it).
+  transitioning_ = chosen != current_;
+  transition_from_ = current_;
+  target_ = std::move(chosen);
+  transition_start_ns_ = record.time_ns;
 }
 
 void Governor::hold(const FrameRecord& record) {
-    if (holding_) return;
-    holding_ = true;
-    transitioning_ = false;
-    target_ = current_;
-    if (hold_noted_) return;
-    hold_noted_ = true;
-    notes_.push_back("no power measurement for " + std::to_string(missing_power_) + " frames (frame " +
-                     std::to_string(record.frame) + "): holding configuration " + configuration_text(current_) +
-                     " until power returns");
+  if (holding_) return;
+  holding_ = true;
+  transitioning_ = false;
+  target_ = current_;
+  if (hold_noted_) return;
+  hold_noted_ = true;
+  notes_.push_back("no power measurement for " + std::to_string(missing_power_) + " frames (frame " +
+                   std::to_string(record.frame) + "): holding configuration " + configuration_text(current_) +
+                   " until power returns");
 }
 
 // Windows of measured power at the settled target correct its prediction; one measured over
 // the budget asks for a selection at once. The frame's prediction is given corrected.
 void Governor::feed_back(const FrameRecord& record, Decision& decision) {
-    if (record.probe || !space_.contains(record.configuration)) return;
-    const bool settled = aim_ == Aim::power && selections_ > 0 && !transitioning_ && !holding_ &&
-                         record.configuration == target_;
-    if (!settled) {
-        feedback_.interrupt();
-    } else if (const auto window = feedback_.add(record.configuration, record.time_ns, record.power_w, decision.predicted_w)) {
-        if (std::isfinite(budget_w_) && window->measured_w > budget_w_) reselect_now_ = true;
-    }
-    if (std::isfinite(decision.predicted_w)) decision.predicted_w += feedback_.bias(record.configuration);
+  if (record.probe || !space_.contains(record.configuration)) return;
+  const bool settled =
+      aim_ == Aim::power && selections_ > 0 && !transitioning_ && !holding_ && record.configuration == target_;
+  if (!settled) {
+    feedback_.interrupt();
+  } else if (const auto window =
+                 feedback_.add(record.configuration, record.time_ns, record.power_w, decision.predicted_w)) {
+    if (std::isfinite(budget_w_) && window->measured_w > budget_w_) reselect_now_ = true;
+  }
+  if (std::isfinite(decision.predicted_w)) decision.predicted_w += feedback_.bias(record.configuration);
 }
 
 Decision Governor::on_frame(const FrameRecord& record) {
-    if (!started_) start(record);
-    Decision decision;
-    const model::OnlineFitter::Event learnt = see(record, decision);
-    switch (learnt) {
+  if (!started_) start(record);
+  Decision decision;
+  const model::OnlineFitter::Event learnt = see(record, decision);
+  switch (learnt) {
     case model::OnlineFitter::Event::Fitted:
-        decision.event = model_.fits() == 1 ? Event::fit : Event::refit;
-        break;
+      decision.event = model_.fits() == 1 ? Event::fit : Event::refit;
+      break;
     case model::OnlineFitter::Event::CheckPassed:
-    case model::OnlineFitter::Event::CheckFailed: decision.event = Event::check; break;
-    default: break;
-    }
+    case model::OnlineFitter::Event::CheckFailed:
+      decision.event = Event::check;
+      break;
+    default:
+      break;
+  }
 
-    // A probe frame's power is not the frame's own: it neither counts as missing nor as back.
-    if (!record.probe) missing_power_ = std::isfinite(record.power_w) ? 0 : missing_power_ + 1;
-    if (missing_power_ > 0 && missing_power_ >= settings_.hold_after_missing_power) {
-        hold(record);
-        decision.event = Event::hold;
-    } else {
-        holding_ = false;
-    }
+  // A probe frame's power is not the frame's own: it neither counts as missing nor as back.
+  if (!record.probe) missing_power_ = std::isfinite(record.power_w) ? 0 : missing_power_ + 1;
+  if (missing_power_ > 0 && missing_power_ >= settings_.hold_after_missing_power) {
+    hold(record);
+    decision.event = Event::hold;
+  } else {
+    holding_ = false;
+  }
 
-    if (!governing_) {
-        decision.next = record.configuration;
-        decision.budget_w = budget_w_;
-        decision.est_error = errors_.estimate(record.configuration);
-        return decision;
-    }
-
-    if (!holding_) {
-        feed_back(record, decision);
-        const bool over = !record.probe && !transitioning_ && aim_ == Aim::power && std::isfinite(budget_w_) &&
-                          record.configuration == target_ && decision.predicted_w > budget_w_;
-        if (!record.probe) over_budget_frames_ = over ? over_budget_frames_ + 1 : 0;
-        if (selection_due(record)) {
-            select(record);
-            decision.event = Event::select;
-            over_budget_frames_ = 0;
-        }
-        if (transitioning_) {
-            const double t = static_cast<double>(record.time_ns - transition_start_ns_) * 1e-9;
-            current_ = model::blend_configurations(transition_from_, target_, t, settings_.transition_s);
-            if (!(t < settings_.transition_s)) {
-                current_ = target_;
-                transitioning_ = false;
-            }
-            if (decision.event == Event::none) decision.event = Event::transition;
-        }
-    }
-    decision.next = current_;
+  if (!governing_) {
+    decision.next = record.configuration;
     decision.budget_w = budget_w_;
-    decision.est_error = errors_.estimate(current_);
-    decision.within_budget = within_budget_;
+    decision.est_error = errors_.estimate(record.configuration);
     return decision;
+  }
+
+  if (!holding_) {
+    feed_back(record, decision);
+    const bool over = !record.probe && !transitioning_ && aim_ == Aim::power && std::isfinite(budget_w_) &&
+                      record.configuration == target_ && decision.predicted_w > budget_w_;
+    if (!record.probe) over_budget_frames_ = over ? over_budget_frames_ + 1 : 0;
+    if (selection_due(record)) {
+      select(record);
+      decision.event = Event::select;
+      over_budget_frames_ = 0;
+    }
+    if (transitioning_) {
+      const double t = static_cast<double>(record.time_ns - transition_start_ns_) * 1e-9;
+      current_ = model::blend_configurations(transition_from_, target_, t, settings_.transition_s);
+      if (!(t < settings_.transition_s)) {
+        current_ = target_;
+        transitioning_ = false;
+      }
+      if (decision.event == Event::none) decision.event = Event::transition;
+    }
+  }
+  decision.next = current_;
+  decision.budget_w = budget_w_;
+  decision.est_error = errors_.estimate(current_);
+  decision.within_budget = within_budget_;
+  return decision;
 }
 
 }  // namespace glbudget::loop

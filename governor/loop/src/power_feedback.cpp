@@ -10,25 +10,25 @@ namespace {
 
 // The standard normal quantile (Acklam's rational approximation, relative error < 1.2e-9).
 double normal_quantile(double p) {
-    p = std::clamp(p, 1e-9, 1.0 - 1e-9);
-    static const double a[] = {-3.969683028665376e+01, 2.209460984245205e+02, -2.759285104469687e+02,
-                               1.383577518672690e+02, -3.066479806614716e+01, 2.506628277459239e+00};
-    static const double b[] = {-5.447609879822406e+01, 1.615858368580409e+02, -1.556989798598866e+02,
-                               6.680131188771972e+01, -1.328068155288572e+01};
-    static const double c[] = {-7.784894002430293e-03, -3.223964580411365e-01, -2.400758277161838e+00,
-                               -2.549732539343734e+00, 4.374664141464968e+00, 2.938163982698783e+00};
-    static const double d[] = {7.784695709041462e-03, 3.224671290700398e-01, 2.445134137142996e+00,
-                               3.754408661907416e+00};
-    const double low = 0.02425;
-    if (p < low) {
-        const double q = std::sqrt(-2.0 * std::log(p));
-        return (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
-               ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1.0);
-    }
-    if (p > 1.0 - low) return -normal_quantile(1.0 - p);
-    const double q = p - 0.5, r = q * q;
-    return (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q /
-           (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1.0);
+  p = std::clamp(p, 1e-9, 1.0 - 1e-9);
+  static const double a[] = {-3.969683028665376e+01, 2.209460984245205e+02,  -2.759285104469687e+02,
+                             1.383577518672690e+02,  -3.066479806614716e+01, 2.506628277459239e+00};
+  static const double b[] = {-5.447609879822406e+01, 1.615858368580409e+02, -1.556989798598866e+02,
+                             6.680131188771972e+01, -1.328068155288572e+01};
+  static const double c[] = {-7.784894002430293e-03, -3.223964580411365e-01, -2.400758277161838e+00,
+                             -2.549732539343734e+00, 4.374664141464968e+00,  2.938163982698783e+00};
+  static const double d[] = {7.784695709041462e-03, 3.224671290700398e-01, 2.445134137142996e+00,
+                             3.754408661907416e+00};
+  const double low = 0.02425;
+  if (p < low) {
+    const double q = std::sqrt(-2.0 * std::log(p));
+    return (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
+           ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1.0);
+  }
+  if (p > 1.0 - low) return -normal_quantile(1.0 - p);
+  const double q = p - 0.5, r = q * q;
+  return (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q /
+         (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1.0);
 }
 
 }  // namespace
@@ -38,59 +38,59 @@ PowerFeedback::PowerFeedback(FeedbackSettings settings)
 
 void PowerFeedback::interrupt() { open_.reset(); }
 
-std::optional<PowerFeedback::Window> PowerFeedback::add(const model::Configuration& configuration,
-                                                        std::int64_t time_ns, double measured_w, double predicted_w) {
-    if (!settings_.enabled || !std::isfinite(measured_w) || !std::isfinite(predicted_w)) return std::nullopt;
-    if (open_ && (open_->configuration != configuration || time_ns < open_->start_ns)) open_.reset();
-    if (!open_) open_ = Open{configuration, time_ns};
-    Open& w = *open_;
-    ++w.frames;
-    w.measured += measured_w;
-    w.predicted += predicted_w;
-    w.frame_residual_sq += (measured_w - predicted_w) * (measured_w - predicted_w);
-    if (static_cast<double>(time_ns - w.start_ns) * 1e-9 < settings_.window_s) return std::nullopt;
+std::optional<PowerFeedback::Window> PowerFeedback::add(const model::Configuration& configuration, std::int64_t time_ns,
+                                                        double measured_w, double predicted_w) {
+  if (!settings_.enabled || !std::isfinite(measured_w) || !std::isfinite(predicted_w)) return std::nullopt;
+  if (open_ && (open_->configuration != configuration || time_ns < open_->start_ns)) open_.reset();
+  if (!open_) open_ = Open{configuration, time_ns};
+  Open& w = *open_;
+  ++w.frames;
+  w.measured += measured_w;
+  w.predicted += predicted_w;
+  w.frame_residual_sq += (measured_w - predicted_w) * (measured_w - predicted_w);
+  if (static_cast<double>(time_ns - w.start_ns) * 1e-9 < settings_.window_s) return std::nullopt;
 
-    const Open done = w;
-    open_.reset();
-    if (done.frames < settings_.min_frames) return std::nullopt;
-    const double n = static_cast<double>(done.frames);
-    Window window{done.configuration, done.measured / n, done.predicted / n, done.frames};
-    const double r = window.measured_w - window.predicted_w;
+  const Open done = w;
+  open_.reset();
+  if (done.frames < settings_.min_frames) return std::nullopt;
+  const double n = static_cast<double>(done.frames);
+  Window window{done.configuration, done.measured / n, done.predicted / n, done.frames};
+  const double r = window.measured_w - window.predicted_w;
 
-    // Until windows of one configuration can be compared, the spread of a window's mean is
-    // taken from its frames as if they were independent, which understates it when frames
-    // are correlated; the comparison between windows replaces it as soon as it exists.
-    const double frame_var = std::max(0.0, done.frame_residual_sq / n - r * r);
-    within_sq_ = frame_var / n;
+  // Until windows of one configuration can be compared, the spread of a window's mean is
+  // taken from its frames as if they were independent, which understates it when frames
+  // are correlated; the comparison between windows replaces it as soon as it exists.
+  const double frame_var = std::max(0.0, done.frame_residual_sq / n - r * r);
+  within_sq_ = frame_var / n;
 
-    Residual& residual = residuals_[done.configuration];
-    if (residual.windows > 0) {
-        const double deviation = r - residual.value;
-        between_sq_ += (deviation * deviation - between_sq_) / static_cast<double>(std::min<std::size_t>(
-                                                                 ++between_count_, static_cast<std::size_t>(16)));
-    }
-    ++residual.windows;
-    const double weight = 1.0 / std::min(static_cast<double>(residual.windows), std::max(1.0, settings_.memory_windows));
-    residual.value += weight * (r - residual.value);
-    ++windows_;
-    mean_power_w_ += (window.measured_w - mean_power_w_) / static_cast<double>(std::min<std::size_t>(windows_, 16));
-    fit();
-    return window;
+  Residual& residual = residuals_[done.configuration];
+  if (residual.windows > 0) {
+    const double deviation = r - residual.value;
+    between_sq_ += (deviation * deviation - between_sq_) /
+                   static_cast<double>(std::min<std::size_t>(++between_count_, static_cast<std::size_t>(16)));
+  }
+  ++residual.windows;
+  const double weight = 1.0 / std::min(static_cast<double>(residual.windows), std::max(1.0, settings_.memory_windows));
+  residual.value += weight * (r - residual.value);
+  ++windows_;
+  mean_power_w_ += (window.measured_w - mean_power_w_) / static_cast<double>(std::min<std::size_t>(windows_, 16));
+  fit();
+  return window;
 }
 
 double PowerFeedback::residual(const model::Configuration& configuration) const {
-    const auto it = residuals_.find(configuration);
-    return it == residuals_.end() ? 0.0 : it->second.value;
+  const auto it = residuals_.find(configuration);
+  return it == residuals_.end() ? 0.0 : it->second.value;
 }
 
 double PowerFeedback::bias(const model::Configuration& configuration) const {
-    if (!settings_.enabled || residuals_.empty()) return 0.0;
-    double b = offset_;
-    for (std::size_t i = 0; i < configuration.size() && i < terms_.size(); ++i) {
-        const auto level = static_cast<std::size_t>(configuration[i]);
-        if (level < terms_[i].size()) b += terms_[i][level];
-    }
-    return b;
+  if (!settings_.enabled || residuals_.empty()) return 0.0;
+  double b = offset_;
+  for (std::size_t i = 0; i < configuration.size() && i < terms_.size(); ++i) {
+    const auto level = static_cast<std::size_t>(configuration[i]);
+    if (level < terms_[i].size()) b += terms_[i][level];
+  }
+  return b;
 }
 
 // Weighted ridge least squares over the measured configurations: unknowns the offset
@@ -98,58 +98,58 @@ double PowerFeedback::bias(const model::Configuration& configuration) const {
 // each penalised by (spread / prior)^2 so that a term is believed once the measurements
 // show it beyond their own scatter.
 void PowerFeedback::fit() {
-    std::vector<std::pair<std::size_t, std::size_t>> columns;  // (pass, level) of each term
-    for (const auto& [configuration, r] : residuals_) {
-        for (std::size_t i = 0; i < configuration.size(); ++i) {
-            const auto level = static_cast<std::size_t>(configuration[i]);
-            if (level == 0) continue;
-            const std::pair<std::size_t, std::size_t> key{i, level};
-            if (std::find(columns.begin(), columns.end(), key) == columns.end()) columns.push_back(key);
-        }
+  std::vector<std::pair<std::size_t, std::size_t>> columns;  // (pass, level) of each term
+  for (const auto& [configuration, r] : residuals_) {
+    for (std::size_t i = 0; i < configuration.size(); ++i) {
+      const auto level = static_cast<std::size_t>(configuration[i]);
+      if (level == 0) continue;
+      const std::pair<std::size_t, std::size_t> key{i, level};
+      if (std::find(columns.begin(), columns.end(), key) == columns.end()) columns.push_back(key);
     }
-    const std::size_t n = columns.size() + 1;
-    Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
-    Eigen::VectorXd row(static_cast<Eigen::Index>(n));
-    for (const auto& [configuration, r] : residuals_) {
-        row.setZero();
-        row[0] = 1.0;
-        for (std::size_t c = 0; c < columns.size(); ++c) {
-            const auto [pass, level] = columns[c];
-            if (pass < configuration.size() && static_cast<std::size_t>(configuration[pass]) == level)
-                row[static_cast<Eigen::Index>(c + 1)] = 1.0;
-        }
-        const double weight = std::min(static_cast<double>(r.windows), std::max(1.0, settings_.memory_windows));
-        normal.noalias() += weight * row * row.transpose();
-        rhs.noalias() += weight * r.value * row;
-    }
-    const double prior = std::max(1e-6, settings_.prior_share * mean_power_w_);
-    const double spread = std::max(spread_w(), 1e-3 * prior);
-    const double ridge = (spread * spread) / (prior * prior);
-    for (std::size_t c = 1; c < n; ++c) normal(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(c)) += ridge;
-    normal(0, 0) += 1e-9;  // a well-posed system even if every column were collinear with the offset
-    const Eigen::VectorXd x = normal.ldlt().solve(rhs);
-
-    offset_ = x.allFinite() ? x[0] : 0.0;
-    terms_.clear();
+  }
+  const std::size_t n = columns.size() + 1;
+  Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
+  Eigen::VectorXd row(static_cast<Eigen::Index>(n));
+  for (const auto& [configuration, r] : residuals_) {
+    row.setZero();
+    row[0] = 1.0;
     for (std::size_t c = 0; c < columns.size(); ++c) {
-        const auto [pass, level] = columns[c];
-        if (terms_.size() <= pass) terms_.resize(pass + 1);
-        if (terms_[pass].size() <= level) terms_[pass].resize(level + 1, 0.0);
-        terms_[pass][level] = x.allFinite() ? x[static_cast<Eigen::Index>(c + 1)] : 0.0;
+      const auto [pass, level] = columns[c];
+      if (pass < configuration.size() && static_cast<std::size_t>(configuration[pass]) == level)
+        row[static_cast<Eigen::Index>(c + 1)] = 1.0;
     }
+    const double weight = std::min(static_cast<double>(r.windows), std::max(1.0, settings_.memory_windows));
+    normal.noalias() += weight * row * row.transpose();
+    rhs.noalias() += weight * r.value * row;
+  }
+  const double prior = std::max(1e-6, settings_.prior_share * mean_power_w_);
+  const double spread = std::max(spread_w(), 1e-3 * prior);
+  const double ridge = (spread * spread) / (prior * prior);
+  for (std::size_t c = 1; c < n; ++c) normal(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(c)) += ridge;
+  normal(0, 0) += 1e-9;  // a well-posed system even if every column were collinear with the offset
+  const Eigen::VectorXd x = normal.ldlt().solve(rhs);
+
+  offset_ = x.allFinite() ? x[0] : 0.0;
+  terms_.clear();
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    const auto [pass, level] = columns[c];
+    if (terms_.size() <= pass) terms_.resize(pass + 1);
+    if (terms_[pass].size() <= level) terms_[pass].resize(level + 1, 0.0);
+    terms_[pass][level] = x.allFinite() ? x[static_cast<Eigen::Index>(c + 1)] : 0.0;
+  }
 }
 
 double PowerFeedback::spread_w() const {
-    if (!settings_.enabled || windows_ == 0) return 0.0;
-    return std::sqrt(between_count_ > 0 ? between_sq_ : within_sq_);
+  if (!settings_.enabled || windows_ == 0) return 0.0;
+  return std::sqrt(between_count_ > 0 ? between_sq_ : within_sq_);
 }
 
 double PowerFeedback::margin_w() const { return z_ * spread_w(); }
 
 void PowerFeedback::correct(const model::ConfigurationSpace& space, std::vector<double>& predicted_w) const {
-    if (!settings_.enabled || residuals_.empty()) return;
-    for (std::size_t i = 0; i < predicted_w.size() && i < space.size(); ++i) predicted_w[i] += bias(space.decode(i));
+  if (!settings_.enabled || residuals_.empty()) return;
+  for (std::size_t i = 0; i < predicted_w.size() && i < space.size(); ++i) predicted_w[i] += bias(space.decode(i));
 }
 
 }  // namespace glbudget::loop

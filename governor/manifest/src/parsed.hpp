@@ -13,17 +13,17 @@
 namespace glbudget::manifest::detail {
 
 struct ParsedLevel {
-    Level level;
-    std::string label;                   // "level 1 ('80%') of pass 'base'"
-    std::string at;                      // where the level is written
-    std::vector<std::string> target_at;  // where each of level.targets is written ("" derived)
+  Level level;
+  std::string label;                   // "level 1 ('80%') of pass 'base'"
+  std::string at;                      // where the level is written
+  std::vector<std::string> target_at;  // where each of level.targets is written ("" derived)
 };
 
 struct ParsedPass {
-    Pass pass;                        // its levels are in `levels` until resolve()
-    std::vector<ParsedLevel> levels;  // never empty
-    // `scales` as written: (name, where); nullopt when absent (derived by resolve()).
-    std::optional<std::vector<std::pair<std::string, std::string>>> scales;
+  Pass pass;                        // its levels are in `levels` until resolve()
+  std::vector<ParsedLevel> levels;  // never empty
+  // `scales` as written: (name, where); nullopt when absent (derived by resolve()).
+  std::optional<std::vector<std::pair<std::string, std::string>>> scales;
 };
 
 // One [[pass.level]]; nullopt when invalid (each reason reported, ending "; level dropped",

@@ -3,40 +3,39 @@
 namespace glbudget::model {
 
 ConfigurationSpace::ConfigurationSpace(std::vector<PassVariants> passes) : passes_(std::move(passes)) {
-    strides_.resize(passes_.size());
-    for (std::size_t i = passes_.size(); i-- > 0;) {
-        if (passes_[i].levels.empty()) passes_[i].levels.push_back({});
-        strides_[i] = size_;
-        size_ *= passes_[i].levels.size();
-    }
+  strides_.resize(passes_.size());
+  for (std::size_t i = passes_.size(); i-- > 0;) {
+    if (passes_[i].levels.empty()) passes_[i].levels.push_back({});
+    strides_[i] = size_;
+    size_ *= passes_[i].levels.size();
+  }
 }
 
 std::size_t ConfigurationSpace::index_of(const Configuration& configuration) const {
-    std::size_t index = 0;
-    for (std::size_t i = 0; i < passes_.size(); ++i) {
-        index += static_cast<std::size_t>(configuration[i]) * strides_[i];
-    }
-    return index;
+  std::size_t index = 0;
+  for (std::size_t i = 0; i < passes_.size(); ++i) {
+    index += static_cast<std::size_t>(configuration[i]) * strides_[i];
+  }
+  return index;
 }
 
 Configuration ConfigurationSpace::decode(std::size_t index) const {
-    Configuration configuration(passes_.size());
-    for (std::size_t i = 0; i < passes_.size(); ++i) {
-        configuration[i] = static_cast<int>(index / strides_[i]);
-        index %= strides_[i];
-    }
-    return configuration;
+  Configuration configuration(passes_.size());
+  for (std::size_t i = 0; i < passes_.size(); ++i) {
+    configuration[i] = static_cast<int>(index / strides_[i]);
+    index %= strides_[i];
+  }
+  return configuration;
 }
 
 bool ConfigurationSpace::contains(const Configuration& configuration) const {
-    if (configuration.size() != passes_.size()) return false;
-    for (std::size_t i = 0; i < passes_.size(); ++i) {
-        if (configuration[i] < 0 ||
-            static_cast<std::size_t>(configuration[i]) >= passes_[i].levels.size()) {
-            return false;
-        }
+  if (configuration.size() != passes_.size()) return false;
+  for (std::size_t i = 0; i < passes_.size(); ++i) {
+    if (configuration[i] < 0 || static_cast<std::size_t>(configuration[i]) >= passes_[i].levels.size()) {
+      return false;
     }
-    return true;
+  }
+  return true;
 }
 
 }  // namespace glbudget::model

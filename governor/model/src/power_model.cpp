@@ -7,36 +7,35 @@
 namespace glbudget::model {
 
 bool is_usable(const FrameSample& sample) {
-    if (!std::isfinite(sample.power_w)) return false;
-    for (const PassFrame& pass : sample.passes) {
-        for (double count : {pass.counts.batches, pass.counts.vertices, pass.counts.fragments}) {
-            if (!std::isfinite(count) || count < 0.0) return false;
-        }
+  if (!std::isfinite(sample.power_w)) return false;
+  for (const PassFrame& pass : sample.passes) {
+    for (double count : {pass.counts.batches, pass.counts.vertices, pass.counts.fragments}) {
+      if (!std::isfinite(count) || count < 0.0) return false;
     }
-    return true;
+  }
+  return true;
 }
 
 double pass_alpha(const PlatformProfile& profile, const PassCoefficients& k, const PassCounts& c) {
-    return k.k_b * (c.batches / profile.saturation_batches) +
-           k.k_v * (c.vertices / profile.saturation_vertices) +
-           k.k_f * (c.fragments / profile.saturation_fragments);
+  return k.k_b * (c.batches / profile.saturation_batches) + k.k_v * (c.vertices / profile.saturation_vertices) +
+         k.k_f * (c.fragments / profile.saturation_fragments);
 }
 
 const PassCoefficients* PowerModel::find(const std::string& pass) const {
-    const auto it = coefficients_.find(pass);
-    return it == coefficients_.end() ? nullptr : &it->second;
+  const auto it = coefficients_.find(pass);
+  return it == coefficients_.end() ? nullptr : &it->second;
 }
 
 double PowerModel::alpha(const std::vector<PassFrame>& passes) const {
-    double sum = frame_alpha_;
-    for (const PassFrame& pass : passes) {
-        if (const PassCoefficients* k = find(pass.pass)) sum += pass_alpha(profile_, *k, pass.counts);
-    }
-    return sum;
+  double sum = frame_alpha_;
+  for (const PassFrame& pass : passes) {
+    if (const PassCoefficients* k = find(pass.pass)) sum += pass_alpha(profile_, *k, pass.counts);
+  }
+  return sum;
 }
 
 double PowerModel::predict_power(const std::vector<PassFrame>& passes) const {
-    return power_from_alpha(profile_, alpha(passes));
+  return power_from_alpha(profile_, alpha(passes));
 }
 
 }  // namespace glbudget::model

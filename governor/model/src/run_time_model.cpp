@@ -10,41 +10,42 @@
 
 namespace glbudget::model {
 
-RunTimeModel::RunTimeModel(PlatformProfile profile, ConfigurationSpace space, FitSettings fit,
-                           HistorySettings history)
+RunTimeModel::RunTimeModel(PlatformProfile profile, ConfigurationSpace space, FitSettings fit, HistorySettings history)
     : space_(std::move(space)), history_settings_(history), fitter_(profile, fit), model_(profile) {
-    if (profile.costs) reuse_ = {profile.costs->instruction, profile.costs->texel};
+  if (profile.costs) reuse_ = {profile.costs->instruction, profile.costs->texel};
 }
 
 // Before the first fit, the window's prior is the platform's costs (when the profile has
 // them) for every pass drawn so far at its level; passes it has not seen yet are left to the
 // window fit's pooled prior.
 void RunTimeModel::seed_prior(const FrameSample& frame, const Configuration& configuration) {
-    const PlatformProfile& profile = model_.profile();
-    if (!profile.costs) return;
-    PowerModel prior = fitter_.model();
-    const PowerModel costs = prior_model(profile, *profile.costs, space_, configuration, frame.passes);
-    for (const auto& [pass, k] : costs.coefficients()) prior.set(pass, k);
-    fitter_.adopt(prior);
+  const PlatformProfile& profile = model_.profile();
+  if (!profile.costs) return;
+  PowerModel prior = fitter_.model();
+  const PowerModel costs = prior_model(profile, *profile.costs, space_, configuration, frame.passes);
+  for (const auto& [pass, k] : costs.coefficients()) prior.set(pass, k);
+  fitter_.adopt(prior);
 }
 
 double RunTimeModel::predict_frame(const FrameSample& frame, const Configuration& configuration) {
-    if (!current_.empty() && configuration != current_) fitter_.configuration_changed();
-    current_ = configuration;
-    if (!predictor_) return std::numeric_limits<double>::quiet_NaN();
-    predictor_->set_frame(frame.passes, configuration);
-    // A configuration outside the space: its counts were taken as the fitted configuration's.
-    return predictor_->predict(space_.contains(configuration) ? configuration : fitted_configuration_);
+  if (!current_.empty() && configuration != current_) fitter_.configuration_changed();
+  current_ = configuration;
+  if (!predictor_) return std::numeric_limits<double>::quiet_NaN();
+  predictor_->set_frame(frame.passes, configuration);
+  // A configuration outside the space: its counts were taken as the fitted configuration's.
+  return predictor_->predict(space_.contains(configuration) ? configuration : fitted_configuration_);
 }
 
 double RunTimeModel::predict(const Configuration& configuration) const {
-    if (!predictor_ || !space_.contains(configuration)) return std::numeric_limits<double>::quiet_NaN();
-    return predictor_->predict(configuration);
+  if (!predictor_ || !space_.contains(configuration)) return std::numeric_limits<double>::quiet_NaN();
+  return predictor_->predict(configuration);
 }
 
 void RunTimeModel::predict_all(std::vector<double>& out) const {
-    if (predictor_) predictor_->predict_all(out);
-    else out.assign(space_.size(), std::numeric_limits<double>::quiet_NaN());
+  if (predictor_)
+    predictor_->predict_all(out);
+  else
+    out.assign(space_.size(), std::numeric_limits<double>::quiet_NaN());
 }
 
 // The history's coefficients explain several configurations over the last few hundred frames;
@@ -55,82 +56,83 @@ void RunTimeModel::predict_all(std::vector<double>& out) const {
 // window fit does. The shift may make the per-frame load negative: it is a correction, not a
 // cost of its own.
 void RunTimeModel::anchor_to_recent(PowerModel& model, const Configuration& configuration) const {
-    const std::size_t window = fitter_.last_fit().samples_used;
-    double residual = 0.0;
-    std::size_t n = 0;
-    const std::span<const ConfiguredSample> recent = recent_history();
-    for (auto it = recent.rbegin(); it != recent.rend() && n < window; ++it) {
-        if (it->configuration != configuration) break;
-        residual += linearise_power(model.profile(), it->sample.power_w).alpha - model.alpha(it->sample.passes);
-        ++n;
-    }
-    if (n > 0) model.set_frame_alpha(model.frame_alpha() + residual / static_cast<double>(n));
+  const std::size_t window = fitter_.last_fit().samples_used;
+  double residual = 0.0;
+  std::size_t n = 0;
+  const std::span<const ConfiguredSample> recent = recent_history();
+  for (auto it = recent.rbegin(); it != recent.rend() && n < window; ++it) {
+    if (it->configuration != configuration) break;
+    residual += linearise_power(model.profile(), it->sample.power_w).alpha - model.alpha(it->sample.passes);
+    ++n;
+  }
+  if (n > 0) model.set_frame_alpha(model.frame_alpha() + residual / static_cast<double>(n));
 }
 
 std::span<const ConfiguredSample> RunTimeModel::recent_history() const {
-    const std::size_t kept = std::min(history_.size(), history_settings_.frames);
-    return std::span<const ConfiguredSample>(history_).last(kept);
+  const std::size_t kept = std::min(history_.size(), history_settings_.frames);
+  return std::span<const ConfiguredSample>(history_).last(kept);
 }
 
 OnlineFitter::Event RunTimeModel::learn(const FrameSample& frame, const Configuration& configuration,
                                         double predicted_w) {
-    if (is_usable(frame) && space_.contains(configuration)) {
-        history_.push_back({frame, configuration});
-        if (history_.size() > 2 * history_settings_.frames) {
-            history_.erase(history_.begin(), history_.end() - static_cast<std::ptrdiff_t>(history_settings_.frames));
-        }
+  if (is_usable(frame) && space_.contains(configuration)) {
+    history_.push_back({frame, configuration});
+    if (history_.size() > 2 * history_settings_.frames) {
+      history_.erase(history_.begin(), history_.end() - static_cast<std::ptrdiff_t>(history_settings_.frames));
     }
-    if (predictor_ && history_settings_.drift_frames > 0 && is_usable(frame) && std::isfinite(predicted_w)) {
-        // The residual in load terms: what the frame measured beyond what was predicted.
-        const PlatformProfile& profile = model_.profile();
-        const double residual = linearise_power(profile, frame.power_w).alpha - linearise_power(profile, predicted_w).alpha;
-        drift_alpha_ += residual / static_cast<double>(history_settings_.drift_frames);
-        predictor_->set_load_offset(drift_alpha_);
-    }
-    if (!predictor_ && is_usable(frame)) seed_prior(frame, configuration);
-    const OnlineFitter::Event event = fitter_.add_frame(frame, predicted_w);
-    if (event != OnlineFitter::Event::Fitted) return event;
+  }
+  if (predictor_ && history_settings_.drift_frames > 0 && is_usable(frame) && std::isfinite(predicted_w)) {
+    // The residual in load terms: what the frame measured beyond what was predicted.
+    const PlatformProfile& profile = model_.profile();
+    const double residual = linearise_power(profile, frame.power_w).alpha - linearise_power(profile, predicted_w).alpha;
+    drift_alpha_ += residual / static_cast<double>(history_settings_.drift_frames);
+    predictor_->set_load_offset(drift_alpha_);
+  }
+  if (!predictor_ && is_usable(frame)) seed_prior(frame, configuration);
+  const OnlineFitter::Event event = fitter_.add_frame(frame, predicted_w);
+  if (event != OnlineFitter::Event::Fitted) return event;
 
-    // The paper: the window's coefficients, chi and psi from them.
-    PowerModel model = fitter_.model();
-    // The window's regression explains the whole load by its passes (the paper's model): a
-    // per-frame load adopted from an earlier fit over several configurations is not part of it.
-    model.set_frame_alpha(0.0);
-    Configuration fitted_at = configuration;
-    // The paper solves chi and psi from the one configuration's coefficients. A profile's
-    // calibrated costs are a better guess than one window's coefficients, which a slow camera
-    // leaves unable to tell the passes apart: they are kept until a fit over several
-    // configurations (on the demo's logs this took Sponza's 30-frame error from 5.6 % to 3.2 %).
-    if (!model_.profile().costs) reuse_ = solve_reuse(model, space_, configuration, fitter_.last_window_mean(), reuse_);
-    fitted_configurations_ = {configuration};
-    // Beyond it: with several configurations in the history, one fit over all of them.
-    if (history_settings_.enabled) {
-        std::set<Configuration> seen;
-        const std::span<const ConfiguredSample> samples = recent_history();
-        for (const ConfiguredSample& s : samples) seen.insert(s.configuration);
-        if (seen.size() > 1) {
-            if (auto fit = fit_history(samples, space_, model, configuration, reuse_, configuration,
-                                       history_settings_.fit)) {
-                model = fit->model;
-                reuse_ = fit->reuse;
-                anchor_to_recent(model, configuration);
-                fitted_configurations_ = seen;
-                fitter_.adopt(model);
-                ++history_fits_;
-            }
-        }
+  // The paper: the window's coefficients, chi and psi from them.
+  PowerModel model = fitter_.model();
+  // The window's regression explains the whole load by its passes (the paper's model): a
+  // per-frame load adopted from an earlier fit over several configurations is not part of it.
+  model.set_frame_alpha(0.0);
+  Configuration fitted_at = configuration;
+  // The paper solves chi and psi from the one configuration's coefficients. A profile's
+  // calibrated costs are a better guess than one window's coefficients, which a slow camera
+  // leaves unable to tell the passes apart: they are kept until a fit over several
+  // configurations (on the demo's logs this took Sponza's 30-frame error from 5.6 % to 3.2 %).
+  if (!model_.profile().costs) reuse_ = solve_reuse(model, space_, configuration, fitter_.last_window_mean(), reuse_);
+  fitted_configurations_ = {configuration};
+  // Beyond it: with several configurations in the history, one fit over all of them.
+  if (history_settings_.enabled) {
+    std::set<Configuration> seen;
+    const std::span<const ConfiguredSample> samples = recent_history();
+    for (const ConfiguredSample& s : samples) seen.insert(s.configuration);
+    if (seen.size() > 1) {
+      if (auto fit = fit_history(samples, space_, model, configuration, reuse_, configuration, history_settings_.fit)) {
+        model = fit->model;
+        reuse_ = fit->reuse;
+        anchor_to_recent(model, configuration);
+        fitted_configurations_ = seen;
+        fitter_.adopt(model);
+        ++history_fits_;
+      }
     }
-    // A fit (and its anchoring to the window) starts the drift correction afresh.
-    drift_alpha_ = 0.0;
-    fitted_configuration_ = fitted_at;
-    model_ = model;
-    if (predictor_) predictor_->refit(model, fitted_at, reuse_);
-    else predictor_.emplace(space_, model, fitted_at, reuse_);
-    // Beyond the paper, with the history: fragments at every render-scale or shadow-map level
-    // seen in it as measured, not as the table's declared areas (fragment_scales.hpp).
-    if (history_settings_.enabled) predictor_->set_fragment_scales(measure_fragment_scales(recent_history(), space_));
-    predictor_->set_load_offset(0.0);
-    return event;
+  }
+  // A fit (and its anchoring to the window) starts the drift correction afresh.
+  drift_alpha_ = 0.0;
+  fitted_configuration_ = fitted_at;
+  model_ = model;
+  if (predictor_)
+    predictor_->refit(model, fitted_at, reuse_);
+  else
+    predictor_.emplace(space_, model, fitted_at, reuse_);
+  // Beyond the paper, with the history: fragments at every render-scale or shadow-map level
+  // seen in it as measured, not as the table's declared areas (fragment_scales.hpp).
+  if (history_settings_.enabled) predictor_->set_fragment_scales(measure_fragment_scales(recent_history(), space_));
+  predictor_->set_load_offset(0.0);
+  return event;
 }
 
 }  // namespace glbudget::model

@@ -12,97 +12,100 @@ namespace glbudget::model {
 namespace {
 
 std::string_view trim(std::string_view text) {
-    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) text.remove_prefix(1);
-    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);
-    return text;
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) text.remove_prefix(1);
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);
+  return text;
 }
 
 std::optional<double> parse_number(std::string_view text) {
-    text = trim(text);
-    double value = 0.0;
-    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (error != std::errc{} || end != text.data() + text.size() || !std::isfinite(value)) {
-        return std::nullopt;
-    }
-    return value;
+  text = trim(text);
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc{} || end != text.data() + text.size() || !std::isfinite(value)) {
+    return std::nullopt;
+  }
+  return value;
 }
 
 std::optional<Budget> reject(std::string_view text, const char* why) {
-    std::cerr << "glbudget: power budget \"" << text << "\" " << why
-              << " (expected e.g. 40% or 35W or off); ignoring it\n";
-    return std::nullopt;
+  std::cerr << "glbudget: power budget \"" << text << "\" " << why
+            << " (expected e.g. 40% or 35W or off); ignoring it\n";
+  return std::nullopt;
 }
 
 }  // namespace
 
 std::optional<Budget> parse_budget(std::string_view text) {
-    const std::string_view value = trim(text);
-    if (value.empty() || value == "off" || value == "OFF" || value == "Off") return Budget{};
-    const char unit = value.back();
-    const std::optional<double> number = parse_number(value.substr(0, value.size() - 1));
-    if (unit == '%') {
-        if (!number) return reject(text, "is not a number");
-        if (*number < 0.0 || *number > 100.0) return reject(text, "is outside 0%..100%");
-        return Budget{Budget::Kind::ShareOfRange, *number / 100.0};
-    }
-    if (unit == 'W' || unit == 'w') {
-        if (!number) return reject(text, "is not a number");
-        if (*number < 0.0) return reject(text, "is negative");
-        return Budget{Budget::Kind::Watts, *number};
-    }
-    return reject(text, "has no unit");
+  const std::string_view value = trim(text);
+  if (value.empty() || value == "off" || value == "OFF" || value == "Off") return Budget{};
+  const char unit = value.back();
+  const std::optional<double> number = parse_number(value.substr(0, value.size() - 1));
+  if (unit == '%') {
+    if (!number) return reject(text, "is not a number");
+    if (*number < 0.0 || *number > 100.0) return reject(text, "is outside 0%..100%");
+    return Budget{Budget::Kind::ShareOfRange, *number / 100.0};
+  }
+  if (unit == 'W' || unit == 'w') {
+    if (!number) return reject(text, "is not a number");
+    if (*number < 0.0) return reject(text, "is negative");
+    return Budget{Budget::Kind::Watts, *number};
+  }
+  return reject(text, "has no unit");
 }
 
 double budget_watts(const Budget& budget, std::span<const double> predicted_power_w) {
-    switch (budget.kind) {
-    case Budget::Kind::Off: return std::numeric_limits<double>::infinity();
-    case Budget::Kind::Watts: return budget.value;
-    case Budget::Kind::ShareOfRange: break;
-    }
-    double lowest = std::numeric_limits<double>::infinity();
-    double highest = -std::numeric_limits<double>::infinity();
-    for (double p : predicted_power_w) {
-        if (std::isnan(p)) continue;
-        lowest = std::min(lowest, p);
-        highest = std::max(highest, p);
-    }
-    if (!(lowest <= highest)) return std::numeric_limits<double>::infinity();  // nothing finite
-    // Written as a convex combination so that 0% and 100% give exactly lowest and highest.
-    return (1.0 - budget.value) * lowest + budget.value * highest;
+  switch (budget.kind) {
+    case Budget::Kind::Off:
+      return std::numeric_limits<double>::infinity();
+    case Budget::Kind::Watts:
+      return budget.value;
+    case Budget::Kind::ShareOfRange:
+      break;
+  }
+  double lowest = std::numeric_limits<double>::infinity();
+  double highest = -std::numeric_limits<double>::infinity();
+  for (double p : predicted_power_w) {
+    if (std::isnan(p)) continue;
+    lowest = std::min(lowest, p);
+    highest = std::max(highest, p);
+  }
+  if (!(lowest <= highest)) return std::numeric_limits<double>::infinity();  // nothing finite
+  // Written as a convex combination so that 0% and 100% give exactly lowest and highest.
+  return (1.0 - budget.value) * lowest + budget.value * highest;
 }
 
-Selection select_configuration(std::span<const double> predicted_power_w,
-                               std::span<const double> error, const Budget& budget, double margin_w) {
-    Selection selection;
-    selection.budget_w = budget_watts(budget, predicted_power_w);
-    const auto rank = [](double e) { return std::isnan(e) ? std::numeric_limits<double>::infinity() : e; };
+Selection select_configuration(std::span<const double> predicted_power_w, std::span<const double> error,
+                               const Budget& budget, double margin_w) {
+  Selection selection;
+  selection.budget_w = budget_watts(budget, predicted_power_w);
+  const auto rank = [](double e) { return std::isnan(e) ? std::numeric_limits<double>::infinity() : e; };
 
-    const auto lowest_error_within = [&](double limit, std::size_t* index) {
-        bool found = false;
-        for (std::size_t i = 0; i < predicted_power_w.size(); ++i) {
-            const double p = predicted_power_w[i];
-            if (!(p <= limit)) continue;
-            const double e = rank(error[i]);
-            const double best_e = rank(error[*index]);
-            if (!found || e < best_e || (e == best_e && p < predicted_power_w[*index])) {
-                *index = i;
-                found = true;
-            }
-        }
-        return found;
-    };
-    const bool margined = std::isfinite(margin_w) && margin_w > 0.0 && std::isfinite(selection.budget_w);
-    if (margined && lowest_error_within(selection.budget_w - margin_w, &selection.index)) return selection;
-    if (lowest_error_within(selection.budget_w, &selection.index)) return selection;
-
-    std::size_t cheapest = 0;
+  const auto lowest_error_within = [&](double limit, std::size_t* index) {
+    bool found = false;
     for (std::size_t i = 0; i < predicted_power_w.size(); ++i) {
-        const double p = predicted_power_w[i];
-        if (!std::isnan(p) && (std::isnan(predicted_power_w[cheapest]) || p < predicted_power_w[cheapest])) cheapest = i;
+      const double p = predicted_power_w[i];
+      if (!(p <= limit)) continue;
+      const double e = rank(error[i]);
+      const double best_e = rank(error[*index]);
+      if (!found || e < best_e || (e == best_e && p < predicted_power_w[*index])) {
+        *index = i;
+        found = true;
+      }
     }
-    selection.index = cheapest;
-    selection.within_budget = false;
-    return selection;
+    return found;
+  };
+  const bool margined = std::isfinite(margin_w) && margin_w > 0.0 && std::isfinite(selection.budget_w);
+  if (margined && lowest_error_within(selection.budget_w - margin_w, &selection.index)) return selection;
+  if (lowest_error_within(selection.budget_w, &selection.index)) return selection;
+
+  std::size_t cheapest = 0;
+  for (std::size_t i = 0; i < predicted_power_w.size(); ++i) {
+    const double p = predicted_power_w[i];
+    if (!std::isnan(p) && (std::isnan(predicted_power_w[cheapest]) || p < predicted_power_w[cheapest])) cheapest = i;
+  }
+  selection.index = cheapest;
+  selection.within_budget = false;
+  return selection;
 }
 
 }  // namespace glbudget::model

@@ -16,217 +16,231 @@ namespace {
 using nlohmann::json;
 
 double cost_field(const json& level, const char* key, const std::string& where) {
-    const auto it = level.find(key);
-    if (it == level.end()) return 0.0;  // e.g. no texel accesses
-    if (!it->is_number() || !std::isfinite(it->get<double>()) || it->get<double>() < 0.0) {
-        std::cerr << "glbudget: " << where << ": \"" << key << "\" must be a number >= 0, using 0\n";
-        return 0.0;
-    }
-    return it->get<double>();
+  const auto it = level.find(key);
+  if (it == level.end()) return 0.0;  // e.g. no texel accesses
+  if (!it->is_number() || !std::isfinite(it->get<double>()) || it->get<double>() < 0.0) {
+    std::cerr << "glbudget: " << where << ": \"" << key << "\" must be a number >= 0, using 0\n";
+    return 0.0;
+  }
+  return it->get<double>();
 }
 
 // The hashes of a level: "hash": "..." or "hashes": ["...", ...] (several programs drawing
 // one pass at one level, e.g. a skinned and a static variant of the same shading).
 std::vector<std::string> level_hashes(const json& level, const std::string& where) {
-    std::vector<std::string> hashes;
-    if (const auto it = level.find("hash"); it != level.end()) {
-        if (it->is_string()) hashes.push_back(it->get<std::string>());
-        else std::cerr << "glbudget: " << where << ": \"hash\" must be a string; ignored\n";
+  std::vector<std::string> hashes;
+  if (const auto it = level.find("hash"); it != level.end()) {
+    if (it->is_string())
+      hashes.push_back(it->get<std::string>());
+    else
+      std::cerr << "glbudget: " << where << ": \"hash\" must be a string; ignored\n";
+  }
+  if (const auto it = level.find("hashes"); it != level.end()) {
+    if (!it->is_array()) {
+      std::cerr << "glbudget: " << where << ": \"hashes\" must be an array of strings; ignored\n";
+    } else {
+      for (const json& hash : *it) {
+        if (hash.is_string())
+          hashes.push_back(hash.get<std::string>());
+        else
+          std::cerr << "glbudget: " << where << ": a non-string entry in \"hashes\"; ignored\n";
+      }
     }
-    if (const auto it = level.find("hashes"); it != level.end()) {
-        if (!it->is_array()) {
-            std::cerr << "glbudget: " << where << ": \"hashes\" must be an array of strings; ignored\n";
-        } else {
-            for (const json& hash : *it) {
-                if (hash.is_string()) hashes.push_back(hash.get<std::string>());
-                else std::cerr << "glbudget: " << where << ": a non-string entry in \"hashes\"; ignored\n";
-            }
-        }
-    }
-    return hashes;
+  }
+  return hashes;
 }
 
 }  // namespace
 
 std::optional<VariantTable> parse_variant_table(const std::string& json_text, const std::string& source) {
-    const json document = json::parse(json_text, nullptr, /*allow_exceptions=*/false);
-    if (!document.is_object() || !document.contains("passes") || !document["passes"].is_array()) {
-        std::cerr << "glbudget: " << source << ": expected {\"passes\": [...]}\n";
-        return std::nullopt;
+  const json document = json::parse(json_text, nullptr, /*allow_exceptions=*/false);
+  if (!document.is_object() || !document.contains("passes") || !document["passes"].is_array()) {
+    std::cerr << "glbudget: " << source << ": expected {\"passes\": [...]}\n";
+    return std::nullopt;
+  }
+  std::vector<PassVariants> passes;
+  std::map<std::string, VariantRef> by_hash;
+  for (const json& pass : document["passes"]) {
+    if (!pass.is_object() || !pass.contains("name") || !pass["name"].is_string() || !pass.contains("levels") ||
+        !pass["levels"].is_array() || pass["levels"].empty()) {
+      std::cerr << "glbudget: " << source << ": a pass needs a \"name\" and non-empty \"levels\"; skipped\n";
+      continue;
     }
-    std::vector<PassVariants> passes;
-    std::map<std::string, VariantRef> by_hash;
-    for (const json& pass : document["passes"]) {
-        if (!pass.is_object() || !pass.contains("name") || !pass["name"].is_string() ||
-            !pass.contains("levels") || !pass["levels"].is_array() || pass["levels"].empty()) {
-            std::cerr << "glbudget: " << source << ": a pass needs a \"name\" and non-empty \"levels\"; skipped\n";
-            continue;
-        }
-        PassVariants variants{pass["name"].get<std::string>(), {}, {}};
-        const std::string where = source + ": pass " + variants.pass;
-        if (const auto it = pass.find("scales"); it != pass.end()) {
-            if (it->is_array() && std::all_of(it->begin(), it->end(), [](const json& j) { return j.is_string(); })) {
-                for (const json& name : *it) variants.scales.push_back(name.get<std::string>());
-            } else {
-                std::cerr << "glbudget: " << where << ": \"scales\" must be an array of pass names; ignored\n";
-            }
-        }
-        for (const json& level : pass["levels"]) {
-            if (!level.is_object()) {
-                std::cerr << "glbudget: " << where << ": a level must be an object; skipped\n";
-                continue;
-            }
-            const int index = static_cast<int>(variants.levels.size());
-            for (const std::string& hash : level_hashes(level, where)) {
-                const VariantRef ref{passes.size(), index};
-                const auto [it, inserted] = by_hash.try_emplace(hash, ref);
-                // A program shared by several levels (they differ in a uniform or in the
-                // render-target size) names the pass but not the level.
-                if (!inserted && it->second.pass == ref.pass && it->second.level != index) it->second.level = -1;
-            }
-            VariantCost cost{cost_field(level, "ins_v", where), cost_field(level, "ins_f", where),
-                             cost_field(level, "tex_f", where)};
-            if (level.contains("fragment_scale")) cost.fragment_scale = cost_field(level, "fragment_scale", where);
-            if (const auto it = level.find("draws"); it != level.end()) {
-                if (it->is_boolean()) cost.draws = it->get<bool>();
-                else std::cerr << "glbudget: " << where << ": \"draws\" must be true or false; using true\n";
-            }
-            variants.levels.push_back(cost);
-        }
-        if (!variants.levels.empty()) passes.push_back(std::move(variants));
+    PassVariants variants{pass["name"].get<std::string>(), {}, {}};
+    const std::string where = source + ": pass " + variants.pass;
+    if (const auto it = pass.find("scales"); it != pass.end()) {
+      if (it->is_array() && std::all_of(it->begin(), it->end(), [](const json& j) { return j.is_string(); })) {
+        for (const json& name : *it) variants.scales.push_back(name.get<std::string>());
+      } else {
+        std::cerr << "glbudget: " << where << ": \"scales\" must be an array of pass names; ignored\n";
+      }
     }
-    VariantTable table{ConfigurationSpace(std::move(passes)), std::move(by_hash), std::nullopt};
-    if (const auto it = document.find("platform_costs"); it != document.end()) {
-        PlatformCosts costs;
-        bool ok = it->is_object();
-        for (auto [key, field] : {std::pair{"batch", &costs.batch}, {"vertex", &costs.vertex}, {"fragment", &costs.fragment},
-                                  {"instruction", &costs.instruction}, {"texel", &costs.texel}}) {
-            const auto value = ok ? it->find(key) : it->end();
-            ok = ok && value != it->end() && value->is_number() && std::isfinite(value->get<double>()) &&
-                 value->get<double>() >= 0.0;
-            if (ok) *field = value->get<double>();
-        }
-        if (ok) table.platform_costs = costs;
-        else std::cerr << "glbudget: " << source << ": \"platform_costs\" needs batch, vertex, fragment, instruction "
-                          "and texel, numbers >= 0; ignored\n";
+    for (const json& level : pass["levels"]) {
+      if (!level.is_object()) {
+        std::cerr << "glbudget: " << where << ": a level must be an object; skipped\n";
+        continue;
+      }
+      const int index = static_cast<int>(variants.levels.size());
+      for (const std::string& hash : level_hashes(level, where)) {
+        const VariantRef ref{passes.size(), index};
+        const auto [it, inserted] = by_hash.try_emplace(hash, ref);
+        // A program shared by several levels (they differ in a uniform or in the
+        // render-target size) names the pass but not the level.
+        if (!inserted && it->second.pass == ref.pass && it->second.level != index) it->second.level = -1;
+      }
+      VariantCost cost{cost_field(level, "ins_v", where), cost_field(level, "ins_f", where),
+                       cost_field(level, "tex_f", where)};
+      if (level.contains("fragment_scale")) cost.fragment_scale = cost_field(level, "fragment_scale", where);
+      if (const auto it = level.find("draws"); it != level.end()) {
+        if (it->is_boolean())
+          cost.draws = it->get<bool>();
+        else
+          std::cerr << "glbudget: " << where << ": \"draws\" must be true or false; using true\n";
+      }
+      variants.levels.push_back(cost);
     }
-    return table;
+    if (!variants.levels.empty()) passes.push_back(std::move(variants));
+  }
+  VariantTable table{ConfigurationSpace(std::move(passes)), std::move(by_hash), std::nullopt};
+  if (const auto it = document.find("platform_costs"); it != document.end()) {
+    PlatformCosts costs;
+    bool ok = it->is_object();
+    for (auto [key, field] : {std::pair{"batch", &costs.batch},
+                              {"vertex", &costs.vertex},
+                              {"fragment", &costs.fragment},
+                              {"instruction", &costs.instruction},
+                              {"texel", &costs.texel}}) {
+      const auto value = ok ? it->find(key) : it->end();
+      ok = ok && value != it->end() && value->is_number() && std::isfinite(value->get<double>()) &&
+           value->get<double>() >= 0.0;
+      if (ok) *field = value->get<double>();
+    }
+    if (ok)
+      table.platform_costs = costs;
+    else
+      std::cerr << "glbudget: " << source
+                << ": \"platform_costs\" needs batch, vertex, fragment, instruction "
+                   "and texel, numbers >= 0; ignored\n";
+  }
+  return table;
 }
 
 std::string default_variant_table_path(const std::string& executable) {
-    std::string base;
-    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) base = xdg;
-    else if (const char* home = std::getenv("HOME"); home && *home) base = std::string(home) + "/.cache";
-    if (base.empty() || executable.empty()) return {};
-    return base + "/glbudget/" + executable + ".variants.json";
+  std::string base;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+    base = xdg;
+  else if (const char* home = std::getenv("HOME"); home && *home)
+    base = std::string(home) + "/.cache";
+  if (base.empty() || executable.empty()) return {};
+  return base + "/glbudget/" + executable + ".variants.json";
 }
 
 std::optional<Configuration> parse_configuration(std::string_view text, const ConfigurationSpace& space) {
-    Configuration configuration;
-    std::size_t start = 0;
-    while (start <= text.size()) {
-        const std::size_t colon = std::min(text.find(':', start), text.size());
-        const std::string_view field = text.substr(start, colon - start);
-        int level = -1;
-        const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), level);
-        if (field.empty() || error != std::errc{} || end != field.data() + field.size()) return std::nullopt;
-        configuration.push_back(level);
-        start = colon + 1;
-    }
-    if (!space.contains(configuration)) return std::nullopt;
-    return configuration;
+  Configuration configuration;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t colon = std::min(text.find(':', start), text.size());
+    const std::string_view field = text.substr(start, colon - start);
+    int level = -1;
+    const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), level);
+    if (field.empty() || error != std::errc{} || end != field.data() + field.size()) return std::nullopt;
+    configuration.push_back(level);
+    start = colon + 1;
+  }
+  if (!space.contains(configuration)) return std::nullopt;
+  return configuration;
 }
 
 std::optional<VariantTable> load_variant_table(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) {
-        std::cerr << "glbudget: cannot read variant table " << path << "\n";
-        return std::nullopt;
-    }
-    std::stringstream text;
-    text << in.rdbuf();
-    return parse_variant_table(text.str(), path);
+  std::ifstream in(path);
+  if (!in) {
+    std::cerr << "glbudget: cannot read variant table " << path << "\n";
+    return std::nullopt;
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_variant_table(text.str(), path);
 }
 
 ResolvedFrame resolve_frame(const LoggedFrame& frame, const VariantTable& table,
                             const Configuration& default_configuration) {
-    ResolvedFrame resolved;
-    resolved.sample.power_w = frame.power_w;
-    resolved.configuration = default_configuration;
-    resolved.configuration.resize(table.space.pass_count(), 0);
-    // The configuration the frame was drawn in, where the log says (the governor logs what it
-    // applied); otherwise the variants the frame drew tell their passes' levels.
-    const std::optional<Configuration> logged =
-        frame.configuration.empty() ? std::nullopt : parse_configuration(frame.configuration, table.space);
-    std::vector<double> texels_per_fragment;
-    for (const LoggedPass& logged_pass : frame.passes) {
-        std::string name = logged_pass.pass;
-        bool in_table = false;
-        if (const auto it = table.by_hash.find(logged_pass.pass); it != table.by_hash.end()) {
-            name = table.space.passes()[it->second.pass].pass;
-            if (!logged && it->second.level >= 0) resolved.configuration[it->second.pass] = it->second.level;
-            in_table = true;
-        }
-        resolved.totals.triangles += logged_pass.primitives;
-        resolved.totals.batches += logged_pass.counts.batches;
-        // Several programs can form one pass: their counts add up.
-        bool merged = false;
-        for (std::size_t i = 0; i < resolved.sample.passes.size(); ++i) {
-            PassFrame& existing = resolved.sample.passes[i];
-            if (existing.pass != name) continue;
-            existing.counts.batches += logged_pass.counts.batches;
-            existing.counts.vertices += logged_pass.counts.vertices;
-            existing.counts.fragments += logged_pass.counts.fragments;
-            resolved.primitives[i] += logged_pass.primitives;
-            merged = true;
-        }
-        if (!merged) {
-            resolved.sample.passes.push_back({name, logged_pass.counts});
-            resolved.primitives.push_back(logged_pass.primitives);
-            texels_per_fragment.push_back(in_table ? -1.0 : 1.0);  // -1: from the level, below
-        }
+  ResolvedFrame resolved;
+  resolved.sample.power_w = frame.power_w;
+  resolved.configuration = default_configuration;
+  resolved.configuration.resize(table.space.pass_count(), 0);
+  // The configuration the frame was drawn in, where the log says (the governor logs what it
+  // applied); otherwise the variants the frame drew tell their passes' levels.
+  const std::optional<Configuration> logged =
+      frame.configuration.empty() ? std::nullopt : parse_configuration(frame.configuration, table.space);
+  std::vector<double> texels_per_fragment;
+  for (const LoggedPass& logged_pass : frame.passes) {
+    std::string name = logged_pass.pass;
+    bool in_table = false;
+    if (const auto it = table.by_hash.find(logged_pass.pass); it != table.by_hash.end()) {
+      name = table.space.passes()[it->second.pass].pass;
+      if (!logged && it->second.level >= 0) resolved.configuration[it->second.pass] = it->second.level;
+      in_table = true;
     }
-    if (logged) resolved.configuration = *logged;
+    resolved.totals.triangles += logged_pass.primitives;
+    resolved.totals.batches += logged_pass.counts.batches;
+    // Several programs can form one pass: their counts add up.
+    bool merged = false;
     for (std::size_t i = 0; i < resolved.sample.passes.size(); ++i) {
-        double tex = texels_per_fragment[i];
-        if (tex < 0.0) tex = table_level(table, resolved.sample.passes[i].pass, resolved.configuration).tex_f;
-        resolved.totals.texels += resolved.sample.passes[i].counts.fragments * tex;
+      PassFrame& existing = resolved.sample.passes[i];
+      if (existing.pass != name) continue;
+      existing.counts.batches += logged_pass.counts.batches;
+      existing.counts.vertices += logged_pass.counts.vertices;
+      existing.counts.fragments += logged_pass.counts.fragments;
+      resolved.primitives[i] += logged_pass.primitives;
+      merged = true;
     }
-    return resolved;
+    if (!merged) {
+      resolved.sample.passes.push_back({name, logged_pass.counts});
+      resolved.primitives.push_back(logged_pass.primitives);
+      texels_per_fragment.push_back(in_table ? -1.0 : 1.0);  // -1: from the level, below
+    }
+  }
+  if (logged) resolved.configuration = *logged;
+  for (std::size_t i = 0; i < resolved.sample.passes.size(); ++i) {
+    double tex = texels_per_fragment[i];
+    if (tex < 0.0) tex = table_level(table, resolved.sample.passes[i].pass, resolved.configuration).tex_f;
+    resolved.totals.texels += resolved.sample.passes[i].counts.fragments * tex;
+  }
+  return resolved;
 }
 
 VariantCost table_level(const VariantTable& table, const std::string& pass, const Configuration& configuration) {
-    for (std::size_t i = 0; i < table.space.pass_count(); ++i) {
-        if (table.space.passes()[i].pass == pass && i < configuration.size()) {
-            return table.space.passes()[i].levels[static_cast<std::size_t>(configuration[i])];
-        }
+  for (std::size_t i = 0; i < table.space.pass_count(); ++i) {
+    if (table.space.passes()[i].pass == pass && i < configuration.size()) {
+      return table.space.passes()[i].levels[static_cast<std::size_t>(configuration[i])];
     }
-    return {};
+  }
+  return {};
 }
 
 FrameTotals totals_in(const ResolvedFrame& frame, const VariantTable& table, const Configuration& target) {
-    FrameTotals totals;
-    const ConfigurationSpace& space = table.space;
-    for (std::size_t j = 0; j < frame.sample.passes.size(); ++j) {
-        const PassFrame& p = frame.sample.passes[j];
-        double fragment_ratio = 1.0;
-        bool draws = true;
-        double tex = 1.0;
-        for (std::size_t i = 0; i < space.pass_count(); ++i) {
-            const PassVariants& pass = space.passes()[i];
-            const VariantCost& from = pass.levels[static_cast<std::size_t>(frame.configuration[i])];
-            const VariantCost& to = pass.levels[static_cast<std::size_t>(target[i])];
-            if (pass.pass == p.pass) draws = to.draws, tex = to.tex_f;
-            if (std::find(pass.scales.begin(), pass.scales.end(), p.pass) != pass.scales.end()) {
-                fragment_ratio *= from.fragment_scale > 0.0 ? to.fragment_scale / from.fragment_scale : 0.0;
-            }
-        }
-        if (!draws) continue;
-        totals.triangles += frame.primitives[j];
-        totals.batches += p.counts.batches;
-        totals.texels += p.counts.fragments * fragment_ratio * tex;
+  FrameTotals totals;
+  const ConfigurationSpace& space = table.space;
+  for (std::size_t j = 0; j < frame.sample.passes.size(); ++j) {
+    const PassFrame& p = frame.sample.passes[j];
+    double fragment_ratio = 1.0;
+    bool draws = true;
+    double tex = 1.0;
+    for (std::size_t i = 0; i < space.pass_count(); ++i) {
+      const PassVariants& pass = space.passes()[i];
+      const VariantCost& from = pass.levels[static_cast<std::size_t>(frame.configuration[i])];
+      const VariantCost& to = pass.levels[static_cast<std::size_t>(target[i])];
+      if (pass.pass == p.pass) draws = to.draws, tex = to.tex_f;
+      if (std::find(pass.scales.begin(), pass.scales.end(), p.pass) != pass.scales.end()) {
+        fragment_ratio *= from.fragment_scale > 0.0 ? to.fragment_scale / from.fragment_scale : 0.0;
+      }
     }
-    return totals;
+    if (!draws) continue;
+    totals.triangles += frame.primitives[j];
+    totals.batches += p.counts.batches;
+    totals.texels += p.counts.fragments * fragment_ratio * tex;
+  }
+  return totals;
 }
 
 }  // namespace glbudget::model

@@ -10,15 +10,15 @@ namespace glbudget::quality {
 
 // scipy.ndimage's 1-D Gaussian: exp(-x^2 / (2 sigma^2)) for x in [-5, 5], normalised to sum 1.
 inline std::array<double, kWindow> gaussian_window() {
-    std::array<double, kWindow> weights{};
-    double sum = 0.0;
-    for (int k = 0; k < kWindow; ++k) {
-        const double x = k - kRadius;
-        weights[k] = std::exp(-0.5 / (kSigma * kSigma) * x * x);
-        sum += weights[k];
-    }
-    for (double& weight : weights) weight /= sum;
-    return weights;
+  std::array<double, kWindow> weights{};
+  double sum = 0.0;
+  for (int k = 0; k < kWindow; ++k) {
+    const double x = k - kRadius;
+    weights[k] = std::exp(-0.5 / (kSigma * kSigma) * x * x);
+    sum += weights[k];
+  }
+  for (double& weight : weights) weight /= sum;
+  return weights;
 }
 
 inline constexpr double kC1 = (kK1 * kDataRange) * (kK1 * kDataRange);

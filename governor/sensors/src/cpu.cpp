@@ -25,16 +25,14 @@ double process_cpu_seconds() {
 
 unsigned usable_cores() {
   cpu_set_t set;
-  if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0)
-    return static_cast<unsigned>(CPU_COUNT(&set));
+  if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0) return static_cast<unsigned>(CPU_COUNT(&set));
   return 1;
 }
 
 class CpuEstimateSource final : public Source {
  public:
   CpuEstimateSource(double idle_w, double max_w, unsigned cores, std::int64_t start_ns)
-      : idle_w_(idle_w), max_w_(max_w), cores_(cores), start_ns_(start_ns),
-        start_cpu_s_(process_cpu_seconds()) {}
+      : idle_w_(idle_w), max_w_(max_w), cores_(cores), start_ns_(start_ns), start_cpu_s_(process_cpu_seconds()) {}
 
   std::string_view name() const override { return "cpu"; }
   bool is_estimate() const override { return true; }
@@ -42,7 +40,8 @@ class CpuEstimateSource final : public Source {
     char text[200];
     std::snprintf(text, sizeof text,
                   "estimate: %.3g W + (%.3g W - %.3g W) * u, u = process CPU time / "
-                  "(wall time * %u cores)", idle_w_, max_w_, idle_w_, cores_);
+                  "(wall time * %u cores)",
+                  idle_w_, max_w_, idle_w_, cores_);
     return text;
   }
 
@@ -75,9 +74,8 @@ OpenResult open_cpu(const SensorSpec& spec, const SourceEnvironment&) {
   std::string error;
   double idle = default_idle_w, max = default_max_w;
   unsigned cores = usable_cores();
-  if (!only_params(spec, {"idle", "max", "cores"}, error) ||
-      !param_number(spec, "idle", idle, error) || !param_number(spec, "max", max, error) ||
-      !param_index(spec, "cores", cores, error))
+  if (!only_params(spec, {"idle", "max", "cores"}, error) || !param_number(spec, "idle", idle, error) ||
+      !param_number(spec, "max", max, error) || !param_index(spec, "cores", cores, error))
     return unavailable(error);
   if (idle < 0.0 || max < idle)
     return unavailable("cpu sensor needs 0 <= idle <= max (got idle=" + std::to_string(idle) +

@@ -6,20 +6,32 @@ namespace glbudget::sensors {
 
 const char* to_string(Fault fault) {
   switch (fault) {
-    case Fault::read_error: return "read error";
-    case Fault::garbage: return "garbage value";
-    case Fault::backwards: return "went backwards";
-    case Fault::stalled: return "stalled";
+    case Fault::read_error:
+      return "read error";
+    case Fault::garbage:
+      return "garbage value";
+    case Fault::backwards:
+      return "went backwards";
+    case Fault::stalled:
+      return "stalled";
   }
   return "?";
 }
 
 EnergyIntegrator::Outcome EnergyIntegrator::drop(Fault fault, std::string detail) {
   switch (fault) {
-    case Fault::read_error: ++faults_.read_error; break;
-    case Fault::garbage: ++faults_.garbage; break;
-    case Fault::backwards: ++faults_.backwards; break;
-    case Fault::stalled: ++faults_.stalled; break;
+    case Fault::read_error:
+      ++faults_.read_error;
+      break;
+    case Fault::garbage:
+      ++faults_.garbage;
+      break;
+    case Fault::backwards:
+      ++faults_.backwards;
+      break;
+    case Fault::stalled:
+      ++faults_.stalled;
+      break;
   }
   return Outcome{std::nullopt, fault, std::move(detail)};
 }
@@ -36,9 +48,8 @@ std::optional<EnergyPoint> EnergyIntegrator::break_continuity(std::int64_t t_ns)
 }
 
 EnergyIntegrator::Outcome EnergyIntegrator::drop_stalled(std::int64_t t_ns, const char* what) {
-  auto outcome = drop(Fault::stalled, std::string(what) + " for over " +
-                                          std::to_string(limits_.stall_timeout_ns / 1'000'000) +
-                                          " ms");
+  auto outcome = drop(Fault::stalled,
+                      std::string(what) + " for over " + std::to_string(limits_.stall_timeout_ns / 1'000'000) + " ms");
   outcome.point = break_continuity(t_ns);
   return outcome;
 }
@@ -69,8 +80,7 @@ EnergyIntegrator::Outcome EnergyIntegrator::accept(std::int64_t t_ns, const Read
   return with_fault;
 }
 
-EnergyIntegrator::Outcome EnergyIntegrator::accept_reading(std::int64_t t_ns,
-                                                           const Reading& reading, bool stalled) {
+EnergyIntegrator::Outcome EnergyIntegrator::accept_reading(std::int64_t t_ns, const Reading& reading, bool stalled) {
   switch (reading.status) {
     case ReadStatus::read_error: {
       auto outcome = drop(Fault::read_error, reading.detail);
@@ -87,8 +97,7 @@ EnergyIntegrator::Outcome EnergyIntegrator::accept_reading(std::int64_t t_ns,
   }
 
   const double value = reading.value;
-  if (!std::isfinite(value) || value < 0.0)
-    return drop(Fault::garbage, "value " + std::to_string(value));
+  if (!std::isfinite(value) || value < 0.0) return drop(Fault::garbage, "value " + std::to_string(value));
   if (reading.kind == ReadingKind::power_w && value > limits_.max_plausible_w)
     return drop(Fault::garbage, "implausible power " + std::to_string(value) + " W");
 
@@ -117,8 +126,8 @@ EnergyIntegrator::Outcome EnergyIntegrator::accept_reading(std::int64_t t_ns,
       auto outcome = start_segment(t_ns, value);
       ++faults_.garbage;
       outcome.fault = Fault::garbage;
-      outcome.detail = "energy counter jumped by " + std::to_string(delta_j) + " J in " +
-                       std::to_string(dt_s * 1e3) + " ms";
+      outcome.detail =
+          "energy counter jumped by " + std::to_string(delta_j) + " J in " + std::to_string(dt_s * 1e3) + " ms";
       return outcome;
     }
     energy_j_ += delta_j;

@@ -24,8 +24,7 @@ EnergyPoint EnergyTimeline::load(std::uint64_t index) const {
   return EnergyPoint{slot.t_ns.load(relaxed), slot.energy_j.load(relaxed), slot.segment.load(relaxed)};
 }
 
-std::optional<EnergyPoint> EnergyTimeline::energy_at(std::int64_t t_ns,
-                                                     std::int64_t max_extrapolation_ns) const {
+std::optional<EnergyPoint> EnergyTimeline::energy_at(std::int64_t t_ns, std::int64_t max_extrapolation_ns) const {
   for (;;) {
     const std::uint64_t n = published_.load(std::memory_order_acquire);
     if (n == 0) return std::nullopt;
@@ -40,10 +39,8 @@ std::optional<EnergyPoint> EnergyTimeline::energy_at(std::int64_t t_ns,
         // Extrapolation needs the segment's current rate, hence two points of it.
         const EnergyPoint earlier = load(n - 2);
         if (earlier.segment == later.segment && later.t_ns > earlier.t_ns) {
-          const double slope = (later.energy_j - earlier.energy_j) /
-                               static_cast<double>(later.t_ns - earlier.t_ns);
-          result = EnergyPoint{t_ns, later.energy_j + slope * static_cast<double>(t_ns - later.t_ns),
-                               later.segment};
+          const double slope = (later.energy_j - earlier.energy_j) / static_cast<double>(later.t_ns - earlier.t_ns);
+          result = EnergyPoint{t_ns, later.energy_j + slope * static_cast<double>(t_ns - later.t_ns), later.segment};
         }
       }
     } else {
@@ -52,10 +49,8 @@ std::optional<EnergyPoint> EnergyTimeline::energy_at(std::int64_t t_ns,
         const EnergyPoint earlier = load(i - 1);
         if (earlier.t_ns <= t_ns) {
           if (earlier.segment == later.segment) {
-            const double f = static_cast<double>(t_ns - earlier.t_ns) /
-                             static_cast<double>(later.t_ns - earlier.t_ns);
-            result = EnergyPoint{t_ns, earlier.energy_j + f * (later.energy_j - earlier.energy_j),
-                                 later.segment};
+            const double f = static_cast<double>(t_ns - earlier.t_ns) / static_cast<double>(later.t_ns - earlier.t_ns);
+            result = EnergyPoint{t_ns, earlier.energy_j + f * (later.energy_j - earlier.energy_j), later.segment};
           } else if (earlier.t_ns == t_ns) {
             result = earlier;  // the last point of a segment
           }

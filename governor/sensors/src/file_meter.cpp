@@ -78,15 +78,14 @@ class FileMeterSource final : public Source {
     double sum_w = 0.0;
     unsigned good = 0;
     std::size_t line_start = 0;
-    for (std::size_t eol; (eol = pending_.find('\n', line_start)) != std::string::npos;
-         line_start = eol + 1) {
+    for (std::size_t eol; (eol = pending_.find('\n', line_start)) != std::string::npos; line_start = eol + 1) {
       const std::string_view line(pending_.data() + line_start, eol - line_start);
       if (line.empty() || line.front() == '#' || line.starts_with("timestamp")) continue;
       const auto comma = line.find(',');
       double timestamp = 0.0, watts = 0.0;
       if (comma == std::string_view::npos || !parse_double(line.substr(0, comma), timestamp) ||
-          !parse_double(line.substr(comma + 1), watts) || !std::isfinite(timestamp) ||
-          !std::isfinite(watts) || watts < 0.0) {
+          !parse_double(line.substr(comma + 1), watts) || !std::isfinite(timestamp) || !std::isfinite(watts) ||
+          watts < 0.0) {
         ++reading.discarded_garbage;
         reading.detail = path_ + ": bad line " + quoted(line);
         continue;
@@ -100,8 +99,7 @@ class FileMeterSource final : public Source {
       }
       if (have_timestamp_ && timestamp <= last_timestamp_) {
         ++reading.discarded_backwards;
-        reading.detail = path_ + ": timestamp " + quoted(line.substr(0, comma)) +
-                         " is not after the previous one";
+        reading.detail = path_ + ": timestamp " + quoted(line.substr(0, comma)) + " is not after the previous one";
         continue;
       }
       have_timestamp_ = true;

@@ -28,19 +28,18 @@ class HwmonAttributeSource final : public Source {
 
 }  // namespace
 
-OpenResult open_hwmon(const SensorSpec& spec, const SourceEnvironment& env,
-                      std::string_view hwmon_name, std::initializer_list<HwmonAttribute> preference) {
+OpenResult open_hwmon(const SensorSpec& spec, const SourceEnvironment& env, std::string_view hwmon_name,
+                      std::initializer_list<HwmonAttribute> preference) {
   std::string error;
   unsigned index = 0;
-  if (!only_params(spec, {"index"}, error) || !param_index(spec, "index", index, error))
-    return unavailable(error);
+  if (!only_params(spec, {"index"}, error) || !param_index(spec, "index", index, error)) return unavailable(error);
   const auto dirs = sysfs::hwmon_named(env.sysfs_root, std::string(hwmon_name));
   if (dirs.empty())
     return unavailable("no hwmon named " + std::string(hwmon_name) + " under " +
                        (env.sysfs_root / "class" / "hwmon").string());
   if (index >= dirs.size())
-    return unavailable("index=" + std::to_string(index) + " but only " +
-                       std::to_string(dirs.size()) + " " + std::string(hwmon_name) + " hwmon found");
+    return unavailable("index=" + std::to_string(index) + " but only " + std::to_string(dirs.size()) + " " +
+                       std::string(hwmon_name) + " hwmon found");
   std::string tried;
   for (const HwmonAttribute& attribute : preference) {
     const auto path = dirs[index] / attribute.file;

@@ -5,8 +5,7 @@
 namespace glbudget::sensors {
 
 OpenResult open_intel_hwmon(const SensorSpec& spec, const SourceEnvironment& env) {
-  return open_hwmon(spec, env, spec.kind == "xe" ? "xe" : "i915",
-                    {{"energy1_input", ReadingKind::energy_j}});
+  return open_hwmon(spec, env, spec.kind == "xe" ? "xe" : "i915", {{"energy1_input", ReadingKind::energy_j}});
 }
 
 }  // namespace glbudget::sensors

@@ -85,14 +85,12 @@ class NvmlSource final : public Source {
 OpenResult open_nvml(const SensorSpec& spec, const SourceEnvironment& env) {
   std::string error;
   unsigned index = 0;
-  if (!only_params(spec, {"device"}, error) || !param_index(spec, "device", index, error))
-    return unavailable(error);
+  if (!only_params(spec, {"device"}, error) || !param_index(spec, "device", index, error)) return unavailable(error);
 
   NvmlApi api;
   api.library = dlopen(env.nvml_library.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!api.library) return unavailable("cannot load " + env.nvml_library + " (no NVIDIA driver)");
-  if (!resolve(api.library, "nvmlInit_v2", api.init) ||
-      !resolve(api.library, "nvmlShutdown", api.shutdown) ||
+  if (!resolve(api.library, "nvmlInit_v2", api.init) || !resolve(api.library, "nvmlShutdown", api.shutdown) ||
       !resolve(api.library, "nvmlDeviceGetHandleByIndex_v2", api.device_by_index) ||
       !resolve(api.library, "nvmlDeviceGetTotalEnergyConsumption", api.total_energy) ||
       !resolve(api.library, "nvmlDeviceGetPowerUsage", api.power_usage)) {

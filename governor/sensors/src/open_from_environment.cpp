@@ -21,8 +21,8 @@ SamplerOptions sampler_options_from_environment() {
   if (ec == std::errc() && ptr == text.data() + text.size() && ms >= 1 && ms <= 1000)
     options.period = std::chrono::milliseconds(ms);
   else
-    std::fprintf(stderr, "glbudget: GLBUDGET_SENSOR_PERIOD_MS=%s is not 1..1000; using %lld\n",
-                 value, static_cast<long long>(options.period.count() / 1'000'000));
+    std::fprintf(stderr, "glbudget: GLBUDGET_SENSOR_PERIOD_MS=%s is not 1..1000; using %lld\n", value,
+                 static_cast<long long>(options.period.count() / 1'000'000));
   return options;
 }
 
@@ -40,8 +40,7 @@ std::unique_ptr<PowerSensor> open_sensor_from_environment() {
     if (!opened.source) error = opened.why_not;
   }
   if (!opened.source) {
-    std::fprintf(stderr, "glbudget: GLBUDGET_SENSOR=%s: %s; using auto\n", text.c_str(),
-                 error.c_str());
+    std::fprintf(stderr, "glbudget: GLBUDGET_SENSOR=%s: %s; using auto\n", text.c_str(), error.c_str());
     opened = open_source(SensorSpec{"auto", {}, {}}, env);
   }
   if (!opened.source) {  // cannot happen while cpu is in the auto list, but never crash the host
@@ -49,9 +48,8 @@ std::unique_ptr<PowerSensor> open_sensor_from_environment() {
     return nullptr;
   }
   if (text == "auto" || !value)
-    std::fprintf(stderr, "glbudget: power sensor %.*s%s: %s\n",
-                 static_cast<int>(opened.source->name().size()), opened.source->name().data(),
-                 opened.source->is_estimate() ? " (estimate)" : "",
+    std::fprintf(stderr, "glbudget: power sensor %.*s%s: %s\n", static_cast<int>(opened.source->name().size()),
+                 opened.source->name().data(), opened.source->is_estimate() ? " (estimate)" : "",
                  opened.source->description().c_str());
   return std::make_unique<PowerSensor>(std::move(opened.source), sampler_options_from_environment());
 }

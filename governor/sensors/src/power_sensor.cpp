@@ -68,8 +68,7 @@ void PowerSensor::report_fault(Fault fault, const std::string& detail) {
   bool& reported = fault_reported_[static_cast<int>(fault)];
   if (reported) return;
   reported = true;
-  std::fprintf(stderr,
-               "glbudget: sensor %.*s: sample dropped (%s: %s); further drops are only counted\n",
+  std::fprintf(stderr, "glbudget: sensor %.*s: sample dropped (%s: %s); further drops are only counted\n",
                static_cast<int>(name_.size()), name_.data(), to_string(fault), detail.c_str());
 }
 
@@ -102,8 +101,7 @@ FrameEnergy PowerSensor::on_swap(std::int64_t now_ns) {
   // Differencing against the value reported at the previous swap (not a re-interpolation of
   // it) keeps the per-frame energies summing exactly to the counter's total.
   EnergyPoint reported = *now;
-  if (have_previous_swap_ && previous_swap_.segment == now->segment &&
-      now_ns > previous_swap_.t_ns) {
+  if (have_previous_swap_ && previous_swap_.segment == now->segment && now_ns > previous_swap_.t_ns) {
     // An extrapolation may have overshot the curve: report zero until it catches up.
     reported.energy_j = std::max(now->energy_j, previous_swap_.energy_j);
     frame.valid = true;

@@ -15,15 +15,14 @@ namespace fs = std::filesystem;
 
 struct Zone {
   fs::path dir;
-  double range_j = 0.0;    // the counter wraps to zero after this
+  double range_j = 0.0;  // the counter wraps to zero after this
   double last_raw_j = 0.0;
   bool have_last = false;
 };
 
 class RaplSource final : public Source {
  public:
-  RaplSource(std::vector<Zone> zones, std::string domain)
-      : zones_(std::move(zones)), domain_(std::move(domain)) {}
+  RaplSource(std::vector<Zone> zones, std::string domain) : zones_(std::move(zones)), domain_(std::move(domain)) {}
 
   std::string_view name() const override { return "rapl"; }
   std::string description() const override {
@@ -73,8 +72,7 @@ OpenResult open_rapl(const SensorSpec& spec, const SourceEnvironment& env) {
   if (!only_params(spec, {"domain"}, error)) return unavailable(error);
   const auto domain_it = spec.params.find("domain");
   const std::string domain = domain_it == spec.params.end() ? "package" : domain_it->second;
-  if (domain != "package" && domain != "uncore" && domain != "core" && domain != "dram" &&
-      domain != "psys")
+  if (domain != "package" && domain != "uncore" && domain != "core" && domain != "dram" && domain != "psys")
     return unavailable("rapl domain \"" + domain + "\" is not package, uncore, core, dram or psys");
 
   const fs::path powercap = env.sysfs_root / "class" / "powercap";
@@ -83,12 +81,10 @@ OpenResult open_rapl(const SensorSpec& spec, const SourceEnvironment& env) {
   for (const auto& dir : sysfs::entries_with_prefix(powercap, "intel-rapl:")) {
     if (zone_matches(sysfs::read_text(dir / "name").value_or(""), domain)) zones.push_back({dir});
   }
-  if (zones.empty())
-    return unavailable("no powercap zone named " + domain + " under " + powercap.string());
+  if (zones.empty()) return unavailable("no powercap zone named " + domain + " under " + powercap.string());
 
   for (Zone& zone : zones) {
-    const Reading range =
-        sysfs::read_scaled(zone.dir / "max_energy_range_uj", 1e-6, ReadingKind::energy_j);
+    const Reading range = sysfs::read_scaled(zone.dir / "max_energy_range_uj", 1e-6, ReadingKind::energy_j);
     if (range.status == ReadStatus::ok) zone.range_j = range.value;
     std::string read_error;
     int read_errno = 0;
@@ -96,8 +92,8 @@ OpenResult open_rapl(const SensorSpec& spec, const SourceEnvironment& env) {
       if (read_errno == EACCES)
         return unavailable((zone.dir / "energy_uj").string() +
                            " is readable by root only (Linux 5.10+, CVE-2020-8694); allow it "
-                           "with: sudo chmod a+r " + (powercap / "intel-rapl:*" / "energy_uj").string() +
-                           " (or a udev rule)");
+                           "with: sudo chmod a+r " +
+                           (powercap / "intel-rapl:*" / "energy_uj").string() + " (or a udev rule)");
       return unavailable(read_error);
     }
   }

@@ -20,8 +20,8 @@ struct Kind {
 
 // auto_order() is this table's order, without "file" (it needs a path).
 constexpr Kind kinds[] = {
-    {"nvml", open_nvml}, {"amdgpu", open_amdgpu}, {"xe", open_intel_hwmon},
-    {"i915", open_intel_hwmon}, {"rapl", open_rapl}, {"cpu", open_cpu}, {"file", open_file},
+    {"nvml", open_nvml}, {"amdgpu", open_amdgpu}, {"xe", open_intel_hwmon}, {"i915", open_intel_hwmon},
+    {"rapl", open_rapl}, {"cpu", open_cpu},       {"file", open_file},
 };
 
 std::string_view trim(std::string_view s) {
@@ -42,8 +42,7 @@ std::optional<SensorSpec> parse_sensor_spec(std::string_view text, std::string& 
   bool known = spec.kind == "auto";
   for (const Kind& kind : kinds) known = known || kind.name == spec.kind;
   if (!known) {
-    error = "unknown sensor \"" + spec.kind +
-            "\" (expected auto, nvml, amdgpu, rapl, i915, xe, cpu or file:PATH)";
+    error = "unknown sensor \"" + spec.kind + "\" (expected auto, nvml, amdgpu, rapl, i915, xe, cpu or file:PATH)";
     return std::nullopt;
   }
   if (spec.kind == "file") {
@@ -69,8 +68,7 @@ std::optional<SensorSpec> parse_sensor_spec(std::string_view text, std::string& 
   return spec;
 }
 
-bool only_params(const SensorSpec& spec, std::initializer_list<std::string_view> allowed,
-                 std::string& error) {
+bool only_params(const SensorSpec& spec, std::initializer_list<std::string_view> allowed, std::string& error) {
   for (const auto& [key, value] : spec.params) {
     bool ok = false;
     for (auto a : allowed) ok = ok || a == key;
@@ -82,8 +80,7 @@ bool only_params(const SensorSpec& spec, std::initializer_list<std::string_view>
   return true;
 }
 
-bool param_number(const SensorSpec& spec, const std::string& key, double& value,
-                  std::string& error) {
+bool param_number(const SensorSpec& spec, const std::string& key, double& value, std::string& error) {
   const auto it = spec.params.find(key);
   if (it == spec.params.end()) return true;
   const std::string& text = it->second;
@@ -97,8 +94,7 @@ bool param_number(const SensorSpec& spec, const std::string& key, double& value,
   return true;
 }
 
-bool param_index(const SensorSpec& spec, const std::string& key, unsigned& value,
-                 std::string& error) {
+bool param_index(const SensorSpec& spec, const std::string& key, unsigned& value, std::string& error) {
   const auto it = spec.params.find(key);
   if (it == spec.params.end()) return true;
   const std::string& text = it->second;

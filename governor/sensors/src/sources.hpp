@@ -13,8 +13,7 @@ OpenResult open_file(const SensorSpec& spec, const SourceEnvironment& env);
 
 // Parameter helpers for openers: they check that only `allowed` keys were given and parse
 // values, setting `error` (and returning false) on anything unexpected.
-bool only_params(const SensorSpec& spec, std::initializer_list<std::string_view> allowed,
-                 std::string& error);
+bool only_params(const SensorSpec& spec, std::initializer_list<std::string_view> allowed, std::string& error);
 bool param_number(const SensorSpec& spec, const std::string& key, double& value, std::string& error);
 bool param_index(const SensorSpec& spec, const std::string& key, unsigned& value, std::string& error);
 

@@ -20,12 +20,10 @@ Reading read_scaled(const std::filesystem::path& path, double scale, ReadingKind
 
 // hwmon directories under <root>/class/hwmon whose "name" attribute equals `name`, in
 // numeric order.
-std::vector<std::filesystem::path> hwmon_named(const std::filesystem::path& sysfs_root,
-                                               const std::string& name);
+std::vector<std::filesystem::path> hwmon_named(const std::filesystem::path& sysfs_root, const std::string& name);
 
 // Entries of `dir` whose file name starts with `prefix`, shortest names first, then in
 // alphabetical order (so hwmon2 comes before hwmon10); empty if dir is missing.
-std::vector<std::filesystem::path> entries_with_prefix(const std::filesystem::path& dir,
-                                                       const std::string& prefix);
+std::vector<std::filesystem::path> entries_with_prefix(const std::filesystem::path& dir, const std::string& prefix);
 
 }  // namespace glbudget::sensors::sysfs

@@ -1,6 +1,6 @@
-#include "passes/lighting_uniforms.h"
-#include "passes/passes.h"
-#include "shaders_embedded.h"
+#include "passes/lighting_uniforms.hpp"
+#include "passes/passes.hpp"
+#include "shaders_embedded.hpp"
 
 #include <string>
 
@@ -30,8 +30,9 @@ int BasePass::run(const FrameContext& frame, const Framebuffer& scene_target, GL
   const int model = shading_model(frame.config);  // the quality knob: a #define
   set_lighting_uniforms(*rigid_[model], frame, shadow_map);
   set_lighting_uniforms(*skinned_[model], frame, shadow_map);
-  return frame.gpu.draw(frame.pose, [](const Object& o) { return !o.material.metal; }, *rigid_[model],
-                        *skinned_[model], set_material_uniforms);
+  return frame.gpu.draw(
+      frame.pose, [](const Object& o) { return !o.material.metal; }, *rigid_[model], *skinned_[model],
+      set_material_uniforms);
 }
 
 }  // namespace demo

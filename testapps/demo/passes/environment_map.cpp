@@ -1,4 +1,4 @@
-#include "passes/environment_map.h"
+#include "passes/environment_map.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -16,12 +16,18 @@ float smoothstep(float e0, float e1, float x) {
 // Direction through texel (s, t) in [-1, 1] of cube face `face` (GL's face orientation table).
 Eigen::Vector3f face_direction(int face, float s, float t) {
   switch (face) {
-    case 0: return {1.0f, -t, -s};
-    case 1: return {-1.0f, -t, s};
-    case 2: return {s, 1.0f, t};
-    case 3: return {s, -1.0f, -t};
-    case 4: return {s, -t, 1.0f};
-    default: return {-s, -t, -1.0f};
+    case 0:
+      return {1.0f, -t, -s};
+    case 1:
+      return {-1.0f, -t, s};
+    case 2:
+      return {s, 1.0f, t};
+    case 3:
+      return {s, -1.0f, -t};
+    case 4:
+      return {s, -t, 1.0f};
+    default:
+      return {-s, -t, -1.0f};
   }
 }
 }  // namespace

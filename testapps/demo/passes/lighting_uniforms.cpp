@@ -1,4 +1,4 @@
-#include "passes/lighting_uniforms.h"
+#include "passes/lighting_uniforms.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,10 +15,10 @@ void set_lighting_uniforms(const Program& program, const FrameContext& frame, GL
   for (int i = 0; i < count; ++i) {
     const Light& light = lights[static_cast<size_t>(i)];
     const bool positional = light.type != Light::Type::Directional;
-    const float cos_cone = light.type == Light::Type::Spot
-                               ? std::cos(light.cone_deg * std::numbers::pi_v<float> / 180.0f)
-                               : -2.0f;
-    positions.insert(positions.end(), {light.position.x(), light.position.y(), light.position.z(), positional ? 1.0f : 0.0f});
+    const float cos_cone =
+        light.type == Light::Type::Spot ? std::cos(light.cone_deg * std::numbers::pi_v<float> / 180.0f) : -2.0f;
+    positions.insert(positions.end(),
+                     {light.position.x(), light.position.y(), light.position.z(), positional ? 1.0f : 0.0f});
     directions.insert(directions.end(), {light.direction.x(), light.direction.y(), light.direction.z(), cos_cone});
     colors.insert(colors.end(), {light.color.x(), light.color.y(), light.color.z()});
   }

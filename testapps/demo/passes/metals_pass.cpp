@@ -1,6 +1,6 @@
-#include "passes/lighting_uniforms.h"
-#include "passes/passes.h"
-#include "shaders_embedded.h"
+#include "passes/lighting_uniforms.hpp"
+#include "passes/passes.hpp"
+#include "shaders_embedded.hpp"
 
 #include <string>
 
@@ -33,8 +33,9 @@ int MetalsPass::run(const FrameContext& frame, const Framebuffer& scene_target, 
     glUniform1i(program->uniform("u_environment"), 1);
   }
   glActiveTexture(GL_TEXTURE0);
-  return frame.gpu.draw(frame.pose, [](const Object& o) { return o.material.metal; }, *rigid_[level],
-                        *skinned_[level], set_material_uniforms);
+  return frame.gpu.draw(
+      frame.pose, [](const Object& o) { return o.material.metal; }, *rigid_[level], *skinned_[level],
+      set_material_uniforms);
 }
 
 }  // namespace demo

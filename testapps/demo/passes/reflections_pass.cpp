@@ -1,6 +1,6 @@
-#include "passes/fullscreen.h"
-#include "passes/passes.h"
-#include "shaders_embedded.h"
+#include "passes/fullscreen.hpp"
+#include "passes/passes.hpp"
+#include "shaders_embedded.hpp"
 
 namespace demo {
 

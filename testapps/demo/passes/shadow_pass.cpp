@@ -1,5 +1,5 @@
-#include "passes/passes.h"
-#include "shaders_embedded.h"
+#include "passes/passes.hpp"
+#include "shaders_embedded.hpp"
 
 namespace demo {
 
@@ -22,7 +22,8 @@ int ShadowPass::run(const FrameContext& frame) {
     program->use();
     glUniformMatrix4fv(program->uniform("u_view_projection"), 1, GL_FALSE, frame.shadow_view_projection.data());
   }
-  const int draws = frame.gpu.draw(frame.pose, [](const Object&) { return true; }, rigid_, skinned_, nullptr);
+  const int draws = frame.gpu.draw(
+      frame.pose, [](const Object&) { return true; }, rigid_, skinned_, nullptr);
   glDisable(GL_POLYGON_OFFSET_FILL);
   return draws;
 }

@@ -1,5 +1,5 @@
-#include "passes/passes.h"
-#include "shaders_embedded.h"
+#include "passes/passes.hpp"
+#include "shaders_embedded.hpp"
 
 namespace demo {
 

@@ -1,4 +1,4 @@
-#include "scenes/registry.h"
+#include "scenes/registry.hpp"
 
 namespace demo {
 

@@ -2,8 +2,8 @@
 // metallic ornaments and a slightly reflective floor (paper, Table 3).
 #include <cmath>
 
-#include "scenes/registry.h"
-#include "scenes/scene_kit.h"
+#include "scenes/registry.hpp"
+#include "scenes/scene_kit.hpp"
 
 namespace demo {
 
@@ -45,7 +45,7 @@ Scene make_sponza(float detail) {
           Eigen::Translation3f(x, 3.6f, z) * Eigen::AngleAxisf(1.5708f, Eigen::Vector3f::UnitX()));
   }
   const std::vector<Eigen::Vector2f> vase_profile{{0.0f, 0.0f}, {0.25f, 0.02f}, {0.35f, 0.3f},
-                                                  {0.2f, 0.6f}, {0.28f, 0.8f}, {0.0f, 0.78f}};
+                                                  {0.2f, 0.6f}, {0.28f, 0.8f},  {0.0f, 0.78f}};
   for (int i = 0; i < 60; ++i) {
     const float x = rng.uniform(-14.0f, 14.0f), z = rng.uniform(-2.5f, 2.5f);
     s.add("vase", lathe(vase_profile, n(500)), matte(0.6f, 0.35f, 0.2f, 0.5f),

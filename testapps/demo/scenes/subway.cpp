@@ -2,8 +2,8 @@
 // animated, skinned metallic soldiers: the dynamic scene (paper, Table 3).
 #include <cmath>
 
-#include "scenes/registry.h"
-#include "scenes/scene_kit.h"
+#include "scenes/registry.hpp"
+#include "scenes/scene_kit.hpp"
 
 namespace demo {
 namespace {
@@ -53,7 +53,8 @@ Scene make_subway(float detail) {
     s.add("lamp", sphere(0.18f, n(1500)), matte(1.0f, 0.95f, 0.8f, 0.2f), at(-29.0f + i * 2.0f, 4.8f, 1.5f));
   }
   for (int i = 0; i < 20; ++i) {
-    s.add("bin", cylinder(0.25f, 0.25f, 0.8f, n(1000)), matte(0.2f, 0.25f, 0.2f, 0.5f), at(-27.0f + i * 3.0f, 0.0f, -4.6f));
+    s.add("bin", cylinder(0.25f, 0.25f, 0.8f, n(1000)), matte(0.2f, 0.25f, 0.2f, 0.5f),
+          at(-27.0f + i * 3.0f, 0.0f, -4.6f));
   }
   for (int i = 0; i < 21; ++i) {
     s.add("sign", box({0.8f, 0.2f, 0.03f}, n(100)), matte(0.1f, 0.2f, 0.6f, 0.3f), at(-30.0f + i * 3.0f, 4.2f, -1.0f));

@@ -2,8 +2,8 @@
 // (paper, Table 3).
 #include <cmath>
 
-#include "scenes/registry.h"
-#include "scenes/scene_kit.h"
+#include "scenes/registry.hpp"
+#include "scenes/scene_kit.hpp"
 
 namespace demo {
 namespace {

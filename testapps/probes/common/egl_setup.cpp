@@ -1,4 +1,4 @@
-#include "egl_setup.h"
+#include "egl_setup.hpp"
 
 #include <cstdio>
 
@@ -35,8 +35,7 @@ bool EglFns::load_with(void* (*lookup)(void*, const char*), void* h) {
   LOAD(ReleaseThread, "eglReleaseThread");
 #undef LOAD
   if (!GetProcAddress) return false;
-  GetPlatformDisplayEXT =
-      reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(GetProcAddress("eglGetPlatformDisplayEXT"));
+  GetPlatformDisplayEXT = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(GetProcAddress("eglGetPlatformDisplayEXT"));
   return Initialize && MakeCurrent && SwapBuffers && CreateContext && GetPlatformDisplayEXT;
 }
 
@@ -53,11 +52,12 @@ bool egl_create(const EglFns& egl, ContextKind kind, int width, int height, EGLC
   }
   const bool gles = kind == ContextKind::kGles2 || kind == ContextKind::kGles3;
   egl.BindAPI(gles ? EGL_OPENGL_ES_API : EGL_OPENGL_API);
-  const EGLint renderable = kind == ContextKind::kGles2 ? EGL_OPENGL_ES2_BIT
+  const EGLint renderable = kind == ContextKind::kGles2   ? EGL_OPENGL_ES2_BIT
                             : kind == ContextKind::kGles3 ? EGL_OPENGL_ES3_BIT
                                                           : EGL_OPENGL_BIT;
-  const EGLint config_attribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8,
-                                   EGL_BLUE_SIZE, 8, EGL_ALPHA_SIZE, 8, EGL_RENDERABLE_TYPE, renderable, EGL_NONE};
+  const EGLint config_attribs[] = {
+      EGL_SURFACE_TYPE,    EGL_PBUFFER_BIT, EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_ALPHA_SIZE, 8,
+      EGL_RENDERABLE_TYPE, renderable,      EGL_NONE};
   EGLint n = 0;
   if (!egl.ChooseConfig(w.display, config_attribs, &w.config, 1, &n) || n < 1) {
     *error = "no EGL config";
@@ -69,16 +69,25 @@ bool egl_create(const EglFns& egl, ContextKind kind, int width, int height, EGLC
   int i = 0;
   switch (kind) {
     case ContextKind::kCore45:
-      ctx_attribs[i++] = EGL_CONTEXT_MAJOR_VERSION; ctx_attribs[i++] = 4;
-      ctx_attribs[i++] = EGL_CONTEXT_MINOR_VERSION; ctx_attribs[i++] = 5;
-      ctx_attribs[i++] = EGL_CONTEXT_OPENGL_PROFILE_MASK; ctx_attribs[i++] = EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT;
+      ctx_attribs[i++] = EGL_CONTEXT_MAJOR_VERSION;
+      ctx_attribs[i++] = 4;
+      ctx_attribs[i++] = EGL_CONTEXT_MINOR_VERSION;
+      ctx_attribs[i++] = 5;
+      ctx_attribs[i++] = EGL_CONTEXT_OPENGL_PROFILE_MASK;
+      ctx_attribs[i++] = EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT;
       break;
     case ContextKind::kCompat:
       ctx_attribs[i++] = EGL_CONTEXT_OPENGL_PROFILE_MASK;
       ctx_attribs[i++] = EGL_CONTEXT_OPENGL_COMPATIBILITY_PROFILE_BIT;
       break;
-    case ContextKind::kGles2: ctx_attribs[i++] = EGL_CONTEXT_MAJOR_VERSION; ctx_attribs[i++] = 2; break;
-    case ContextKind::kGles3: ctx_attribs[i++] = EGL_CONTEXT_MAJOR_VERSION; ctx_attribs[i++] = 3; break;
+    case ContextKind::kGles2:
+      ctx_attribs[i++] = EGL_CONTEXT_MAJOR_VERSION;
+      ctx_attribs[i++] = 2;
+      break;
+    case ContextKind::kGles3:
+      ctx_attribs[i++] = EGL_CONTEXT_MAJOR_VERSION;
+      ctx_attribs[i++] = 3;
+      break;
   }
   ctx_attribs[i] = EGL_NONE;
   w.context = egl.CreateContext(w.display, w.config, share, ctx_attribs);

@@ -1,4 +1,4 @@
-#include "known_scene.h"
+#include "known_scene.hpp"
 
 #include <cstdio>
 #include <cstdlib>
@@ -19,8 +19,9 @@ Dialect sources(ShaderDialect d, bool pass_b) {
   switch (d) {
     case ShaderDialect::kGlsl330Core:
       return {"#version 330 core\nlayout(location=0) in vec2 pos;\nvoid main(){ gl_Position = vec4(pos, 0.0, 1.0); }\n",
-              pass_b ? "#version 330 core\nuniform vec4 color;\nout vec4 frag;\nvoid main(){ frag = vec4(1.0) - color; }\n"
-                     : "#version 330 core\nuniform vec4 color;\nout vec4 frag;\nvoid main(){ frag = color; }\n",
+              pass_b
+                  ? "#version 330 core\nuniform vec4 color;\nout vec4 frag;\nvoid main(){ frag = vec4(1.0) - color; }\n"
+                  : "#version 330 core\nuniform vec4 color;\nout vec4 frag;\nvoid main(){ frag = color; }\n",
               true};
     case ShaderDialect::kGlsl120Compat:
       return {"#version 120\nattribute vec2 pos;\nvoid main(){ gl_Position = vec4(pos, 0.0, 1.0); }\n",
@@ -28,14 +29,19 @@ Dialect sources(ShaderDialect d, bool pass_b) {
                      : "#version 120\nuniform vec4 color;\nvoid main(){ gl_FragColor = color; }\n",
               false};
     case ShaderDialect::kEssl100:
-      return {"#version 100\nattribute vec2 pos;\nvoid main(){ gl_Position = vec4(pos, 0.0, 1.0); }\n",
-              pass_b ? "#version 100\nprecision mediump float;\nuniform vec4 color;\nvoid main(){ gl_FragColor = vec4(1.0) - color; }\n"
-                     : "#version 100\nprecision mediump float;\nuniform vec4 color;\nvoid main(){ gl_FragColor = color; }\n",
-              false};
+      return {
+          "#version 100\nattribute vec2 pos;\nvoid main(){ gl_Position = vec4(pos, 0.0, 1.0); }\n",
+          pass_b
+              ? "#version 100\nprecision mediump float;\nuniform vec4 color;\nvoid main(){ gl_FragColor = vec4(1.0) - "
+                "color; }\n"
+              : "#version 100\nprecision mediump float;\nuniform vec4 color;\nvoid main(){ gl_FragColor = color; }\n",
+          false};
     case ShaderDialect::kEssl300:
       return {"#version 300 es\nlayout(location=0) in vec2 pos;\nvoid main(){ gl_Position = vec4(pos, 0.0, 1.0); }\n",
-              pass_b ? "#version 300 es\nprecision mediump float;\nuniform vec4 color;\nout vec4 frag;\nvoid main(){ frag = vec4(1.0) - color; }\n"
-                     : "#version 300 es\nprecision mediump float;\nuniform vec4 color;\nout vec4 frag;\nvoid main(){ frag = color; }\n",
+              pass_b ? "#version 300 es\nprecision mediump float;\nuniform vec4 color;\nout vec4 frag;\nvoid main(){ "
+                       "frag = vec4(1.0) - color; }\n"
+                     : "#version 300 es\nprecision mediump float;\nuniform vec4 color;\nout vec4 frag;\nvoid main(){ "
+                       "frag = color; }\n",
               true};
   }
   return {};
@@ -44,8 +50,8 @@ Dialect sources(ShaderDialect d, bool pass_b) {
 // Quad A covers the left half of the window; quad B the 16x16 pixels right of and above the
 // centre (in NDC for a 64x64 window; scaled to other sizes by the viewport).
 const float kQuads[] = {
-    -1, -1, 0, -1, 0, 1, -1, -1, 0, 1, -1, 1,  // A
-    0, 0, 0.5f, 0, 0.5f, 0.5f, 0, 0, 0.5f, 0.5f, 0, 0.5f,  // B
+    -1, -1, 0,    -1, 0,    1,    -1, -1, 0,    1,    -1, 1,     // A
+    0,  0,  0.5f, 0,  0.5f, 0.5f, 0,  0,  0.5f, 0.5f, 0,  0.5f,  // B
 };
 }  // namespace
 
@@ -142,9 +148,12 @@ bool write_ppm(const std::string& path, const std::vector<uint8_t>& rgba, int wi
 ProbeArgs parse_probe_args(int argc, char** argv) {
   ProbeArgs a;
   for (int i = 1; i + 1 < argc; i += 2) {
-    if (!strcmp(argv[i], "--frames")) a.frames = atoi(argv[i + 1]);
-    else if (!strcmp(argv[i], "--out")) a.out = argv[i + 1];
-    else if (!strcmp(argv[i], "--size")) a.width = a.height = atoi(argv[i + 1]);
+    if (!strcmp(argv[i], "--frames"))
+      a.frames = atoi(argv[i + 1]);
+    else if (!strcmp(argv[i], "--out"))
+      a.out = argv[i + 1];
+    else if (!strcmp(argv[i], "--size"))
+      a.width = a.height = atoi(argv[i + 1]);
   }
   return a;
 }

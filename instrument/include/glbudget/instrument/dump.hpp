@@ -19,22 +19,22 @@
 namespace glbudget::instrument {
 
 struct ShaderDump {
-    std::string hash;
-    Stage stage = Stage::fragment;
-    std::string original_source;
-    InstrumentResult instrumentation;
+  std::string hash;
+  Stage stage = Stage::fragment;
+  std::string original_source;
+  InstrumentResult instrumentation;
 };
 
 struct ProgramStageDump {
-    Stage stage = Stage::fragment;
-    std::string shader_hash;
-    std::optional<StaticFigures> figures;
-    std::optional<StageAverages> measured;  // empty until counters were read back
+  Stage stage = Stage::fragment;
+  std::string shader_hash;
+  std::optional<StaticFigures> figures;
+  std::optional<StageAverages> measured;  // empty until counters were read back
 };
 
 struct ProgramDump {
-    std::string hash;
-    std::vector<ProgramStageDump> stages;
+  std::string hash;
+  std::vector<ProgramStageDump> stages;
 };
 
 // JSON text of each file (stable key order, indented).

@@ -73,56 +73,58 @@ inline constexpr std::size_t kCounterBytes = kCounterWords * sizeof(std::uint32_
 inline constexpr const char* kCounterBlockName = "glbudget_Counters";
 // Index of the low word of (stage, quantity); the high word follows it.
 constexpr int word_index(Stage stage, Quantity quantity) {
-    return (static_cast<int>(stage) * kQuantityCount + static_cast<int>(quantity)) * 2;
+  return (static_cast<int>(stage) * kQuantityCount + static_cast<int>(quantity)) * 2;
 }
 
 // Figures that need no execution.
 struct StaticFigures {
-    int blocks = 0;               // counted blocks (runs, loop conditions, loop increments)
-    std::uint64_t instructions = 0;  // operations over all blocks of all functions, each once
-    int texture_calls = 0;        // sampling calls in the source
+  int blocks = 0;                  // counted blocks (runs, loop conditions, loop increments)
+  std::uint64_t instructions = 0;  // operations over all blocks of all functions, each once
+  int texture_calls = 0;           // sampling calls in the source
 };
 
 struct InstrumentRequest {
-    InstrumentRequest() = default;
-    InstrumentRequest(std::vector<std::string> sources_, Stage stage_, int ssbo_binding_,
-                      std::optional<std::vector<std::string>> driver_extensions_ = std::nullopt)
-        : sources(std::move(sources_)), stage(stage_), ssbo_binding(ssbo_binding_),
-          driver_extensions(std::move(driver_extensions_)) {}
+  InstrumentRequest() = default;
+  InstrumentRequest(std::vector<std::string> sources_, Stage stage_, int ssbo_binding_,
+                    std::optional<std::vector<std::string>> driver_extensions_ = std::nullopt)
+      : sources(std::move(sources_)),
+        stage(stage_),
+        ssbo_binding(ssbo_binding_),
+        driver_extensions(std::move(driver_extensions_)) {}
 
-    std::vector<std::string> sources;  // the strings the app passed to glShaderSource
-    Stage stage = Stage::fragment;
-    int ssbo_binding = 0;  // binding point of the counter block
-    // The driver's extensions (glGetStringi(GL_EXTENSIONS, i)). When given, `#if`/`#ifdef`
-    // on extension macros follow the driver, as in the app's own shader; when absent they
-    // follow glslang's list of extensions, which may differ.
-    std::optional<std::vector<std::string>> driver_extensions;
+  std::vector<std::string> sources;  // the strings the app passed to glShaderSource
+  Stage stage = Stage::fragment;
+  int ssbo_binding = 0;  // binding point of the counter block
+  // The driver's extensions (glGetStringi(GL_EXTENSIONS, i)). When given, `#if`/`#ifdef`
+  // on extension macros follow the driver, as in the app's own shader; when absent they
+  // follow glslang's list of extensions, which may differ.
+  std::optional<std::vector<std::string>> driver_extensions;
 };
 
 struct InstrumentResult {
-    bool ok = false;
-    std::string error;  // why instrumentation failed (one line), when !ok
-    std::string instrumented_source;  // one string (GL concatenates the app's strings too)
-    // True when the source carries `layout(binding = ssbo_binding)`. When false (GLSL
-    // without binding qualifiers) the caller must set the binding with
-    // glShaderStorageBlockBinding on kCounterBlockName after linking.
-    bool binding_in_source = false;
-    std::optional<StaticFigures> figures;  // present whenever glslang could parse the shader
+  bool ok = false;
+  std::string error;                // why instrumentation failed (one line), when !ok
+  std::string instrumented_source;  // one string (GL concatenates the app's strings too)
+  // True when the source carries `layout(binding = ssbo_binding)`. When false (GLSL
+  // without binding qualifiers) the caller must set the binding with
+  // glShaderStorageBlockBinding on kCounterBlockName after linking.
+  bool binding_in_source = false;
+  std::optional<StaticFigures> figures;  // present whenever glslang could parse the shader
 };
 
 InstrumentResult instrument_shader(const InstrumentRequest& request);
 
 // Per-stage totals read back from the SSBO and their per-invocation averages.
 struct StageCounts {
-    std::uint64_t instructions = 0;
-    std::uint64_t texel_accesses = 0;
-    std::uint64_t invocations = 0;
+  std::uint64_t instructions = 0;
+  std::uint64_t texel_accesses = 0;
+  std::uint64_t invocations = 0;
 };
 struct StageAverages {
-    std::uint64_t invocations = 0;
-    // Empty when no invocation was counted.
-    std::optional<double> instructions_per_invocation;
-    std::optional<double> texel_accesses_per_invocation;
+  std::uint64_t invocations = 0;
+  // Empty when no invocation was counted.
+  std::optional<double> instructions_per_invocation;
+  std::optional<double> texel_accesses_per_invocation;
 };
 
 using CounterWords = std::array<std::uint32_t, kCounterWords>;

@@ -27,145 +27,145 @@
 namespace glbudget::loop {
 
 struct GovernorSettings {
-    model::Budget power;                        // GLBUDGET_POWER; Off: none
-    std::optional<double> error_budget;         // GLBUDGET_ERROR (1 - SSIM); the power budget wins
-    std::size_t select_frames = 200;            // frames between selections (paper §6.3)
-    double transition_s = 2.0;                  // the temporal filter's T (paper §6.2)
-    std::size_t hold_after_missing_power = 30;  // consecutive frames without power before holding
-    // Beyond the paper: select again at once after this many frames in a row whose chosen
-    // configuration the model predicts over the budget (0: only every select_frames).
-    std::size_t reselect_over_budget_frames = 10;
-    // Beyond the paper: each configuration's measured power corrects its prediction, a margin
-    // from the measured spread keeps windows within a power budget, and a window measured
-    // over the budget selects again at once (power_feedback.hpp).
-    FeedbackSettings feedback = {};
-    model::FitSettings fit = {};
-    model::HistorySettings history = {};
+  model::Budget power;                        // GLBUDGET_POWER; Off: none
+  std::optional<double> error_budget;         // GLBUDGET_ERROR (1 - SSIM); the power budget wins
+  std::size_t select_frames = 200;            // frames between selections (paper §6.3)
+  double transition_s = 2.0;                  // the temporal filter's T (paper §6.2)
+  std::size_t hold_after_missing_power = 30;  // consecutive frames without power before holding
+  // Beyond the paper: select again at once after this many frames in a row whose chosen
+  // configuration the model predicts over the budget (0: only every select_frames).
+  std::size_t reselect_over_budget_frames = 10;
+  // Beyond the paper: each configuration's measured power corrects its prediction, a margin
+  // from the measured spread keeps windows within a power budget, and a window measured
+  // over the budget selects again at once (power_feedback.hpp).
+  FeedbackSettings feedback = {};
+  model::FitSettings fit = {};
+  model::HistorySettings history = {};
 };
 
 struct FrameRecord {
-    std::uint64_t frame = 0;
-    std::int64_t time_ns = 0;  // any monotonic clock: only differences are used
-    double power_w = std::numeric_limits<double>::quiet_NaN();  // NaN: no measurement
-    model::Configuration configuration;  // what drew the frame
-    bool probe = false;                  // a quality-probe frame: its power is not the frame's
-    // Counts per manifest pass name; passes outside the space add a fixed load.
-    std::vector<model::PassFrame> passes;
+  std::uint64_t frame = 0;
+  std::int64_t time_ns = 0;                                   // any monotonic clock: only differences are used
+  double power_w = std::numeric_limits<double>::quiet_NaN();  // NaN: no measurement
+  model::Configuration configuration;                         // what drew the frame
+  bool probe = false;                                         // a quality-probe frame: its power is not the frame's
+  // Counts per manifest pass name; passes outside the space add a fixed load.
+  std::vector<model::PassFrame> passes;
 };
 
 // What happened at a frame; when several did, the first in this order: hold, select, refit,
 // fit, check, transition.
 enum class Event {
-    none,
-    fit,         // the model's first fit
-    check,       // an accuracy check ended (passed or failed)
-    refit,       // a later fit (a failed check, or a new configuration's window)
-    select,      // a selection ran
-    transition,  // the temporal filter moved towards the selected configuration
-    hold,        // power has been missing too long: the configuration is held
+  none,
+  fit,         // the model's first fit
+  check,       // an accuracy check ended (passed or failed)
+  refit,       // a later fit (a failed check, or a new configuration's window)
+  select,      // a selection ran
+  transition,  // the temporal filter moved towards the selected configuration
+  hold,        // power has been missing too long: the configuration is held
 };
 const char* event_name(Event event);  // "none", "fit", ...
 
 struct Decision {
-    model::Configuration next;  // what to draw from the next frame on
-    Event event = Event::none;
-    // The frame's own predicted power, corrected by what was measured of its configuration
-    // (power_feedback.hpp): NaN before the first fit.
-    double predicted_w = std::numeric_limits<double>::quiet_NaN();
-    // The last selection's power limit; +inf without a power budget, and before the first
-    // selection the budget's watts (NaN for a share of the range, which needs predictions).
-    double budget_w = std::numeric_limits<double>::infinity();
-    double est_error = std::numeric_limits<double>::quiet_NaN();  // estimate for `next`
-    bool within_budget = true;  // the last selection found a configuration within the budget
+  model::Configuration next;  // what to draw from the next frame on
+  Event event = Event::none;
+  // The frame's own predicted power, corrected by what was measured of its configuration
+  // (power_feedback.hpp): NaN before the first fit.
+  double predicted_w = std::numeric_limits<double>::quiet_NaN();
+  // The last selection's power limit; +inf without a power budget, and before the first
+  // selection the budget's watts (NaN for a share of the range, which needs predictions).
+  double budget_w = std::numeric_limits<double>::infinity();
+  double est_error = std::numeric_limits<double>::quiet_NaN();  // estimate for `next`
+  bool within_budget = true;  // the last selection found a configuration within the budget
 };
 
 class Governor {
-public:
-    // `errors` must fit `space` (ErrorTable::fits); if it does not, the stand-in table of the
-    // space is used instead, with a note.
-    Governor(model::PlatformProfile profile, model::ConfigurationSpace space, ErrorTable errors,
-             GovernorSettings settings = {});
+ public:
+  // `errors` must fit `space` (ErrorTable::fits); if it does not, the stand-in table of the
+  // space is used instead, with a note.
+  Governor(model::PlatformProfile profile, model::ConfigurationSpace space, ErrorTable errors,
+           GovernorSettings settings = {});
 
-    Decision on_frame(const FrameRecord& record);
+  Decision on_frame(const FrameRecord& record);
 
-    // Append-only messages for the user, without the "glbudget: " prefix the shim adds.
-    const std::vector<std::string>& notes() const { return notes_; }
-    const StepTimes& step_times() const { return times_; }
+  // Append-only messages for the user, without the "glbudget: " prefix the shim adds.
+  const std::vector<std::string>& notes() const { return notes_; }
+  const StepTimes& step_times() const { return times_; }
 
-    // Quality probes update the errors through this; the next selection uses them.
-    ErrorTable& errors() { return errors_; }
-    const ErrorTable& errors() const { return errors_; }
-    const model::RunTimeModel& model() const { return model_; }
-    const model::ConfigurationSpace& space() const { return space_; }
-    const PowerFeedback& feedback() const { return feedback_; }
-    // The last selection: every configuration's predicted power (corrected) and estimated
-    // error, by ConfigurationSpace index, and the margin kept under the budget.
-    struct SelectionTable {
-        std::uint64_t frame = 0;
-        std::size_t chosen = 0;
-        double budget_w = 0.0;
-        double margin_w = 0.0;
-        const std::vector<double>* power_w = nullptr;
-        const std::vector<double>* error = nullptr;
-    };
-    SelectionTable last_selection() const {
-        return {last_selection_frame_, chosen_index_, budget_w_, margin_w_, &power_, &error_};
-    }
-    const GovernorSettings& settings() const { return settings_; }
+  // Quality probes update the errors through this; the next selection uses them.
+  ErrorTable& errors() { return errors_; }
+  const ErrorTable& errors() const { return errors_; }
+  const model::RunTimeModel& model() const { return model_; }
+  const model::ConfigurationSpace& space() const { return space_; }
+  const PowerFeedback& feedback() const { return feedback_; }
+  // The last selection: every configuration's predicted power (corrected) and estimated
+  // error, by ConfigurationSpace index, and the margin kept under the budget.
+  struct SelectionTable {
+    std::uint64_t frame = 0;
+    std::size_t chosen = 0;
+    double budget_w = 0.0;
+    double margin_w = 0.0;
+    const std::vector<double>* power_w = nullptr;
+    const std::vector<double>* error = nullptr;
+  };
+  SelectionTable last_selection() const {
+    return {last_selection_frame_, chosen_index_, budget_w_, margin_w_, &power_, &error_};
+  }
+  const GovernorSettings& settings() const { return settings_; }
 
-    // A power or error budget is in force; false: observe only, nothing is ever changed.
-    bool governing() const { return governing_; }
-    bool holding() const { return holding_; }
-    bool transitioning() const { return transitioning_; }
-    std::size_t selections() const { return selections_; }
-    // The last selection's configuration (before the first: the first frame's).
-    const model::Configuration& target() const { return target_; }
+  // A power or error budget is in force; false: observe only, nothing is ever changed.
+  bool governing() const { return governing_; }
+  bool holding() const { return holding_; }
+  bool transitioning() const { return transitioning_; }
+  std::size_t selections() const { return selections_; }
+  // The last selection's configuration (before the first: the first frame's).
+  const model::Configuration& target() const { return target_; }
 
-private:
-    enum class Aim { observe, power, error };
+ private:
+  enum class Aim { observe, power, error };
 
-    void start(const FrameRecord& record);
-    model::OnlineFitter::Event see(const FrameRecord& record, Decision& decision);
-    bool selection_due(const FrameRecord& record) const;
-    void select(const FrameRecord& record);
-    void hold(const FrameRecord& record);
-    void feed_back(const FrameRecord& record, Decision& decision);
-    double initial_budget_w() const;
+  void start(const FrameRecord& record);
+  model::OnlineFitter::Event see(const FrameRecord& record, Decision& decision);
+  bool selection_due(const FrameRecord& record) const;
+  void select(const FrameRecord& record);
+  void hold(const FrameRecord& record);
+  void feed_back(const FrameRecord& record, Decision& decision);
+  double initial_budget_w() const;
 
-    model::ConfigurationSpace space_;
-    ErrorTable errors_;
-    GovernorSettings settings_;
-    model::RunTimeModel model_;
-    Aim aim_ = Aim::observe;
-    bool governing_ = false;
+  model::ConfigurationSpace space_;
+  ErrorTable errors_;
+  GovernorSettings settings_;
+  model::RunTimeModel model_;
+  Aim aim_ = Aim::observe;
+  bool governing_ = false;
 
-    bool started_ = false;
-    model::Configuration current_;  // the last decision's `next`
-    model::Configuration target_;
-    model::Configuration transition_from_;
-    std::int64_t transition_start_ns_ = 0;
-    bool transitioning_ = false;
+  bool started_ = false;
+  model::Configuration current_;  // the last decision's `next`
+  model::Configuration target_;
+  model::Configuration transition_from_;
+  std::int64_t transition_start_ns_ = 0;
+  bool transitioning_ = false;
 
-    std::size_t selections_ = 0;
-    // Consecutive frames whose chosen configuration the model predicts over the budget.
-    std::size_t over_budget_frames_ = 0;
-    std::uint64_t last_selection_frame_ = 0;
-    double budget_w_ = 0.0;
-    double margin_w_ = 0.0;
-    std::size_t chosen_index_ = 0;
-    bool within_budget_ = true;
-    PowerFeedback feedback_;
-    bool reselect_now_ = false;  // a window was measured over the budget
+  std::size_t selections_ = 0;
+  // Consecutive frames whose chosen configuration the model predicts over the budget.
+  std::size_t over_budget_frames_ = 0;
+  std::uint64_t last_selection_frame_ = 0;
+  double budget_w_ = 0.0;
+  double margin_w_ = 0.0;
+  std::size_t chosen_index_ = 0;
+  bool within_budget_ = true;
+  PowerFeedback feedback_;
+  bool reselect_now_ = false;  // a window was measured over the budget
 
-    std::size_t missing_power_ = 0;
-    bool holding_ = false;
-    bool hold_noted_ = false;
+  std::size_t missing_power_ = 0;
+  bool holding_ = false;
+  bool hold_noted_ = false;
 
-    model::FrameSample sample_;     // reused: the record as the model sees it
-    std::vector<double> power_;     // reused by selections
-    std::vector<double> error_;
-    StepTimes times_;
-    std::vector<std::string> notes_;
+  model::FrameSample sample_;  // reused: the record as the model sees it
+  std::vector<double> power_;  // reused by selections
+  std::vector<double> error_;
+  StepTimes times_;
+  std::vector<std::string> notes_;
 };
 
 }  // namespace glbudget::loop

@@ -24,78 +24,78 @@
 namespace glbudget::loop {
 
 struct FeedbackSettings {
-    bool enabled = true;         // GLBUDGET_FEEDBACK=0: the paper's open loop
-    double window_s = 1.0;       // the window whose mean power is held to the budget
-    double keep_share = 0.95;    // windows within the budget the margin aims at
-    std::size_t min_frames = 3;  // a window with fewer frames with power is dropped
-    // A configuration's residual averages its last this-many windows (exponentially).
-    double memory_windows = 4.0;
-    double prior_share = 0.05;  // the typical size of a level's misjudged power, a share of the power
+  bool enabled = true;         // GLBUDGET_FEEDBACK=0: the paper's open loop
+  double window_s = 1.0;       // the window whose mean power is held to the budget
+  double keep_share = 0.95;    // windows within the budget the margin aims at
+  std::size_t min_frames = 3;  // a window with fewer frames with power is dropped
+  // A configuration's residual averages its last this-many windows (exponentially).
+  double memory_windows = 4.0;
+  double prior_share = 0.05;  // the typical size of a level's misjudged power, a share of the power
 };
 
 class PowerFeedback {
-public:
-    struct Window {
-        model::Configuration configuration;
-        double measured_w = 0.0;        // mean over the window's frames
-        double predicted_w = 0.0;       // the model's mean prediction for them
-        std::size_t frames = 0;
-    };
+ public:
+  struct Window {
+    model::Configuration configuration;
+    double measured_w = 0.0;   // mean over the window's frames
+    double predicted_w = 0.0;  // the model's mean prediction for them
+    std::size_t frames = 0;
+  };
 
-    explicit PowerFeedback(FeedbackSettings settings = {});
+  explicit PowerFeedback(FeedbackSettings settings = {});
 
-    // A frame with measured power drawn in a settled configuration, with the model's
-    // prediction for it (both finite). Returns the window it closed, if it closed one.
-    std::optional<Window> add(const model::Configuration& configuration, std::int64_t time_ns, double measured_w,
-                              double predicted_w);
-    // The configuration is changing, or this frame's power is not the configuration's own: the
-    // open window is dropped.
-    void interrupt();
+  // A frame with measured power drawn in a settled configuration, with the model's
+  // prediction for it (both finite). Returns the window it closed, if it closed one.
+  std::optional<Window> add(const model::Configuration& configuration, std::int64_t time_ns, double measured_w,
+                            double predicted_w);
+  // The configuration is changing, or this frame's power is not the configuration's own: the
+  // open window is dropped.
+  void interrupt();
 
-    // The correction of a configuration's prediction (0 before any window).
-    double bias(const model::Configuration& configuration) const;
-    // The measured residual of a configuration itself (0 if never measured).
-    double residual(const model::Configuration& configuration) const;
-    bool measured(const model::Configuration& configuration) const { return residuals_.count(configuration) > 0; }
-    // What a selection keeps under the budget: z * the spread of window means; 0 until a
-    // window has closed.
-    double margin_w() const;
-    double spread_w() const;
-    // Adds bias() to every configuration's prediction (by space index), in place.
-    void correct(const model::ConfigurationSpace& space, std::vector<double>& predicted_w) const;
+  // The correction of a configuration's prediction (0 before any window).
+  double bias(const model::Configuration& configuration) const;
+  // The measured residual of a configuration itself (0 if never measured).
+  double residual(const model::Configuration& configuration) const;
+  bool measured(const model::Configuration& configuration) const { return residuals_.count(configuration) > 0; }
+  // What a selection keeps under the budget: z * the spread of window means; 0 until a
+  // window has closed.
+  double margin_w() const;
+  double spread_w() const;
+  // Adds bias() to every configuration's prediction (by space index), in place.
+  void correct(const model::ConfigurationSpace& space, std::vector<double>& predicted_w) const;
 
-    std::size_t windows() const { return windows_; }
-    const FeedbackSettings& settings() const { return settings_; }
+  std::size_t windows() const { return windows_; }
+  const FeedbackSettings& settings() const { return settings_; }
 
-private:
-    struct Residual {
-        double value = 0.0;
-        std::size_t windows = 0;
-    };
-    struct Open {
-        model::Configuration configuration;
-        std::int64_t start_ns = 0;
-        std::size_t frames = 0;
-        double measured = 0.0, predicted = 0.0;
-        double frame_residual_sq = 0.0;  // sum of squared per-frame residuals, for the prior spread
-    };
+ private:
+  struct Residual {
+    double value = 0.0;
+    std::size_t windows = 0;
+  };
+  struct Open {
+    model::Configuration configuration;
+    std::int64_t start_ns = 0;
+    std::size_t frames = 0;
+    double measured = 0.0, predicted = 0.0;
+    double frame_residual_sq = 0.0;  // sum of squared per-frame residuals, for the prior spread
+  };
 
-    FeedbackSettings settings_;
-    double z_ = 0.0;
-    std::optional<Open> open_;
-    void fit();
+  FeedbackSettings settings_;
+  double z_ = 0.0;
+  std::optional<Open> open_;
+  void fit();
 
-    std::map<model::Configuration, Residual> residuals_;
-    // The fitted correction: offset + terms_[pass][level] (levels beyond a pass's size: 0).
-    double offset_ = 0.0;
-    std::vector<std::vector<double>> terms_;
-    double mean_power_w_ = 0.0;
-    // Mean squared deviation of a window's residual from its configuration's residual before
-    // it (between windows), and the within-window estimate used until there is one.
-    double between_sq_ = 0.0;
-    std::size_t between_count_ = 0;
-    double within_sq_ = 0.0;
-    std::size_t windows_ = 0;
+  std::map<model::Configuration, Residual> residuals_;
+  // The fitted correction: offset + terms_[pass][level] (levels beyond a pass's size: 0).
+  double offset_ = 0.0;
+  std::vector<std::vector<double>> terms_;
+  double mean_power_w_ = 0.0;
+  // Mean squared deviation of a window's residual from its configuration's residual before
+  // it (between windows), and the within-window estimate used until there is one.
+  double between_sq_ = 0.0;
+  std::size_t between_count_ = 0;
+  double within_sq_ = 0.0;
+  std::size_t windows_ = 0;
 };
 
 }  // namespace glbudget::loop

@@ -66,82 +66,82 @@
 namespace glbudget::manifest {
 
 enum class Stage { vertex, tess_control, tess_evaluation, geometry, fragment, compute };
-const char* stage_name(Stage stage);                    // "vertex", ..., as in the manifest
+const char* stage_name(Stage stage);  // "vertex", ..., as in the manifest
 std::optional<Stage> parse_stage(const std::string& name);
 
 // Which render targets a level scales.
 struct Target {
-    enum class Kind {
-        self,                // the framebuffers this pass's draws go to
-        pass,                // the framebuffers another pass's draws go to (`name`)
-        default_framebuffer, // the window ("default")
-        texture,             // an app texture by GL name (`id`)
-        framebuffer,         // an app framebuffer object by GL name (`id`): all its attachments
-    };
-    Kind kind = Kind::self;
-    std::string name;  // Kind::pass
-    uint32_t id = 0;   // Kind::texture, Kind::framebuffer
-    bool operator==(const Target&) const = default;
+  enum class Kind {
+    self,                 // the framebuffers this pass's draws go to
+    pass,                 // the framebuffers another pass's draws go to (`name`)
+    default_framebuffer,  // the window ("default")
+    texture,              // an app texture by GL name (`id`)
+    framebuffer,          // an app framebuffer object by GL name (`id`): all its attachments
+  };
+  Kind kind = Kind::self;
+  std::string name;  // Kind::pass
+  uint32_t id = 0;   // Kind::texture, Kind::framebuffer
+  bool operator==(const Target&) const = default;
 };
 
 // A uniform value: numbers in the order GL stores them (vectors, then matrices column-major).
 // The GL type comes from the program at run time; the count must fit it.
 struct UniformValue {
-    std::vector<double> values;
-    bool operator==(const UniformValue&) const = default;
+  std::vector<double> values;
+  bool operator==(const UniformValue&) const = default;
 };
 
 struct Level {
-    std::string name;                                   // may be empty
-    std::vector<std::pair<std::string, std::string>> defines;  // in manifest order
-    std::map<Stage, std::string> replace;               // stage -> absolute path of the file
-    std::map<Stage, std::string> replace_source;        // stage -> its contents (read at load)
-    std::vector<std::pair<std::string, UniformValue>> uniforms;
-    bool draws = true;
-    double scale = 1.0;              // (0, 1]: linear factor on width and height
-    std::vector<Target> targets;     // what `scale` applies to (empty when scale == 1)
-    std::optional<double> fragment_scale;  // for the model; default scale * scale
-    std::optional<double> error;           // 1 - SSIM of this level alone, in [0, 1]; absent: unknown
+  std::string name;                                          // may be empty
+  std::vector<std::pair<std::string, std::string>> defines;  // in manifest order
+  std::map<Stage, std::string> replace;                      // stage -> absolute path of the file
+  std::map<Stage, std::string> replace_source;               // stage -> its contents (read at load)
+  std::vector<std::pair<std::string, UniformValue>> uniforms;
+  bool draws = true;
+  double scale = 1.0;                    // (0, 1]: linear factor on width and height
+  std::vector<Target> targets;           // what `scale` applies to (empty when scale == 1)
+  std::optional<double> fragment_scale;  // for the model; default scale * scale
+  std::optional<double> error;           // 1 - SSIM of this level alone, in [0, 1]; absent: unknown
 
-    double fragment_scale_or_default() const { return fragment_scale.value_or(scale * scale); }
+  double fragment_scale_or_default() const { return fragment_scale.value_or(scale * scale); }
 
-    // True when the level changes the program (a variant program must be built for it).
-    bool changes_program() const { return !defines.empty() || !replace_source.empty() || !uniforms.empty(); }
-    // True when the level is the app's own rendering unchanged.
-    bool identity() const { return !changes_program() && draws && scale == 1.0; }
+  // True when the level changes the program (a variant program must be built for it).
+  bool changes_program() const { return !defines.empty() || !replace_source.empty() || !uniforms.empty(); }
+  // True when the level is the app's own rendering unchanged.
+  bool identity() const { return !changes_program() && draws && scale == 1.0; }
 };
 
 struct Match {
-    std::vector<uint64_t> hashes;       // program hashes, as in the frame log's pass column
-    std::vector<std::string> sources;   // substrings of any one of the program's shader sources
-    bool empty() const { return hashes.empty() && sources.empty(); }
+  std::vector<uint64_t> hashes;      // program hashes, as in the frame log's pass column
+  std::vector<std::string> sources;  // substrings of any one of the program's shader sources
+  bool empty() const { return hashes.empty() && sources.empty(); }
 };
 
 struct Pass {
-    std::string name;
-    Match match;                  // empty: the pass owns no programs (a render scale)
-    std::vector<Level> levels;    // best first; never empty
-    std::vector<std::string> scales;  // for the model: passes whose fragments `scale` multiplies
-                                      // (names of this manifest's passes, in manifest order
-                                      // when derived)
+  std::string name;
+  Match match;                      // empty: the pass owns no programs (a render scale)
+  std::vector<Level> levels;        // best first; never empty
+  std::vector<std::string> scales;  // for the model: passes whose fragments `scale` multiplies
+                                    // (names of this manifest's passes, in manifest order
+                                    // when derived)
 };
 
 struct Manifest {
-    std::string path;  // where it was read from ("" for the built-in one)
-    std::vector<Pass> passes;
-    // Index of the pass of this name, or -1.
-    int find(const std::string& name) const;
+  std::string path;  // where it was read from ("" for the built-in one)
+  std::vector<Pass> passes;
+  // Index of the pass of this name, or -1.
+  int find(const std::string& name) const;
 };
 
 // One problem with the manifest, in the form `file:line:column: what` (without "glbudget: ").
 struct Problem {
-    std::string text;
-    bool fatal = false;  // the manifest cannot be used at all
+  std::string text;
+  bool fatal = false;  // the manifest cannot be used at all
 };
 
 struct LoadResult {
-    std::optional<Manifest> manifest;  // present unless a fatal problem
-    std::vector<Problem> problems;     // warnings (unknown keys, bad levels dropped) and errors
+  std::optional<Manifest> manifest;  // present unless a fatal problem
+  std::vector<Problem> problems;     // warnings (unknown keys, bad levels dropped) and errors
 };
 
 // Parses TOML text; `path` names it in messages and anchors relative `replace` files.

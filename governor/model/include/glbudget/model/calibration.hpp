@@ -47,53 +47,53 @@ namespace glbudget::model {
 
 // What one step's frames measured: the frames presented after start_ns up to end_ns.
 struct StepMeasurement {
-    // Mean power: the frames' energy over their time (not a mean of per-frame powers, which
-    // short frames would dominate). NaN when no frame had power.
-    double power_w = std::numeric_limits<double>::quiet_NaN();
-    // Per frame, summed over passes: the median over the frames where they were measured; NaN
-    // when none was.
-    double batches = std::numeric_limits<double>::quiet_NaN();
-    double vertices = std::numeric_limits<double>::quiet_NaN();
-    double fragments = std::numeric_limits<double>::quiet_NaN();
-    std::size_t frames = 0;  // frames with power
+  // Mean power: the frames' energy over their time (not a mean of per-frame powers, which
+  // short frames would dominate). NaN when no frame had power.
+  double power_w = std::numeric_limits<double>::quiet_NaN();
+  // Per frame, summed over passes: the median over the frames where they were measured; NaN
+  // when none was.
+  double batches = std::numeric_limits<double>::quiet_NaN();
+  double vertices = std::numeric_limits<double>::quiet_NaN();
+  double fragments = std::numeric_limits<double>::quiet_NaN();
+  std::size_t frames = 0;  // frames with power
 };
 
 StepMeasurement measure_step(std::span<const LoggedFrame> frames, double start_ns, double end_ns);
 
 // One step of a sweep: the swept count per frame and the step's mean power.
 struct CalibrationPoint {
-    double count = 0.0;
-    double power_w = 0.0;
-    bool late = false;  // its frames ran at under half the paced rate
+  double count = 0.0;
+  double power_w = 0.0;
+  bool late = false;  // its frames ran at under half the paced rate
 };
 
 struct SaturationRule {
-    double plateau_share = 0.95;    // the saturation count: where the curve reaches this share of its rise
-    double flat_gain_share = 0.02;  // flattened: the last two steps gained less than this share of the rise
-    double min_rise_share = 0.05;   // flat: rose less than this share of the profile's range
+  double plateau_share = 0.95;    // the saturation count: where the curve reaches this share of its rise
+  double flat_gain_share = 0.02;  // flattened: the last two steps gained less than this share of the rise
+  double min_rise_share = 0.05;   // flat: rose less than this share of the profile's range
 };
 
 enum class SaturationKind {
-    saturated,           // count: where the curve crossed plateau_share of its rise
-    saturated_at_start,  // already there at the first step; count: the first (an upper bound)
-    frame_limited,       // not flat, but its last two steps were late; count: the crossing
-    still_rising,        // no plateau in the counts measured; count: the largest (a lower bound)
-    flat,                // never rose above the noise; count: the largest measured (a lower bound)
-    no_data,             // no usable step; count: NaN
+  saturated,           // count: where the curve crossed plateau_share of its rise
+  saturated_at_start,  // already there at the first step; count: the first (an upper bound)
+  frame_limited,       // not flat, but its last two steps were late; count: the crossing
+  still_rising,        // no plateau in the counts measured; count: the largest (a lower bound)
+  flat,                // never rose above the noise; count: the largest measured (a lower bound)
+  no_data,             // no usable step; count: NaN
 };
 
 const char* to_string(SaturationKind kind);
 
 struct Saturation {
-    SaturationKind kind = SaturationKind::no_data;
-    double count = std::numeric_limits<double>::quiet_NaN();
-    double plateau_w = std::numeric_limits<double>::quiet_NaN();
+  SaturationKind kind = SaturationKind::no_data;
+  double count = std::numeric_limits<double>::quiet_NaN();
+  double plateau_w = std::numeric_limits<double>::quiet_NaN();
 };
 
 // The curve's usable points (finite, count > 0), sorted by count, and their isotonic fit.
 struct MonotoneCurve {
-    std::vector<double> count;
-    std::vector<double> power_w;  // non-decreasing
+  std::vector<double> count;
+  std::vector<double> power_w;  // non-decreasing
 };
 MonotoneCurve monotone_fit(std::span<const CalibrationPoint> curve);
 
@@ -105,21 +105,21 @@ Saturation find_saturation(std::span<const CalibrationPoint> curve, double idle_
                            const SaturationRule& rule = {});
 
 struct SweepMeasurement {
-    std::vector<CalibrationPoint> points;
-    bool complete = false;  // false: interrupted before it saturated or reached its last step
+  std::vector<CalibrationPoint> points;
+  bool complete = false;  // false: interrupted before it saturated or reached its last step
 };
 
 // What a calibration measured; NaN or empty where a step never ran (an interrupted run).
 struct CalibrationMeasurements {
-    double idle_w = std::numeric_limits<double>::quiet_NaN();
-    SweepMeasurement batches, vertices, fragments;
+  double idle_w = std::numeric_limits<double>::quiet_NaN();
+  SweepMeasurement batches, vertices, fragments;
 };
 
 struct CalibrationResult {
-    PlatformProfile profile;            // unmeasured fields keep PlatformProfile's defaults
-    Saturation batches, vertices, fragments;
-    std::string p_max_from;             // the sweep whose plateau gave P_M ("" when none did)
-    std::vector<std::string> defaults;  // fields left at their defaults: "p_min_w", "saturation.batches", ...
+  PlatformProfile profile;  // unmeasured fields keep PlatformProfile's defaults
+  Saturation batches, vertices, fragments;
+  std::string p_max_from;             // the sweep whose plateau gave P_M ("" when none did)
+  std::vector<std::string> defaults;  // fields left at their defaults: "p_min_w", "saturation.batches", ...
 };
 
 // P_m: the idle power; P_M: the highest plateau of the sweeps, when above P_m; B, V, F: each

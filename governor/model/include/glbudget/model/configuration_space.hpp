@@ -11,46 +11,46 @@ namespace glbudget::model {
 // executed instructions per vertex- and fragment-shader invocation, and texel accesses per
 // fragment invocation (paper §5.4; vertex shaders are taken not to sample textures).
 struct VariantCost {
-    double ins_v = 0.0;
-    double ins_f = 0.0;
-    double tex_f = 0.0;
-    // Levels that change how many fragments are drawn rather than what each costs: the paper's
-    // resolution "pass" (render scale 0.8 draws 0.64 of the fragments of the passes it scales)
-    // or a shadow-map size (its own pass). Relative to a level at 1.
-    double fragment_scale = 1.0;
-    // false: the level skips the pass's draws (reflections or antialiasing off).
-    bool draws = true;
+  double ins_v = 0.0;
+  double ins_f = 0.0;
+  double tex_f = 0.0;
+  // Levels that change how many fragments are drawn rather than what each costs: the paper's
+  // resolution "pass" (render scale 0.8 draws 0.64 of the fragments of the passes it scales)
+  // or a shadow-map size (its own pass). Relative to a level at 1.
+  double fragment_scale = 1.0;
+  // false: the level skips the pass's draws (reflections or antialiasing off).
+  bool draws = true;
 };
 
 struct PassVariants {
-    std::string pass;
-    std::vector<VariantCost> levels;  // best first; at least one
-    // Passes whose fragment counts this pass's fragment_scale multiplies: itself for a shadow
-    // map's size, the scene passes for the render scale. Empty: it scales nothing.
-    std::vector<std::string> scales;
+  std::string pass;
+  std::vector<VariantCost> levels;  // best first; at least one
+  // Passes whose fragment counts this pass's fragment_scale multiplies: itself for a shadow
+  // map's size, the scene passes for the render scale. Empty: it scales nothing.
+  std::vector<std::string> scales;
 };
 
 using Configuration = std::vector<int>;  // level per pass, in ConfigurationSpace order
 
 class ConfigurationSpace {
-public:
-    ConfigurationSpace() = default;
-    // Passes without levels get a single zero-cost level, so the space is never empty.
-    explicit ConfigurationSpace(std::vector<PassVariants> passes);
+ public:
+  ConfigurationSpace() = default;
+  // Passes without levels get a single zero-cost level, so the space is never empty.
+  explicit ConfigurationSpace(std::vector<PassVariants> passes);
 
-    const std::vector<PassVariants>& passes() const { return passes_; }
-    std::size_t pass_count() const { return passes_.size(); }
-    std::size_t size() const { return size_; }
+  const std::vector<PassVariants>& passes() const { return passes_; }
+  std::size_t pass_count() const { return passes_.size(); }
+  std::size_t size() const { return size_; }
 
-    // Row-major: the last pass changes fastest. index_of(decode(i)) == i.
-    std::size_t index_of(const Configuration& configuration) const;
-    Configuration decode(std::size_t index) const;
-    bool contains(const Configuration& configuration) const;
+  // Row-major: the last pass changes fastest. index_of(decode(i)) == i.
+  std::size_t index_of(const Configuration& configuration) const;
+  Configuration decode(std::size_t index) const;
+  bool contains(const Configuration& configuration) const;
 
-private:
-    std::vector<PassVariants> passes_;
-    std::vector<std::size_t> strides_;
-    std::size_t size_ = 1;
+ private:
+  std::vector<PassVariants> passes_;
+  std::vector<std::size_t> strides_;
+  std::size_t size_ = 1;
 };
 
 }  // namespace glbudget::model

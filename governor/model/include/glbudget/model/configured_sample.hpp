@@ -6,8 +6,8 @@
 namespace glbudget::model {
 
 struct ConfiguredSample {
-    FrameSample sample;
-    Configuration configuration;
+  FrameSample sample;
+  Configuration configuration;
 };
 
 }  // namespace glbudget::model

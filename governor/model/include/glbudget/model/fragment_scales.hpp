@@ -19,23 +19,23 @@
 namespace glbudget::model {
 
 class FragmentScales {
-public:
-    FragmentScales() = default;
-    // The table's declared scales.
-    explicit FragmentScales(const ConfigurationSpace& space);
+ public:
+  FragmentScales() = default;
+  // The table's declared scales.
+  explicit FragmentScales(const ConfigurationSpace& space);
 
-    // The factor on pass `pass`'s fragments when pass `scaler` is at `level` (1 where the
-    // scaler does not scale it).
-    double at(std::size_t pass, std::size_t scaler, int level) const;
-    void set(std::size_t pass, std::size_t scaler, int level, double scale);
-    bool measured(std::size_t pass, std::size_t scaler, int level) const;
+  // The factor on pass `pass`'s fragments when pass `scaler` is at `level` (1 where the
+  // scaler does not scale it).
+  double at(std::size_t pass, std::size_t scaler, int level) const;
+  void set(std::size_t pass, std::size_t scaler, int level, double scale);
+  bool measured(std::size_t pass, std::size_t scaler, int level) const;
 
-private:
-    struct Levels {
-        std::vector<double> scale;
-        std::vector<bool> measured;
-    };
-    std::vector<std::map<std::size_t, Levels>> scales_;  // [pass][scaler]
+ private:
+  struct Levels {
+    std::vector<double> scale;
+    std::vector<bool> measured;
+  };
+  std::vector<std::map<std::size_t, Levels>> scales_;  // [pass][scaler]
 };
 
 // The declared scales, with those measured in `history` where a pass has one scaler and

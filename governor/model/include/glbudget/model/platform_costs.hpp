@@ -23,21 +23,20 @@ namespace glbudget::model {
 PassCoefficients prior_coefficients(const PlatformCosts& costs, const VariantCost& level);
 
 // The costs' model for a frame: every pass drawn in it at its configuration's level.
-PowerModel prior_model(const PlatformProfile& profile, const PlatformCosts& costs,
-                       const ConfigurationSpace& space, const Configuration& configuration,
-                       const std::vector<PassFrame>& passes);
+PowerModel prior_model(const PlatformProfile& profile, const PlatformCosts& costs, const ConfigurationSpace& space,
+                       const Configuration& configuration, const std::vector<PassFrame>& passes);
 
 struct CostLog {
-    std::span<const ConfiguredSample> samples;
-    const ConfigurationSpace* space = nullptr;
+  std::span<const ConfiguredSample> samples;
+  const ConfigurationSpace* space = nullptr;
 };
 
 struct PlatformCostsFit {
-    PlatformCosts costs;
-    std::vector<double> frame_alpha;  // per log
-    std::size_t samples_used = 0;
-    // Per log, in sample: each frame, and each configuration's mean power.
-    std::vector<PredictionError> per_frame, per_configuration;
+  PlatformCosts costs;
+  std::vector<double> frame_alpha;  // per log
+  std::size_t samples_used = 0;
+  // Per log, in sample: each frame, and each configuration's mean power.
+  std::vector<PredictionError> per_frame, per_configuration;
 };
 
 // nullopt when no log has a usable frame in its space or the profile has no power range.

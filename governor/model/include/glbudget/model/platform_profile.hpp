@@ -17,22 +17,22 @@ namespace glbudget::model {
 // the first configuration's coefficients, and every prediction reused from them, are a guess.
 // Fitted from recorded logs by `glbudget costs` (platform_costs.hpp).
 struct PlatformCosts {
-    double batch = 0.0;
-    double vertex = 0.0;
-    double fragment = 0.0;
-    double instruction = 0.0;  // chi
-    double texel = 0.0;        // psi
+  double batch = 0.0;
+  double vertex = 0.0;
+  double fragment = 0.0;
+  double instruction = 0.0;  // chi
+  double texel = 0.0;        // psi
 };
 
 struct PlatformProfile {
-    double p_min_w = 0.0;                  // P_m: power of an empty frame
-    double p_max_w = 1.0;                  // P_M: power of a saturated GPU
-    double saturation_batches = 1.0e4;     // B
-    double saturation_vertices = 1.0e8;    // V
-    double saturation_fragments = 1.0e9;   // F
-    std::optional<PlatformCosts> costs;    // optional "costs" object
+  double p_min_w = 0.0;                 // P_m: power of an empty frame
+  double p_max_w = 1.0;                 // P_M: power of a saturated GPU
+  double saturation_batches = 1.0e4;    // B
+  double saturation_vertices = 1.0e8;   // V
+  double saturation_fragments = 1.0e9;  // F
+  std::optional<PlatformCosts> costs;   // optional "costs" object
 
-    double range_w() const { return p_max_w - p_min_w; }
+  double range_w() const { return p_max_w - p_min_w; }
 };
 
 // Parses a profile such as

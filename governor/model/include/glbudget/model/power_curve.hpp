@@ -13,11 +13,11 @@ double power_from_alpha(const PlatformProfile& profile, double alpha);
 // at or beyond P_M would need an infinite alpha, and below P_m a negative one, so the power
 // fraction is clamped to [0, kMaxLoadFraction] before the log1p: its argument never reaches 0.
 struct LinearisedPower {
-    double alpha = 0.0;
-    // exp(-alpha) = 1 - fraction: d(power)/d(alpha) divided by (P_M - P_m). Weighting a
-    // regression row by it makes the alpha residual proportional to the power residual,
-    // and makes clamped saturated samples nearly weightless.
-    double weight = 1.0;
+  double alpha = 0.0;
+  // exp(-alpha) = 1 - fraction: d(power)/d(alpha) divided by (P_M - P_m). Weighting a
+  // regression row by it makes the alpha residual proportional to the power residual,
+  // and makes clamped saturated samples nearly weightless.
+  double weight = 1.0;
 };
 inline constexpr double kMaxLoadFraction = 0.999;
 LinearisedPower linearise_power(const PlatformProfile& profile, double power_w);

@@ -12,26 +12,26 @@ namespace glbudget::model {
 
 // What one pass drew in one frame. NaN means "not measured".
 struct PassCounts {
-    double batches = 0.0;
-    double vertices = 0.0;    // vertex-shader invocations
-    double fragments = 0.0;   // fragment-shader invocations
+  double batches = 0.0;
+  double vertices = 0.0;   // vertex-shader invocations
+  double fragments = 0.0;  // fragment-shader invocations
 };
 
 struct PassCoefficients {
-    double k_b = 0.0;
-    double k_v = 0.0;
-    double k_f = 0.0;
+  double k_b = 0.0;
+  double k_v = 0.0;
+  double k_f = 0.0;
 };
 
 struct PassFrame {
-    std::string pass;  // manifest pass name, or the program's source hash without a manifest
-    PassCounts counts;
+  std::string pass;  // manifest pass name, or the program's source hash without a manifest
+  PassCounts counts;
 };
 
 // One rendering sample (paper §5.3 footnote): measured power and per-pass counts of a frame.
 struct FrameSample {
-    double power_w = 0.0;
-    std::vector<PassFrame> passes;
+  double power_w = 0.0;
+  std::vector<PassFrame> passes;
 };
 
 // True when the power and every count are finite and the counts are non-negative.
@@ -41,29 +41,29 @@ bool is_usable(const FrameSample& sample);
 double pass_alpha(const PlatformProfile& profile, const PassCoefficients& k, const PassCounts& c);
 
 class PowerModel {
-public:
-    explicit PowerModel(PlatformProfile profile = {}) : profile_(profile) {}
+ public:
+  explicit PowerModel(PlatformProfile profile = {}) : profile_(profile) {}
 
-    const PlatformProfile& profile() const { return profile_; }
-    // Passes that were never fitted have no entry and contribute nothing.
-    const std::map<std::string, PassCoefficients>& coefficients() const { return coefficients_; }
-    const PassCoefficients* find(const std::string& pass) const;
-    void set(const std::string& pass, const PassCoefficients& k) { coefficients_[pass] = k; }
+  const PlatformProfile& profile() const { return profile_; }
+  // Passes that were never fitted have no entry and contribute nothing.
+  const std::map<std::string, PassCoefficients>& coefficients() const { return coefficients_; }
+  const PassCoefficients* find(const std::string& pass) const;
+  void set(const std::string& pass, const PassCoefficients& k) { coefficients_[pass] = k; }
 
-    // Beyond the paper: a load every frame carries whatever it draws (the app's and driver's
-    // own work per frame, clears, presentation), which P_m, the idle power, does not include.
-    // Without it such a cost is absorbed by whichever pass's draw count never changes, and
-    // vanishes from predictions of configurations that skip that pass.
-    double frame_alpha() const { return frame_alpha_; }
-    void set_frame_alpha(double alpha) { frame_alpha_ = alpha; }
+  // Beyond the paper: a load every frame carries whatever it draws (the app's and driver's
+  // own work per frame, clears, presentation), which P_m, the idle power, does not include.
+  // Without it such a cost is absorbed by whichever pass's draw count never changes, and
+  // vanishes from predictions of configurations that skip that pass.
+  double frame_alpha() const { return frame_alpha_; }
+  void set_frame_alpha(double alpha) { frame_alpha_ = alpha; }
 
-    double alpha(const std::vector<PassFrame>& passes) const;
-    double predict_power(const std::vector<PassFrame>& passes) const;
+  double alpha(const std::vector<PassFrame>& passes) const;
+  double predict_power(const std::vector<PassFrame>& passes) const;
 
-private:
-    PlatformProfile profile_;
-    std::map<std::string, PassCoefficients> coefficients_;
-    double frame_alpha_ = 0.0;
+ private:
+  PlatformProfile profile_;
+  std::map<std::string, PassCoefficients> coefficients_;
+  double frame_alpha_ = 0.0;
 };
 
 }  // namespace glbudget::model

@@ -6,24 +6,24 @@
 namespace glbudget::model {
 
 class PredictionError {
-public:
-    explicit PredictionError(double range_w = 1.0) : range_w_(range_w) {}
+ public:
+  explicit PredictionError(double range_w = 1.0) : range_w_(range_w) {}
 
-    // Pairs with a NaN/infinite value are ignored; MAPE skips measurements <= 0 W.
-    void add(double predicted_w, double measured_w);
+  // Pairs with a NaN/infinite value are ignored; MAPE skips measurements <= 0 W.
+  void add(double predicted_w, double measured_w);
 
-    std::size_t count() const { return count_; }
-    double mape_percent() const;          // NaN when empty
-    double mean_share_of_range() const;   // NaN when empty or range <= 0
-    double max_share_of_range() const;
+  std::size_t count() const { return count_; }
+  double mape_percent() const;         // NaN when empty
+  double mean_share_of_range() const;  // NaN when empty or range <= 0
+  double max_share_of_range() const;
 
-private:
-    double range_w_;
-    std::size_t count_ = 0;
-    std::size_t percentage_count_ = 0;
-    double percentage_sum_ = 0.0;
-    double absolute_sum_ = 0.0;
-    double absolute_max_ = 0.0;
+ private:
+  double range_w_;
+  std::size_t count_ = 0;
+  std::size_t percentage_count_ = 0;
+  double percentage_sum_ = 0.0;
+  double absolute_sum_ = 0.0;
+  double absolute_max_ = 0.0;
 };
 
 }  // namespace glbudget::model

@@ -26,63 +26,63 @@
 namespace glbudget::model {
 
 struct ReplayOptions {
-    std::size_t average_frames = 30;  // sliding average length for the averaged errors
-    // Frames on each side of a configuration change for the switch error: more average out
-    // the sensor's scatter, fewer keep the view on both sides alike.
-    std::size_t switch_frames = 5;
-    std::size_t settle_frames = 1;    // frames after a change not counted as its measurement
-    HistorySettings history;          // the fit over several configurations (off: the paper's)
+  std::size_t average_frames = 30;  // sliding average length for the averaged errors
+  // Frames on each side of a configuration change for the switch error: more average out
+  // the sensor's scatter, fewer keep the view on both sides alike.
+  std::size_t switch_frames = 5;
+  std::size_t settle_frames = 1;  // frames after a change not counted as its measurement
+  HistorySettings history;        // the fit over several configurations (off: the paper's)
 };
 
 struct ReplayErrors {
-    PredictionError per_frame, averaged;
+  PredictionError per_frame, averaged;
 };
 
 // A frame both models predicted.
 struct ReplayFrame {
-    std::uint64_t frame = 0;   // as logged
-    std::size_t run = 0;       // configuration run it belongs to
-    bool fitted_here = false;  // the model had frames of its configuration
-    double measured = 0.0, ours = 0.0, baseline = 0.0;
+  std::uint64_t frame = 0;   // as logged
+  std::size_t run = 0;       // configuration run it belongs to
+  bool fitted_here = false;  // the model had frames of its configuration
+  double measured = 0.0, ours = 0.0, baseline = 0.0;
 };
 
 // Means over one configuration run's scored frames.
 struct ReplayRun {
-    Configuration configuration;
-    std::size_t scored_frames = 0;
-    bool fitted_here = false;  // some of its frames were in the fitted configuration
-    double measured_w = 0.0, ours_w = 0.0, baseline_w = 0.0;
+  Configuration configuration;
+  std::size_t scored_frames = 0;
+  bool fitted_here = false;  // some of its frames were in the fitted configuration
+  double measured_w = 0.0, ours_w = 0.0, baseline_w = 0.0;
 };
 
 // One configuration change: the next run's power as predicted in the last frames before it, and
 // as it then measured.
 struct ReplaySwitch {
-    std::size_t to_run = 0;
-    double ours_w = 0.0, baseline_w = 0.0, unchanged_w = 0.0, measured_w = 0.0;
+  std::size_t to_run = 0;
+  double ours_w = 0.0, baseline_w = 0.0, unchanged_w = 0.0, measured_w = 0.0;
 };
 
 struct ReplayReport {
-    ReplayErrors ours_fitted, ours_reused, baseline_fitted, baseline_reused;
-    // Every scored frame, as the system runs (fitting, reusing, refitting): with 30-frame
-    // averages, the measure of the paper's figures.
-    ReplayErrors ours_all, baseline_all;
-    PredictionError ours_switch, baseline_switch;  // one pair per configuration change
-    // The reference a model must beat at a switch: the next configuration "draws what this one
-    // measured" (its last frames' mean power).
-    PredictionError unchanged_switch;
-    ReplayErrors floor;                            // configuration-run means, all scored frames
-    std::vector<ReplayRun> runs;
-    std::vector<ReplaySwitch> switches;
-    std::vector<ReplayFrame> scored;
-    std::size_t frames = 0;
-    std::size_t frames_unusable = 0;  // no power or unmeasured counts
-    std::size_t configuration_runs = 0;
-    std::size_t fits = 0;
-    std::size_t history_fits = 0;     // of those, fits over several configurations
-    std::size_t checks_failed = 0;
-    ReuseCoefficients reuse;          // after the last fit
-    PowerModel model;                 // after the last fit, at the levels of its configuration
-    Configuration model_configuration;
+  ReplayErrors ours_fitted, ours_reused, baseline_fitted, baseline_reused;
+  // Every scored frame, as the system runs (fitting, reusing, refitting): with 30-frame
+  // averages, the measure of the paper's figures.
+  ReplayErrors ours_all, baseline_all;
+  PredictionError ours_switch, baseline_switch;  // one pair per configuration change
+  // The reference a model must beat at a switch: the next configuration "draws what this one
+  // measured" (its last frames' mean power).
+  PredictionError unchanged_switch;
+  ReplayErrors floor;  // configuration-run means, all scored frames
+  std::vector<ReplayRun> runs;
+  std::vector<ReplaySwitch> switches;
+  std::vector<ReplayFrame> scored;
+  std::size_t frames = 0;
+  std::size_t frames_unusable = 0;  // no power or unmeasured counts
+  std::size_t configuration_runs = 0;
+  std::size_t fits = 0;
+  std::size_t history_fits = 0;  // of those, fits over several configurations
+  std::size_t checks_failed = 0;
+  ReuseCoefficients reuse;  // after the last fit
+  PowerModel model;         // after the last fit, at the levels of its configuration
+  Configuration model_configuration;
 };
 
 ReplayReport replay_frames(const std::vector<LoggedFrame>& frames, const PlatformProfile& profile,

@@ -18,62 +18,63 @@
 namespace glbudget::model {
 
 struct HistorySettings {
-    bool enabled = true;
-    std::size_t frames = 300;  // usable frames kept, newest last
-    HistoryFitSettings fit;
-    // Beyond the paper: between fits, the measured power's drift away from the fitted
-    // coefficients (a sensor's or machine's slow drift, a scene's slow change) is followed by
-    // an exponential average of the last frames' residuals over this many frames, added to
-    // every configuration's load. 0: off (the default, so that predictions of a configuration
-    // not yet fitted use no measurement of it; the README gives the measured trade).
-    std::size_t drift_frames = 0;
+  bool enabled = true;
+  std::size_t frames = 300;  // usable frames kept, newest last
+  HistoryFitSettings fit;
+  // Beyond the paper: between fits, the measured power's drift away from the fitted
+  // coefficients (a sensor's or machine's slow drift, a scene's slow change) is followed by
+  // an exponential average of the last frames' residuals over this many frames, added to
+  // every configuration's load. 0: off (the default, so that predictions of a configuration
+  // not yet fitted use no measurement of it; the README gives the measured trade).
+  std::size_t drift_frames = 0;
 };
 
 class RunTimeModel {
-public:
-    RunTimeModel(PlatformProfile profile, ConfigurationSpace space, FitSettings fit = {},
-                 HistorySettings history = {});
+ public:
+  RunTimeModel(PlatformProfile profile, ConfigurationSpace space, FitSettings fit = {}, HistorySettings history = {});
 
-    // Sets the frame (its counts, drawn in `configuration`) and returns the predicted power of
-    // that configuration; NaN before the first fit.
-    double predict_frame(const FrameSample& frame, const Configuration& configuration);
-    // Another configuration for the frame last given to predict_frame().
-    double predict(const Configuration& configuration) const;
-    void predict_all(std::vector<double>& out) const;
+  // Sets the frame (its counts, drawn in `configuration`) and returns the predicted power of
+  // that configuration; NaN before the first fit.
+  double predict_frame(const FrameSample& frame, const Configuration& configuration);
+  // Another configuration for the frame last given to predict_frame().
+  double predict(const Configuration& configuration) const;
+  void predict_all(std::vector<double>& out) const;
 
-    // Learns from the frame last predicted (call after predict_frame, with its prediction).
-    OnlineFitter::Event learn(const FrameSample& frame, const Configuration& configuration, double predicted_w);
+  // Learns from the frame last predicted (call after predict_frame, with its prediction).
+  OnlineFitter::Event learn(const FrameSample& frame, const Configuration& configuration, double predicted_w);
 
-    bool fitted() const { return predictor_.has_value(); }
-    // The last fit saw frames drawn in this configuration.
-    bool has_data_for(const Configuration& configuration) const { return fitted_configurations_.count(configuration) > 0; }
-    std::size_t fits() const { return fitter_.fits(); }
-    std::size_t history_fits() const { return history_fits_; }
-    ReuseCoefficients reuse() const { return reuse_; }
-    // The coefficients in use: at the levels of fitted_configuration().
-    const PowerModel& model() const { return model_; }
-    const Configuration& fitted_configuration() const { return fitted_configuration_; }
+  bool fitted() const { return predictor_.has_value(); }
+  // The last fit saw frames drawn in this configuration.
+  bool has_data_for(const Configuration& configuration) const {
+    return fitted_configurations_.count(configuration) > 0;
+  }
+  std::size_t fits() const { return fitter_.fits(); }
+  std::size_t history_fits() const { return history_fits_; }
+  ReuseCoefficients reuse() const { return reuse_; }
+  // The coefficients in use: at the levels of fitted_configuration().
+  const PowerModel& model() const { return model_; }
+  const Configuration& fitted_configuration() const { return fitted_configuration_; }
 
-private:
-    void seed_prior(const FrameSample& frame, const Configuration& configuration);
-    void anchor_to_recent(PowerModel& model, const Configuration& configuration) const;
-    // The last HistorySettings::frames usable frames, oldest first.
-    std::span<const ConfiguredSample> recent_history() const;
+ private:
+  void seed_prior(const FrameSample& frame, const Configuration& configuration);
+  void anchor_to_recent(PowerModel& model, const Configuration& configuration) const;
+  // The last HistorySettings::frames usable frames, oldest first.
+  std::span<const ConfiguredSample> recent_history() const;
 
-    ConfigurationSpace space_;
-    HistorySettings history_settings_;
-    OnlineFitter fitter_;
-    // Kept contiguous so a fit reads it in place; trimmed to `frames` only once it holds twice
-    // as many, so a frame costs no shift of the whole history.
-    std::vector<ConfiguredSample> history_;
-    PowerModel model_;
-    std::optional<ConfigurationPredictor> predictor_;
-    Configuration current_;
-    Configuration fitted_configuration_;
-    std::set<Configuration> fitted_configurations_;
-    ReuseCoefficients reuse_;
-    std::size_t history_fits_ = 0;
-    double drift_alpha_ = 0.0;
+  ConfigurationSpace space_;
+  HistorySettings history_settings_;
+  OnlineFitter fitter_;
+  // Kept contiguous so a fit reads it in place; trimmed to `frames` only once it holds twice
+  // as many, so a frame costs no shift of the whole history.
+  std::vector<ConfiguredSample> history_;
+  PowerModel model_;
+  std::optional<ConfigurationPredictor> predictor_;
+  Configuration current_;
+  Configuration fitted_configuration_;
+  std::set<Configuration> fitted_configurations_;
+  ReuseCoefficients reuse_;
+  std::size_t history_fits_ = 0;
+  double drift_alpha_ = 0.0;
 };
 
 }  // namespace glbudget::model

@@ -11,9 +11,9 @@
 namespace glbudget::model {
 
 struct Budget {
-    enum class Kind { Off, ShareOfRange, Watts };
-    Kind kind = Kind::Off;
-    double value = 0.0;  // share in [0, 1], or watts
+  enum class Kind { Off, ShareOfRange, Watts };
+  Kind kind = Kind::Off;
+  double value = 0.0;  // share in [0, 1], or watts
 };
 
 // "40%", "35W" (or "35w", "35 W"), "off" or "". Anything else: one `glbudget:` line on stderr
@@ -24,9 +24,9 @@ std::optional<Budget> parse_budget(std::string_view text);
 double budget_watts(const Budget& budget, std::span<const double> predicted_power_w);
 
 struct Selection {
-    std::size_t index = 0;       // chosen configuration
-    double budget_w = 0.0;
-    bool within_budget = true;   // false: nothing fits, the lowest-power configuration was taken
+  std::size_t index = 0;  // chosen configuration
+  double budget_w = 0.0;
+  bool within_budget = true;  // false: nothing fits, the lowest-power configuration was taken
 };
 
 // Lowest error among configurations with power <= budget (inclusive, so 100% admits the most
@@ -35,7 +35,7 @@ struct Selection {
 // margin_w > 0 admits only power <= budget - margin while any configuration is that far
 // under the budget, and falls back to the budget itself when none is (budget_w is the
 // budget either way).
-Selection select_configuration(std::span<const double> predicted_power_w,
-                               std::span<const double> error, const Budget& budget, double margin_w = 0.0);
+Selection select_configuration(std::span<const double> predicted_power_w, std::span<const double> error,
+                               const Budget& budget, double margin_w = 0.0);
 
 }  // namespace glbudget::model

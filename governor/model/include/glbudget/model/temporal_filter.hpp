@@ -7,7 +7,7 @@ namespace glbudget::model {
 
 // t is clamped to [0, T]; T <= 0 (or NaN t) switches at once. Halves round away from zero.
 // Configurations of different lengths: s_new is returned.
-Configuration blend_configurations(const Configuration& old_configuration,
-                                   const Configuration& new_configuration, double t, double T);
+Configuration blend_configurations(const Configuration& old_configuration, const Configuration& new_configuration,
+                                   double t, double T);
 
 }  // namespace glbudget::model

@@ -26,18 +26,18 @@
 namespace glbudget::model {
 
 struct VariantRef {
-    std::size_t pass = 0;  // index in the space
-    int level = 0;         // -1: the program serves several levels of its pass
+  std::size_t pass = 0;  // index in the space
+  int level = 0;         // -1: the program serves several levels of its pass
 };
 
 struct VariantTable {
-    ConfigurationSpace space;
-    std::map<std::string, VariantRef> by_hash;
-    // What a batch, vertex, fragment, instruction and texel cost in this app's frames, when
-    // `glbudget calibrate --app` measured its levels' power too ("platform_costs", the five
-    // numbers of a profile's "costs"): the run-time model starts from these rather than the
-    // profile's, which came from other apps or none.
-    std::optional<PlatformCosts> platform_costs;
+  ConfigurationSpace space;
+  std::map<std::string, VariantRef> by_hash;
+  // What a batch, vertex, fragment, instruction and texel cost in this app's frames, when
+  // `glbudget calibrate --app` measured its levels' power too ("platform_costs", the five
+  // numbers of a profile's "costs"): the run-time model starts from these rather than the
+  // profile's, which came from other apps or none.
+  std::optional<PlatformCosts> platform_costs;
 };
 
 // Malformed entries: one `glbudget:` line each, and the entry is left out.
@@ -57,12 +57,12 @@ std::optional<Configuration> parse_configuration(std::string_view text, const Co
 // and set that pass's level; other hashes are passes of their own outside the search space.
 // Passes of the space that drew nothing keep `default_configuration`'s level.
 struct ResolvedFrame {
-    FrameSample sample;
-    Configuration configuration;
-    // For the baseline; texels are fragments x texel accesses per fragment where the table
-    // knows the variant, else fragments.
-    FrameTotals totals;
-    std::vector<double> primitives;  // per entry of sample.passes
+  FrameSample sample;
+  Configuration configuration;
+  // For the baseline; texels are fragments x texel accesses per fragment where the table
+  // knows the variant, else fragments.
+  FrameTotals totals;
+  std::vector<double> primitives;  // per entry of sample.passes
 };
 // The configuration comes from the log's `configuration` column when it has one.
 ResolvedFrame resolve_frame(const LoggedFrame& frame, const VariantTable& table,

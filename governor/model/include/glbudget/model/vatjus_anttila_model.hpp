@@ -12,26 +12,26 @@
 namespace glbudget::model {
 
 struct FrameTotals {
-    double triangles = 0.0;
-    double batches = 0.0;
-    double texels = 0.0;
+  double triangles = 0.0;
+  double batches = 0.0;
+  double texels = 0.0;
 };
 
 class VatjusAnttilaModel {
-public:
-    explicit VatjusAnttilaModel(PlatformProfile profile);
+ public:
+  explicit VatjusAnttilaModel(PlatformProfile profile);
 
-    // Fits the three weights (non-negative) to frames with measured power.
-    void fit(std::span<const FrameTotals> frames, std::span<const double> power_w);
-    bool fitted() const { return fitted_; }
-    double predict_power(const FrameTotals& frame) const;
+  // Fits the three weights (non-negative) to frames with measured power.
+  void fit(std::span<const FrameTotals> frames, std::span<const double> power_w);
+  bool fitted() const { return fitted_; }
+  double predict_power(const FrameTotals& frame) const;
 
-private:
-    // The weighted sum is a one-pass PowerModel whose "batches, vertices, fragments" are the
-    // frame's batches, triangles and texels, normalised by B, V and F of the profile.
-    static std::vector<PassFrame> as_single_pass(const FrameTotals& frame);
-    PowerModel model_;
-    bool fitted_ = false;
+ private:
+  // The weighted sum is a one-pass PowerModel whose "batches, vertices, fragments" are the
+  // frame's batches, triangles and texels, normalised by B, V and F of the profile.
+  static std::vector<PassFrame> as_single_pass(const FrameTotals& frame);
+  PowerModel model_;
+  bool fitted_ = false;
 };
 
 }  // namespace glbudget::model

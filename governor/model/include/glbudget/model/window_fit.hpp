@@ -23,20 +23,20 @@
 namespace glbudget::model {
 
 struct WindowFitSettings {
-    // Ridge strength relative to the scaled columns: directions whose singular value is below
-    // about ridge * sqrt(columns) are held at the previous coefficients.
-    double ridge = 1e-5;
-    // A term counts as "held" when more than this share of its estimate comes from the
-    // previous value rather than from the window (reporting only).
-    double held_share = 0.1;
+  // Ridge strength relative to the scaled columns: directions whose singular value is below
+  // about ridge * sqrt(columns) are held at the previous coefficients.
+  double ridge = 1e-5;
+  // A term counts as "held" when more than this share of its estimate comes from the
+  // previous value rather than from the window (reporting only).
+  double held_share = 0.1;
 };
 
 struct WindowFitResult {
-    PowerModel model;
-    std::size_t samples_used = 0;
-    std::size_t samples_rejected = 0;  // NaN/infinite power or counts
-    std::size_t columns = 0;           // (pass, term) pairs the window could speak about
-    std::size_t held_terms = 0;        // of those, how many the window could not identify
+  PowerModel model;
+  std::size_t samples_used = 0;
+  std::size_t samples_rejected = 0;  // NaN/infinite power or counts
+  std::size_t columns = 0;           // (pass, term) pairs the window could speak about
+  std::size_t held_terms = 0;        // of those, how many the window could not identify
 };
 
 WindowFitResult fit_window(std::span<const FrameSample> window, const PowerModel& previous,

@@ -16,24 +16,26 @@ inline constexpr double kDataRange = 255.0;
 
 // A read-only window on luma pixels owned elsewhere.
 struct LumaView {
-    const float* pixels = nullptr;
-    int width = 0;
-    int height = 0;
-    std::ptrdiff_t stride = 0;  // floats from the start of one row to the next
+  const float* pixels = nullptr;
+  int width = 0;
+  int height = 0;
+  std::ptrdiff_t stride = 0;  // floats from the start of one row to the next
 
-    const float* row(int y) const { return pixels + static_cast<std::ptrdiff_t>(y) * stride; }
+  const float* row(int y) const { return pixels + static_cast<std::ptrdiff_t>(y) * stride; }
 };
 
 struct LumaImage {
-    int width = 0;
-    int height = 0;
-    std::vector<float> pixels;  // packed rows
+  int width = 0;
+  int height = 0;
+  std::vector<float> pixels;  // packed rows
 
-    LumaImage() = default;
-    LumaImage(int width, int height);
-    float* row(int y) { return pixels.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width); }
-    const float* row(int y) const { return pixels.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width); }
-    LumaView view() const { return {pixels.data(), width, height, width}; }
+  LumaImage() = default;
+  LumaImage(int width, int height);
+  float* row(int y) { return pixels.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width); }
+  const float* row(int y) const {
+    return pixels.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
+  }
+  LumaView view() const { return {pixels.data(), width, height, width}; }
 };
 
 // Interleaved pixels, rows packed: channels 1 (grey), 2 (grey, alpha), 3 (RGB) or 4 (RGBA).

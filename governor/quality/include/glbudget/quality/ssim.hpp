@@ -15,8 +15,8 @@ inline constexpr double kK1 = 0.01;
 inline constexpr double kK2 = 0.03;
 
 struct SsimOptions {
-    int scale = 1;         // 1, 2 or 4: box-average scale x scale blocks first (downscale.hpp)
-    unsigned threads = 0;  // row bands in parallel; 0: std::thread::hardware_concurrency()
+  int scale = 1;         // 1, 2 or 4: box-average scale x scale blocks first (downscale.hpp)
+  unsigned threads = 0;  // row bands in parallel; 0: std::thread::hardware_concurrency()
 };
 
 // The SIMD (Highway, best target of this CPU) path over threads. Throws std::invalid_argument

@@ -29,7 +29,7 @@ struct EnergyPoint {
 };
 
 struct IntegratorLimits {
-  double max_plausible_w = 5000.0;             // above this a sample is garbage
+  double max_plausible_w = 5000.0;                // above this a sample is garbage
   std::int64_t stall_timeout_ns = 1'000'000'000;  // no new data for this long: stalled
 };
 

@@ -29,10 +29,10 @@ struct FrameEnergy {
   // that lost continuity (see dropped_samples). Then energy_j and mean_power_w are NaN and the
   // log leaves the fields empty.
   bool valid = false;
-  double energy_j;      // energy of the interval since the previous swap
-  double mean_power_w;  // energy_j / interval
-  std::string_view sensor;      // the source's name ("rapl", "cpu", ...); static storage
-  bool estimate = false;        // modelled, not measured: label it so in logs and reports
+  double energy_j;                    // energy of the interval since the previous swap
+  double mean_power_w;                // energy_j / interval
+  std::string_view sensor;            // the source's name ("rapl", "cpu", ...); static storage
+  bool estimate = false;              // modelled, not measured: label it so in logs and reports
   std::uint64_t dropped_samples = 0;  // samples dropped since the previous swap
 };
 
@@ -72,7 +72,7 @@ class PowerSensor {
   EnergyIntegrator integrator_;  // sampling thread only
   EnergyTimeline timeline_;
   std::atomic<std::uint64_t> fault_counts_[4] = {};  // FaultCounts, in declaration order
-  bool fault_reported_[4] = {};  // sampling thread only: one stderr line per kind of fault
+  bool fault_reported_[4] = {};                      // sampling thread only: one stderr line per kind of fault
 
   // Render-thread state.
   bool have_previous_swap_ = false;

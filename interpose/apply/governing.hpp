@@ -1,0 +1,38 @@
+// The governor in the shim (GLBUDGET_POWER, GLBUDGET_ERROR): a thread of its own runs the
+// decision loop (governor/loop) on every frame's record and publishes the configuration to
+// draw; the render thread hands frames over without ever waiting for it and picks the
+// decision up at its swap. When governing, the frame log's rows pass through the governor
+// thread, which fills in their predicted power, budget, estimated error and decision.
+#pragma once
+#include "configuration.hpp"
+#include "frame_row.hpp"
+
+namespace glbudget {
+
+// Reads the budgets, the platform profile and the manifest, and starts the thread; false
+// (after one `glbudget:` line saying why, when a budget was asked for) when it cannot govern.
+// Called once, when the first context is made current.
+bool governor_start();
+bool governing();          // frame rows pass through the governor thread
+bool governor_steering();  // and it chooses the configuration (a budget is in force)
+
+// Render thread: one row of a finished frame; rows of a frame arrive together, and
+// governor_rows_done() follows the last of them.
+void governor_push(const FrameRow& row);
+void governor_rows_done();
+
+// The configuration the governor chose for the frames to come; false before its first decision.
+bool governor_levels(Levels* out);
+
+// Exit: every queued frame is decided and logged, then the thread stops.
+void governor_stop();
+
+// A program of the app (by its hash in the frame log) belongs to this manifest pass.
+void note_program_pass(PassId program, int pass);
+
+// Render thread: a probe frame's images, read back (apply/probes.hpp). The governor thread
+// measures the errors, updates its estimates and logs the shown frame's error with its rows.
+struct ProbeCapture;
+void governor_probe(ProbeCapture&& capture);
+
+}  // namespace glbudget

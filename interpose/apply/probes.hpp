@@ -1,0 +1,114 @@
+// Quality probes in lockstep (DESIGN.md, "Quality probes"; paper §6): every probe period a
+// frame is drawn a second time while the app draws it, the way a stereo driver issues each
+// draw once per eye. Right after each of the app's draws (and clears and blits) the same call
+// is issued once per probe stream into that stream's shadow render targets, with the stream's
+// configuration bound: its variant programs and its render-target scales. Textures the frame
+// has drawn into are read from their shadow copies in the duplicate only. What the app sees,
+// keeps and reads back is never touched.
+//
+// Streams: the best configuration s0 (unless the frame is drawn in it) and one configuration
+// with every pass best but one at its cheapest level (s_i^lmax), the pass chosen in turn. At
+// the swap each stream's window image and the app's own are captured at window size and read
+// back behind a fence (never a stall); the governor thread turns them into errors
+// (apply/governing.hpp).
+//
+// Left out of the duplicate (the probe still runs; what they draw is the app's): draws with
+// transform feedback active, draws of programs with storage blocks or atomic counters (side
+// effects), draws inside the app's occlusion queries, compute dispatches, glCopyTex*,
+// glGenerateMipmap. Framebuffers with layered, cube-map or array attachments are not
+// shadowed; contexts before GL 4.2 / GLES 3.1 are not probed.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "configuration.hpp"
+#include "gl_types.hpp"
+
+namespace glbudget {
+
+struct ContextState;
+
+// A probe frame's images, read back: RGBA8 rows bottom-up, window-sized. images[0] is what
+// the app showed; then one per stream.
+struct ProbeCapture {
+  uint64_t frame = 0;
+  int context = 0;
+  int width = 0, height = 0;
+  Levels shown;
+  std::vector<Levels> streams;
+  std::vector<std::vector<uint8_t>> images;
+};
+
+class ProbeFrames {
+ public:
+  explicit ProbeFrames(ContextState& c);
+  ~ProbeFrames();
+  ProbeFrames(const ProbeFrames&) = delete;
+  ProbeFrames& operator=(const ProbeFrames&) = delete;
+
+  // At the swap, before the window is presented: ends a probe frame (captures the streams).
+  void before_present();
+  // After present, before the real swap: captures what the app showed, starts the read-back.
+  void after_present();
+  // After the swap: collects finished read-backs; decides whether frame `next` is a probe.
+  void after_swap(uint64_t next);
+  bool is_probe_frame(uint64_t frame) const;
+  // One of the last probe frames (their rows are logged some frames later).
+  bool was_probe_frame(uint64_t frame) const;
+  // This object while its context draws a probe frame, else null (for t_probe).
+  ProbeFrames* drawing() { return is_probe_frame(frame_now()) ? this : nullptr; }
+
+  // Before the app's draw, clear or blit: the streams' shadows of the bound framebuffer hold
+  // what the app's holds before the call.
+  void prepare();
+
+  // The duplicate of one draw: first() saves state and readies stream 0 (false: none for
+  // this draw), next() the following stream, end() restores the app's state.
+  bool first();
+  bool next();
+  void end();
+  // After the app's clear or blit: the same into each stream's shadows.
+  template <typename F>
+  void clear(F&& call);
+  void blit(const GLint* src, const GLint* dst, GLbitfield mask, GLenum filter);
+
+ private:
+  uint64_t frame_now() const;
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Set while the context current on this thread draws a probe frame.
+extern thread_local ProbeFrames* t_probe __attribute__((tls_model("initial-exec")));
+
+template <typename F>
+void ProbeFrames::clear(F&& call) {
+  if (!first()) return;
+  do call();
+  while (next());
+  end();
+}
+
+// Called by every generated draw wrapper after the app's draw, on probe frames only.
+template <typename F>
+inline void probe_draw(F&& draw) {
+  ProbeFrames* p = t_probe;
+  if (!p->first()) return;
+  do draw();
+  while (p->next());
+  p->end();
+}
+
+// GLBUDGET_PROBE_PERIOD and GLBUDGET_DUMP_PROBES, for the governor thread.
+struct ProbeSettings {
+  uint64_t period = 0;  // frames between probe frames; 0: no probes
+  // By default (GLBUDGET_PROBE_PERIOD not given) probes are that frequent only until every
+  // pass has been probed once, then this many times rarer: a probe frame costs several frames.
+  uint64_t settled_factor = 1;
+  std::string dump_dir;  // where probe images go as PPM files ("" : nowhere)
+};
+const ProbeSettings& probe_settings();
+
+}  // namespace glbudget

@@ -1,0 +1,158 @@
+// Render-target scaling: the textures and renderbuffers of the framebuffers a level scales are
+// stored at the scaled size, all attachments of a framebuffer together, while the app keeps
+// its names and sees its own sizes. Viewport and scissor are scaled while a scaled framebuffer
+// is bound, blit rectangles by their framebuffers' scales; size and viewport queries answer
+// the app's values. A framebuffer is a target of a pass once a draw of that pass went to it;
+// when its scale changes (then, or at a swap that switches configuration) its images are
+// respecified and their contents carried over by a blit.
+// The default framebuffer (the window) is scaled the way Proton's fullscreen hack resizes it:
+// a stand-in framebuffer at the scaled size takes its place whenever the app binds 0, and is
+// drawn into the real back buffer at each swap. Reads of the window (glReadPixels,
+// glCopyTex*) see a window-sized image, binding queries answer 0.
+// Limits: 2D textures and renderbuffers (not immutable textures, arrays, cube maps); textures
+// are tracked per context; multisampled windows are not scaled.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "configuration.hpp"
+#include "gl_types.hpp"
+
+namespace glbudget {
+
+// A viewport or scissor box (x, y, width, height) scaled by its edges, as the driver is given it.
+void scale_box(const GLint* in, double sx, double sy, GLint* out);
+// A blit rectangle's corners (x0, y0, x1, y1) scaled; `out` may be `in`.
+void scale_corners(const GLint* in, double sx, double sy, GLint* out);
+
+class TargetScaler {
+ public:
+  explicit TargetScaler(bool gles);  // reads the viewport and scissor the context starts with
+
+  // The configuration in force; re-scales the framebuffers seen so far.
+  void set_configuration(const Levels& config);
+  // A draw is about to go to the bound draw framebuffer under manifest pass `pass` (-1: none).
+  void on_draw(int pass);
+  // glClear / glClearBuffer* of the bound draw framebuffer (mask: GL_*_BUFFER_BIT).
+  void on_clear(GLbitfield mask);
+  void end_frame() { ++frame_; }
+
+  // The window's size, as the window system says (at make-current and at each swap).
+  void set_window_size(int width, int height);
+  // Before the real swap: the stand-in drawn into the back buffer.
+  void present();
+  // The name the driver must get for the app's framebuffer name (the stand-in for 0).
+  GLuint real_framebuffer(GLuint app) const { return app == 0 && window_.fbo ? window_.fbo : app; }
+  bool window_scaled() const { return window_.fbo != 0; }
+  GLuint app_draw_framebuffer() const { return draw_fbo_; }
+  GLuint app_read_framebuffer() const { return read_fbo_; }
+  // Runs `read` (a glReadPixels or glCopyTex* of the app) against a window-sized copy of the
+  // stand-in when the app reads the window, else as it is.
+  template <typename F>
+  void read_window(F&& read) {
+    if (read_fbo_ != 0 || !window_.fbo) return read();
+    bind_window_copy();
+    read();
+    unbind_window_copy();
+  }
+  // glDrawBuffer(s)/glReadBuffer of the window while the stand-in is bound: GL_BACK and the
+  // like become GL_COLOR_ATTACHMENT0.
+  static GLenum window_buffer(GLenum buffer);
+
+  // Hooks. Each returns what the real call must be given, or handles the call itself.
+  void bind_framebuffer(GLenum target, GLuint fbo);
+  void framebuffer_attachment_changed(GLenum target);
+  void framebuffers_deleted(GLsizei n, const GLuint* names);
+  void textures_deleted(GLsizei n, const GLuint* names);
+  void renderbuffers_deleted(GLsizei n, const GLuint* names);
+  void viewport(GLint x, GLint y, GLsizei w, GLsizei h);
+  void scissor(GLint x, GLint y, GLsizei w, GLsizei h);
+  // glTexImage2D of the texture bound to GL_TEXTURE_2D: fills the size to give the driver.
+  void tex_image_2d(GLint level, GLint internal_format, GLsizei* width, GLsizei* height, GLenum format, GLenum type,
+                    bool with_data);
+  void renderbuffer_storage(GLsizei samples, GLenum internal_format, GLsizei* width, GLsizei* height);
+  // x0, y0, x1, y1 each, by the scales of the app's framebuffers `read` and `draw`.
+  void blit_rectangles(GLuint read, GLuint draw, GLint* src, GLint* dst) const;
+  // The app's size for a scaled image (GL_TEXTURE_WIDTH/HEIGHT, GL_RENDERBUFFER_WIDTH/HEIGHT).
+  bool texture_size(GLint level, GLenum pname, GLint* value) const;
+  bool renderbuffer_size(GLenum pname, GLint* value) const;
+  // The app's viewport and scissor box (4 values) for glGet*.
+  const GLint* app_viewport() const { return viewport_.data(); }
+  const GLint* app_scissor() const { return scissor_.data(); }
+  bool active() const { return any_scaled_; }
+
+  // For quality probes (apply/probes.hpp): the scale `config` would give the app's framebuffer
+  // (0: the window), the scale its images are stored at now, and the window's size.
+  double scale_for(GLuint app_fbo, const Levels& config) const;
+  void stored_scale(GLuint app_fbo, double* sx, double* sy) const { scale_of(app_fbo, sx, sy); }
+  int window_width() const { return window_width_; }
+  int window_height() const { return window_height_; }
+
+ private:
+  struct Image {
+    bool renderbuffer = false;
+    GLint internal_format = 0;
+    GLenum format = 0, type = 0;
+    GLsizei samples = 0;
+    std::vector<std::array<GLsizei, 2>> app_size;  // per mip level the app specified
+    double scale = 1.0;                            // applied
+    GLsizei stored_width() const;
+    GLsizei stored_height() const;
+  };
+  struct Attachment {
+    GLenum point = 0;
+    bool renderbuffer = false;
+    GLuint name = 0;
+  };
+  struct Framebuffer {
+    std::vector<Attachment> attachments;
+    bool attachments_known = false;
+    uint64_t passes = 0;  // bit per manifest pass whose draws went here
+    // Frame numbers of the first draw here, and of a clear of every buffer before it: a
+    // framebuffer cleared whole before it is drawn each frame needs no contents carried over
+    // when a switch rescales it at a swap.
+    uint64_t drawn_frame = 0, cleared_frame = 0;
+    GLbitfield cleared = 0;
+    double scale = 1.0;
+  };
+
+  struct Window {
+    GLuint fbo = 0, color = 0, depth = 0;                 // the stand-in (0: the window is not scaled)
+    GLuint copy_fbo = 0, copy_color = 0, copy_depth = 0;  // window-sized, for reads
+    int width = 0, height = 0;                            // the stand-in's
+    GLenum color_format = GL_RGBA8;
+    bool has_depth = false, checked = false, multisampled = false;
+  };
+  double wanted_window_scale() const { return window_scale_for(config_); }
+  double window_scale_for(const Levels& config) const;
+  void update_window();
+  void release_window();
+  void bind_window_copy();
+  void unbind_window_copy();
+  double wanted_scale(GLuint name, const Framebuffer& f) const { return scale_for(name, f, config_); }
+  double scale_for(GLuint name, const Framebuffer& f, const Levels& config) const;
+  void learn_attachments(Framebuffer& f);
+  void ensure_scale(GLuint name, Framebuffer& f, bool carry = true);
+  void rescale(GLuint name, Image& image, double scale, bool carry);
+  bool cleared_before_drawn(const Framebuffer& f) const;
+  void apply_viewport();
+  // Keeps the app's box and gives the driver it scaled to the bound draw framebuffer.
+  void set_box(std::array<GLint, 4>& box, void(APIENTRYP set)(GLint, GLint, GLsizei, GLsizei), GLint x, GLint y,
+               GLsizei w, GLsizei h);
+  void scale_of(GLuint fbo, double* sx, double* sy) const;
+
+  Levels config_;
+  std::unordered_map<GLuint, Image> textures_, renderbuffers_;
+  std::unordered_map<GLuint, Framebuffer> framebuffers_;
+  GLuint draw_fbo_ = 0, read_fbo_ = 0;  // the app's names (0: the window)
+  Window window_;
+  int window_width_ = 0, window_height_ = 0;
+  std::array<GLint, 4> viewport_{}, scissor_{};
+  bool any_scaled_ = false;
+  bool gles_ = false;
+  uint64_t frame_ = 1;
+};
+
+}  // namespace glbudget

@@ -1,0 +1,49 @@
+// The GLBUDGET_* environment variables the shim reads. Parsed once, at the first
+// make-current (never in processes that do not use GL). Bad values: one `glbudget:` line
+// on stderr and the default.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace glbudget {
+
+struct Options {
+  std::string log_path;  // GLBUDGET_LOG: per-frame CSV; empty: no log
+  double fps = 0;        // GLBUDGET_FPS: pace swaps to this rate; 0: no pacing
+  std::string dump_dir;  // GLBUDGET_DUMP: shader/program dumps (turns instrumentation on)
+  // GLBUDGET_INSTRUMENT=1: count executed instructions and texel accesses per program. A
+  // measurement mode (it perturbs timing): off unless asked for, or implied by GLBUDGET_DUMP.
+  bool instrument = false;
+  std::string config_path;  // GLBUDGET_CONFIG: the variant manifest
+  // GLBUDGET_COSTS: the variant table `glbudget calibrate --app` measured (empty: the default
+  // path by executable name; "off": none).
+  std::string costs_path;
+  std::string force;           // GLBUDGET_FORCE: levels per pass ("1,0,2"), or several separated by ';'
+  uint64_t force_every = 0;    // GLBUDGET_FORCE_EVERY: frames per configuration of a GLBUDGET_FORCE list
+  std::string power;           // GLBUDGET_POWER: "40%", "35W" (parsed by the governor)
+  std::string error;           // GLBUDGET_ERROR: the dual problem's error budget
+  size_t select_frames = 200;  // GLBUDGET_SELECT_FRAMES: frames between selections
+  double transition_s = 2.0;   // GLBUDGET_TRANSITION_S: the temporal filter's length
+  // GLBUDGET_PROBE_PERIOD: frames between quality-probe frames (apply/probes.hpp); -1: not given
+  // (10 when governing, else none); 0: none.
+  int64_t probe_period = -1;
+  std::string dump_probes;  // GLBUDGET_DUMP_PROBES: probe images as PPM files here
+  int probe_scale = 0;      // GLBUDGET_PROBE_SCALE: SSIM at 1, 2 or 4 (0: Wang's rule for the size)
+  bool feedback = true;     // GLBUDGET_FEEDBACK=0: no correction from measured power (the paper's open loop)
+  // GLBUDGET_TEST_HIDE_EXTENSIONS=GL_ARB_timer_query,...: a test switch (tests/interpose/
+  // faults_test.cpp); the shim's capability probe (detect_caps) takes these extensions, and the
+  // features they name even where the core version includes them, as absent.
+  std::vector<std::string> hide_extensions;
+};
+
+const Options& options();
+
+// True when GLBUDGET_TEST_HIDE_EXTENSIONS names `extension` (exact name, "GL_ARB_timer_query").
+bool extension_hidden(const char* extension);
+
+// Exposed for tests of the parser: parses `env` (a NULL-terminated environ-style array),
+// writing warnings to `warn`.
+Options parse_options(char** env, std::string* warnings);
+
+}  // namespace glbudget

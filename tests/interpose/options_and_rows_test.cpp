@@ -1,0 +1,115 @@
+// Unit: the GLBUDGET_* parser and the frame-log row format (no GL involved).
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "frame_log.hpp"
+#include "options.hpp"
+#include "parse_env.hpp"
+
+using namespace glbudget;
+
+TEST_CASE("GLBUDGET_FPS accepts positive rates and says why it refuses the rest", "[unit]") {
+  std::string w;
+  CHECK(parse_env({"GLBUDGET_FPS=30"}, &w).fps == 30);
+  CHECK(parse_env({"GLBUDGET_FPS=59.94"}, &w).fps == Approx(59.94));
+  CHECK(parse_env({"GLBUDGET_FPS=10000"}, &w).fps == 10000);
+  CHECK(w.empty());
+  for (const char* off : {"GLBUDGET_FPS=", "GLBUDGET_FPS=off", "GLBUDGET_FPS=0"}) {
+    CHECK(parse_env({off}, &w).fps == 0);
+    CHECK(w.empty());
+  }
+  for (const char* bad : {"GLBUDGET_FPS=fast", "GLBUDGET_FPS=-5", "GLBUDGET_FPS=30fps", "GLBUDGET_FPS=nan",
+                          "GLBUDGET_FPS=inf", "GLBUDGET_FPS=1e9", "GLBUDGET_FPS=1e-400"}) {
+    INFO(bad);
+    w.clear();
+    CHECK(parse_env({bad}, &w).fps == 0);
+    CHECK(w.rfind("glbudget: GLBUDGET_FPS=", 0) == 0);
+    CHECK(std::count(w.begin(), w.end(), '\n') == 1);
+  }
+}
+
+TEST_CASE("unknown GLBUDGET_ variables are named; others are ignored", "[unit]") {
+  std::string w;
+  Options o = parse_env(
+      {"GLBUDGET_LOG=/tmp/x.csv", "GLBUDGET_LGO=/tmp/y.csv", "HOME=/root", "GLBUDGET", "GLBUDGET_POWER=40%"}, &w);
+  CHECK(o.log_path == "/tmp/x.csv");
+  CHECK(w == "glbudget: unknown variable GLBUDGET_LGO ignored\n");
+}
+
+TEST_CASE("frame-log rows: empty fields for what was not measured", "[unit]") {
+  char line[256];
+  FrameRow r;
+  r.frame = 7;
+  r.time_ns = 123456789;
+  r.context = 1;
+  r.pass = 0x00ab00cd00ef0012ull;
+  r.batches = 20000;
+  r.vertices = 60000;
+  r.fragments = 0;
+  r.primitives = 20000;
+  r.gpu_ns = -1;
+  format_row(r, line, sizeof line);
+  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,,,,,,,");
+  r.configuration = "2:0:1";  // the levels that drew the frame, last
+  format_row(r, line, sizeof line);
+  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,,,,,,");
+  // The governor's view of the frame: predicted power, budget, estimated error, decision.
+  r.predicted_w = 21.5;
+  r.budget_w = 24.0;
+  r.est_error = 0.004;
+  r.decision = "select";
+  format_row(r, line, sizeof line);
+  CHECK(std::string(line) ==
+        "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,21.5000,24.0000,0.004000,select,,");
+  r.predicted_w = NAN;  // before the first fit
+  format_row(r, line, sizeof line);
+  CHECK(std::string(line) ==
+        "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,,24.0000,0.004000,select,,");
+  // A probe frame: flagged, with the shown frame's measured error once known.
+  r.probe = true;
+  format_row(r, line, sizeof line);
+  CHECK(std::string(line) ==
+        "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,,24.0000,0.004000,select,1,");
+  r.probe_error = 0.0125;
+  format_row(r, line, sizeof line);
+  CHECK(std::string(line) ==
+        "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,,24.0000,0.004000,select,1,0.012500");
+  FrameRow ff;
+  ff.pass = kFixedFunctionPass;
+  format_row(ff, line, sizeof line);
+  CHECK(std::string(line) == "0,0,0,fixed-function,0,,,,,,,,0,,,,,,,");
+  // With a sensor: power, energy, the sensor's name (estimates labelled), dropped samples.
+  FrameRow powered;
+  powered.energy.valid = true;
+  powered.energy.energy_j = 0.25;
+  powered.energy.mean_power_w = 15.0;
+  powered.energy.sensor = "cpu";
+  powered.energy.estimate = true;
+  powered.energy.dropped_samples = 2;
+  format_row(powered, line, sizeof line);
+  CHECK(std::string(line).find("0,0,0,fixed-function,0,,,,,15") == 0);
+  CHECK(std::string(line).find(",cpu~estimate,2") != std::string::npos);
+  // Extremes: the largest counts fit the line.
+  FrameRow big;
+  big.frame = UINT64_MAX;
+  big.time_ns = INT64_MAX;
+  big.batches = UINT64_MAX;
+  big.vertices = big.fragments = big.primitives = big.gpu_ns = INT64_MAX;
+  big.pass = UINT64_MAX;
+  int n = format_row(big, line, sizeof line);
+  CHECK(n < int(sizeof line));
+  CHECK(std::string(line).find("18446744073709551615,9223372036854775807,0,ffffffffffffffff,18446744073709551615") ==
+        0);
+}
+
+TEST_CASE("GLBUDGET_TEST_HIDE_EXTENSIONS: a comma-separated list of extensions, spaces trimmed", "[unit]") {
+  std::string w;
+  Options o = parse_env({"GLBUDGET_TEST_HIDE_EXTENSIONS=GL_ARB_timer_query, GL_ARB_pipeline_statistics_query,,"}, &w);
+  CHECK(w.empty());  // a known variable
+  CHECK(o.hide_extensions == std::vector<std::string>{"GL_ARB_timer_query", "GL_ARB_pipeline_statistics_query"});
+  CHECK(parse_env({"GLBUDGET_TEST_HIDE_EXTENSIONS="}, &w).hide_extensions.empty());
+  CHECK(parse_env({}, &w).hide_extensions.empty());
+}

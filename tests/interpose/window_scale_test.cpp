@@ -1,0 +1,107 @@
+// Integration (issue 12): the default framebuffer scaled from outside, the one knob every app
+// has without a manifest (GLBUDGET_FORCE=l picks the built-in render-scale pass's level:
+// 100 / 80 / 60 / 50 %). The probes read their window back (glReadPixels of FBO 0): the image
+// must be window-sized and look like the unscaled one; programs nobody here wrote run to the end.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <cstdio>
+#include <thread>
+
+#include "glbudget/quality/luma_image.hpp"
+#include "glbudget/quality/ssim.hpp"
+#include "probe_expectations.hpp"
+
+namespace {
+
+struct Ppm {
+  int width = 0, height = 0;
+  std::vector<uint8_t> rgb;
+};
+
+Ppm read_ppm(const std::string& path) {
+  Ppm p;
+  FILE* f = fopen(path.c_str(), "rb");
+  if (!f) return p;
+  int max = 0;
+  if (fscanf(f, "P6 %d %d %d", &p.width, &p.height, &max) == 3 && fgetc(f) != EOF && max == 255) {
+    p.rgb.resize(static_cast<size_t>(p.width) * p.height * 3);
+    if (fread(p.rgb.data(), 1, p.rgb.size(), f) != p.rgb.size()) p.rgb.clear();
+  }
+  fclose(f);
+  return p;
+}
+
+double ssim_of(const Ppm& a, const Ppm& b) {
+  using namespace glbudget::quality;
+  const LumaImage la = luma_from_8bit(a.rgb.data(), a.width, a.height, 3);
+  const LumaImage lb = luma_from_8bit(b.rgb.data(), b.width, b.height, 3);
+  return ssim(la.view(), lb.view());
+}
+
+// The probe without the shim, then under it at `level` of the render scale.
+void check_scaled_probe(const std::string& probe, std::vector<std::string> args, const std::string& level,
+                        std::map<std::string, std::string> env = {}) {
+  const std::string plain_img = temp_path(probe + "_plain.ppm"), shim_img = temp_path(probe + "_scaled.ppm");
+  const std::string log = temp_path(probe + "_scaled.csv");
+  unlink(log.c_str());
+  std::vector<std::string> base = {probe_path(probe), "--frames", "4"};
+  base.insert(base.end(), args.begin(), args.end());
+  auto plain_args = base, shim_args = base;
+  plain_args.insert(plain_args.end(), {"--out", plain_img});
+  shim_args.insert(shim_args.end(), {"--out", shim_img});
+  const ProcessResult plain = run_process(plain_args, env);
+  env["LD_PRELOAD"] = shim_path();
+  env["GLBUDGET_LOG"] = log;
+  env["GLBUDGET_SENSOR"] = "cpu";
+  env["GLBUDGET_FORCE"] = level;
+  const ProcessResult shim = run_process(shim_args, env);
+  INFO(probe << " at level " << level << "\nshim stderr: " << shim.err);
+  REQUIRE(plain.exit_code == 0);
+  REQUIRE(shim.exit_code == 0);
+  CHECK(shim.err.find("glbudget:") == std::string::npos);
+  const Ppm a = read_ppm(plain_img), b = read_ppm(shim_img);
+  REQUIRE(!a.rgb.empty());
+  REQUIRE(b.width == a.width);  // glReadPixels of the window: window-sized, whatever the scale
+  REQUIRE(b.height == a.height);
+  REQUIRE(!b.rgb.empty());
+  const double s = ssim_of(a, b);
+  INFO("SSIM " << s);
+  CHECK(s >= 0.95);
+  CHECK(a.rgb != b.rgb);  // drawn smaller, then stretched: not the same pixels
+  const auto rows = read_csv_rows_by_name(log);
+  REQUIRE(!rows.empty());
+  for (const auto& row : rows) CHECK(row.at("configuration") == level);
+  unlink(plain_img.c_str());
+  unlink(shim_img.c_str());
+  unlink(log.c_str());
+}
+
+}  // namespace
+
+TEST_CASE("the window at 60 %: probes read back a window-sized image that looks the same", "[integration]") {
+  for (const char* probe : {"probe_direct", "probe_getproc", "probe_dlopen", "probe_glew", "probe_compat"})
+    check_scaled_probe(probe, {"--size", "128"}, "2");
+  check_scaled_probe("probe_getproc", {"--es", "3", "--size", "128"}, "2");
+}
+
+TEST_CASE("every level of the built-in render scale", "[integration]") {
+  for (const char* level : {"1", "2", "3"}) check_scaled_probe("probe_direct", {"--size", "160"}, level);
+}
+
+TEST_CASE("the window at 60 % through GLX under Xvfb", "[integration]") {
+  const std::string display = ":" + std::to_string(100 + (getpid() + 7) % 400);
+  const std::string socket = "/tmp/.X11-unix/X" + display.substr(1);
+  pid_t xvfb = fork();
+  if (xvfb == 0) {
+    execlp("Xvfb", "Xvfb", display.c_str(), "-screen", "0", "256x256x24", "-nolisten", "tcp", (char*)nullptr);
+    _exit(127);
+  }
+  for (int i = 0; i < 100 && !file_exists(socket); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  REQUIRE(file_exists(socket));
+  check_scaled_probe("probe_glx", {"--size", "128"}, "2", {{"DISPLAY", display}});
+  kill(xvfb, SIGTERM);
+  waitpid(xvfb, nullptr, 0);
+}
