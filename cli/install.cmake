@@ -38,6 +38,8 @@ endif()")
   endif()
 endif()
 install(FILES ${PROJECT_SOURCE_DIR}/testapps/demo/glbudget.toml DESTINATION ${GLBUDGET_INSTALL_EXAMPLESDIR}/demo)
+# The worked example for a program nobody here wrote (README, "A worked example: glmark2").
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/glmark2 DESTINATION ${GLBUDGET_INSTALL_EXAMPLESDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/testapps/demo/manifest DESTINATION ${GLBUDGET_INSTALL_EXAMPLESDIR}/demo)
 
 # The Debian package: `cpack -G DEB` in the build directory writes glbudget_<version>_<arch>.deb.
