@@ -114,7 +114,8 @@ set(shim ${root}/${pkglibdir}/libglbudget.so)
 set(load ${root}/${pkglibdir}/calibrate_load)
 set(examples ${root}/share/glbudget/examples/demo)
 foreach(f ${cli} ${demo} ${shim} ${load} ${examples}/glbudget.toml ${examples}/manifest/ssr_off.frag
-          ${examples}/manifest/fxaa_off.frag)
+          ${examples}/manifest/fxaa_off.frag ${root}/share/glbudget/examples/glmark2/glmark2.toml
+          ${root}/share/glbudget/examples/glmark2/shaders/gouraud4.vert)
   if(NOT EXISTS ${f})
     file(GLOB_RECURSE present RELATIVE ${root} ${root}/*)
     string(JOIN "\n  " present ${present})
