@@ -56,7 +56,9 @@ TEST_CASE("selection survives NaN, ties and a flat power range", "[model][select
   const std::vector<double> error{0.0, nan, 0.2, 0.2};
   const Selection s = select_configuration(power, error, *parse_budget("100%"));
   CHECK(s.index == 2);  // NaN power never admitted, NaN error ranks last, tie -> first lowest power
-  CHECK(s.budget_w == 45.0);
+  // The top: the best-quality configuration whose power and error are known (40 W at 0.2).
+  CHECK(s.budget_w == 40.0);
+  CHECK(budget_watts(*parse_budget("100%"), power) == 45.0);  // without errors: the highest
 
   // P_M = P_m: every configuration predicts the same power, all are admitted at any share.
   const std::vector<double> flat(5, 20.0);
@@ -86,4 +88,31 @@ TEST_CASE("a margin keeps the selection that far under the budget while anything
   // NaN and infinite margins are no margin.
   CHECK(select_configuration(power, error, watts, std::nan("")).index == 1);
   CHECK(select_configuration(power, error, watts, std::numeric_limits<double>::infinity()).index == 1);
+}
+
+TEST_CASE("a share of the range runs up to the best-quality configuration's power", "[model][selection][extremes]") {
+  // Configuration 2 (error 0.05) is predicted above the best one (3, error 0): a misprediction
+  // that must not raise the budget.
+  const std::vector<double> power{30, 40, 70, 60};
+  const std::vector<double> error{0.30, 0.10, 0.05, 0.0};
+  CHECK(budget_watts(*parse_budget("40%"), power) == Approx(46.0));  // the paper's: the highest
+  const Selection s = select_configuration(power, error, *parse_budget("40%"));
+  CHECK(s.budget_w == Approx(42.0));
+  CHECK(s.index == 1);
+  // 100 % admits the best configuration, and nothing predicted above it.
+  const Selection all = select_configuration(power, error, *parse_budget("100%"));
+  CHECK(all.budget_w == 60.0);
+  CHECK(all.index == 3);
+  // Ties at the least error: the highest of them is the top.
+  CHECK(budget_watts(*parse_budget("100%"), std::vector<double>{30, 50, 45}, std::vector<double>{0.2, 0.0, 0.0}) ==
+        50.0);
+  // The best configuration's power unknown (NaN), or below every other: the highest, as before.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  CHECK(budget_watts(*parse_budget("100%"), std::vector<double>{30, 50, nan}, std::vector<double>{0.2, 0.1, 0.0}) ==
+        50.0);
+  // An unknown error is no candidate for the top.
+  CHECK(budget_watts(*parse_budget("50%"), std::vector<double>{30, 50}, std::vector<double>{0.2, nan}) == 30.0);
+  CHECK(budget_watts(*parse_budget("50%"), std::vector<double>{30, 50}, std::vector<double>{nan, nan}) == 40.0);
+  // Errors of another length than the powers are ignored.
+  CHECK(budget_watts(*parse_budget("100%"), power, std::vector<double>{0.0}) == 70.0);
 }

@@ -53,7 +53,7 @@ std::optional<Budget> parse_budget(std::string_view text) {
   return reject(text, "has no unit");
 }
 
-double budget_watts(const Budget& budget, std::span<const double> predicted_power_w) {
+double budget_watts(const Budget& budget, std::span<const double> predicted_power_w, std::span<const double> error) {
   switch (budget.kind) {
     case Budget::Kind::Off:
       return std::numeric_limits<double>::infinity();
@@ -70,6 +70,15 @@ double budget_watts(const Budget& budget, std::span<const double> predicted_powe
     highest = std::max(highest, p);
   }
   if (!(lowest <= highest)) return std::numeric_limits<double>::infinity();  // nothing finite
+  if (error.size() == predicted_power_w.size()) {
+    double least_error = std::numeric_limits<double>::infinity(), best = std::nan("");
+    for (std::size_t i = 0; i < error.size(); ++i) {
+      const double p = predicted_power_w[i], e = error[i];
+      if (std::isnan(p) || std::isnan(e)) continue;
+      if (e < least_error || (e == least_error && p > best)) least_error = e, best = p;
+    }
+    if (best >= lowest) highest = best;
+  }
   // Written as a convex combination so that 0% and 100% give exactly lowest and highest.
   return (1.0 - budget.value) * lowest + budget.value * highest;
 }
@@ -77,7 +86,7 @@ double budget_watts(const Budget& budget, std::span<const double> predicted_powe
 Selection select_configuration(std::span<const double> predicted_power_w, std::span<const double> error,
                                const Budget& budget, double margin_w) {
   Selection selection;
-  selection.budget_w = budget_watts(budget, predicted_power_w);
+  selection.budget_w = budget_watts(budget, predicted_power_w, error);
   const auto rank = [](double e) { return std::isnan(e) ? std::numeric_limits<double>::infinity() : e; };
 
   const auto lowest_error_within = [&](double limit, std::size_t* index) {

@@ -20,8 +20,14 @@ struct Budget {
 // and std::nullopt, so the caller keeps its default.
 std::optional<Budget> parse_budget(std::string_view text);
 
-// Power limit in watts for this set of predictions; +inf when the budget is off.
-double budget_watts(const Budget& budget, std::span<const double> predicted_power_w);
+// Power limit in watts for this set of predictions; +inf when the budget is off. A share of
+// the range runs from the lowest predicted power to, with `error`, the predicted power of the
+// best-quality configuration (the highest among those of least error), else the highest
+// predicted power. Beyond the paper, which takes the highest: a configuration of lower
+// quality predicted above the best one is a misprediction (a level the model has not seen
+// drawn), and taking it as the top would raise every budget with it.
+double budget_watts(const Budget& budget, std::span<const double> predicted_power_w,
+                    std::span<const double> error = {});
 
 struct Selection {
   std::size_t index = 0;  // chosen configuration
