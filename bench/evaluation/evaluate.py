@@ -20,7 +20,7 @@ It writes into --out:
   - the power model against Vatjus-Anttila's on the recorded logs (tests/data/logs, replayed by
     bench/model/replay_summary.py).
 Budgets kept are counted over 1-s windows after the first selection and its transition: against
-the budget the governor logged (a share of its predicted range, the paper's definition) and
+the budget the governor logged (a share of its predicted range) and
 against the same share of the measured range (cheapest + P% of best - cheapest).
 
 Usage: evaluate.py BUILD_DIR --out DIR [--quick] [--scenes hall,sponza,valley,subway]
