@@ -35,6 +35,7 @@
 #include "glbudget/model/platform_costs.hpp"
 #include "glbudget/model/platform_profile.hpp"
 #include "glbudget/model/variant_table.hpp"
+#include "glbudget/sensors/profile_path.hpp"
 #include "shim_path.hpp"
 
 namespace glbudget::cli {
@@ -287,17 +288,13 @@ std::vector<std::string> one_level_at_a_time(const manifest::Manifest& m) {
 // The power run's frames as the model sees them, leaving out the first two of each
 // configuration (their power partly belongs to the one before).
 std::vector<model::ConfiguredSample> settled_samples(const model::FrameLog& log, const model::VariantTable& table) {
-  std::vector<model::ConfiguredSample> samples;
-  model::Configuration current(table.space.pass_count(), 0), previous, before_previous;
-  for (const model::LoggedFrame& frame : model::frames_of_busiest_context(log)) {
-    model::ResolvedFrame resolved = model::resolve_frame(frame, table, current);
-    current = resolved.configuration;
-    const bool settled = current == previous && current == before_previous;
-    before_previous = previous;
-    previous = current;
-    if (settled) samples.push_back({std::move(resolved.sample), std::move(resolved.configuration)});
-  }
-  return samples;
+  const std::vector<model::ConfiguredSample> all =
+      model::configured_samples(model::frames_of_busiest_context(log), table);
+  std::vector<model::ConfiguredSample> settled;
+  for (std::size_t i = 2; i < all.size(); ++i)
+    if (all[i].configuration == all[i - 1].configuration && all[i].configuration == all[i - 2].configuration)
+      settled.push_back(all[i]);
+  return settled;
 }
 
 // Runs the app once more, uninstrumented, one level at a time with the power sensor, and fits
@@ -473,10 +470,12 @@ int calibrate_app_main(std::span<char* const> args) {
   int measured = 0, unmeasured = 0;
   std::printf("%-16s %5s  %-28s %10s %10s %10s\n", "pass", "level", "name", "ins/vertex", "ins/frag", "texels/frag");
   for (const json& pass : (*drawn)["passes"]) {
+    const std::string pass_name = pass.value("name", "");
     ordered_json out_levels = ordered_json::array();
     std::optional<LevelSums> previous;  // the nearest measured level above, for levels that drew nothing
     for (const json& level : pass.value("levels", json::array())) {
-      ordered_json out{{"name", level.value("name", "")}};
+      const std::string level_name = level.value("name", "");
+      ordered_json out{{"name", level_name}};
       if (level.contains("hashes")) out["hashes"] = level["hashes"];
       const bool draws = level.value("draws", true);
       LevelSums sums;
@@ -498,21 +497,19 @@ int calibrate_app_main(std::span<char* const> args) {
       }
       if (level.contains("fragment_scale")) out["fragment_scale"] = level["fragment_scale"];
       if (!draws) out["draws"] = false;
-      const std::string name = pass.value("name", "");
       if (!has_programs) {
-        std::printf("%-16s %5zu  %-28.28s %10s %10s %10s\n", name.c_str(), out_levels.size(),
-                    out["name"].get<std::string>().c_str(), "-", "-", "-");
+        std::printf("%-16s %5zu  %-28.28s %10s %10s %10s\n", pass_name.c_str(), out_levels.size(), level_name.c_str(),
+                    "-", "-", "-");
       } else if (!draws) {
-        std::printf("%-16s %5zu  %-28.28s %32s\n", name.c_str(), out_levels.size(),
-                    out["name"].get<std::string>().c_str(), "skips the pass");
+        std::printf("%-16s %5zu  %-28.28s %32s\n", pass_name.c_str(), out_levels.size(), level_name.c_str(),
+                    "skips the pass");
       } else {
-        std::printf("%-16s %5zu  %-28.28s %10.1f %10.1f %10.2f%s\n", name.c_str(), out_levels.size(),
-                    out["name"].get<std::string>().c_str(), ins_v, ins_f, tex_f,
-                    drew ? "" : "  (not drawn: the level above's)");
+        std::printf("%-16s %5zu  %-28.28s %10.1f %10.1f %10.2f%s\n", pass_name.c_str(), out_levels.size(),
+                    level_name.c_str(), ins_v, ins_f, tex_f, drew ? "" : "  (not drawn: the level above's)");
       }
       out_levels.push_back(std::move(out));
     }
-    ordered_json p{{"name", pass.value("name", "")}};
+    ordered_json p{{"name", pass_name}};
     if (pass.contains("scales")) p["scales"] = pass["scales"];
     p["levels"] = std::move(out_levels);
     out_passes.push_back(std::move(p));
@@ -535,7 +532,7 @@ int calibrate_app_main(std::span<char* const> args) {
                  unmeasured);
 
   std::string output = o->output;
-  if (output.empty()) output = model::default_variant_table_path(executable);
+  if (output.empty()) output = sensors::default_variant_table_path(executable);
   if (output.empty()) {
     std::fprintf(
         stderr,

@@ -51,14 +51,7 @@ struct LogInput {
 std::optional<std::vector<ConfiguredSample>> load_samples(const LogInput& input, const VariantTable& table) {
   const auto log = read_frame_log_file(input.log);
   if (!log) return std::nullopt;
-  std::vector<ConfiguredSample> samples;
-  Configuration current(table.space.pass_count(), 0);
-  for (const LoggedFrame& frame : frames_of_busiest_context(*log)) {
-    ResolvedFrame resolved = resolve_frame(frame, table, current);
-    current = resolved.configuration;
-    samples.push_back({std::move(resolved.sample), std::move(resolved.configuration)});
-  }
-  return samples;
+  return configured_samples(frames_of_busiest_context(*log), table);
 }
 
 }  // namespace

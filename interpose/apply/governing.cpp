@@ -70,7 +70,7 @@ struct MeasuredSpace {
 MeasuredSpace measured_space(const manifest::Manifest& m, bool budget) {
   const std::string& named = options().costs_path;
   if (named == "off") return {loop::space_from_manifest(m), std::nullopt};
-  std::string path = named.empty() ? model::default_variant_table_path(executable_name()) : named;
+  std::string path = named.empty() ? sensors::default_variant_table_path(executable_name()) : named;
   std::error_code ec;
   if (named.empty() && (path.empty() || !std::filesystem::is_regular_file(path, ec))) {
     const bool has_programs = std::any_of(m.passes.begin(), m.passes.end(), [](const manifest::Pass& p) {

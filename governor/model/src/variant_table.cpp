@@ -1,7 +1,6 @@
 #include "glbudget/model/variant_table.hpp"
 
 #include <algorithm>
-#include <cstdlib>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -125,16 +124,6 @@ std::optional<VariantTable> parse_variant_table(const std::string& json_text, co
   return table;
 }
 
-std::string default_variant_table_path(const std::string& executable) {
-  std::string base;
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
-    base = xdg;
-  else if (const char* home = std::getenv("HOME"); home && *home)
-    base = std::string(home) + "/.cache";
-  if (base.empty() || executable.empty()) return {};
-  return base + "/glbudget/" + executable + ".variants.json";
-}
-
 std::optional<Configuration> parse_configuration(std::string_view text, const ConfigurationSpace& space) {
   Configuration configuration;
   std::size_t start = 0;
@@ -207,6 +196,18 @@ ResolvedFrame resolve_frame(const LoggedFrame& frame, const VariantTable& table,
     resolved.totals.texels += resolved.sample.passes[i].counts.fragments * tex;
   }
   return resolved;
+}
+
+std::vector<ConfiguredSample> configured_samples(std::span<const LoggedFrame> frames, const VariantTable& table) {
+  std::vector<ConfiguredSample> samples;
+  samples.reserve(frames.size());
+  Configuration current(table.space.pass_count(), 0);
+  for (const LoggedFrame& frame : frames) {
+    ResolvedFrame resolved = resolve_frame(frame, table, current);
+    current = resolved.configuration;
+    samples.push_back({std::move(resolved.sample), std::move(resolved.configuration)});
+  }
+  return samples;
 }
 
 VariantCost table_level(const VariantTable& table, const std::string& pass, const Configuration& configuration) {

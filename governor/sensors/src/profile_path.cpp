@@ -17,16 +17,23 @@ std::string sensor_kind(const std::string& sensor) {
   const OpenResult opened = open_source(*spec, SourceEnvironment::from_process_environment());
   return opened.source ? std::string(opened.source->name()) : kind;
 }
+
+// $XDG_CACHE_HOME/glbudget (~/.cache/glbudget when unset); empty when neither is set.
+std::string cache_directory() {
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::string(xdg) + "/glbudget";
+  if (const char* home = std::getenv("HOME"); home && *home) return std::string(home) + "/.cache/glbudget";
+  return {};
+}
 }  // namespace
 
 std::string default_profile_path(const std::string& sensor) {
-  std::string base;
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
-    base = xdg;
-  else if (const char* home = std::getenv("HOME"); home && *home)
-    base = std::string(home) + "/.cache";
-  if (base.empty()) return {};
-  return base + "/glbudget/" + sensor_kind(sensor) + ".json";
+  const std::string dir = cache_directory();
+  return dir.empty() ? std::string() : dir + "/" + sensor_kind(sensor) + ".json";
+}
+
+std::string default_variant_table_path(const std::string& executable) {
+  const std::string dir = cache_directory();
+  return dir.empty() || executable.empty() ? std::string() : dir + "/" + executable + ".variants.json";
 }
 
 }  // namespace glbudget::sensors

@@ -13,11 +13,13 @@
 #include <cstddef>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "glbudget/model/configuration_space.hpp"
+#include "glbudget/model/configured_sample.hpp"
 #include "glbudget/model/frame_log.hpp"
 #include "glbudget/model/platform_profile.hpp"
 #include "glbudget/model/power_model.hpp"
@@ -44,11 +46,6 @@ struct VariantTable {
 std::optional<VariantTable> parse_variant_table(const std::string& json_text, const std::string& source);
 std::optional<VariantTable> load_variant_table(const std::string& path);
 
-// Where `glbudget calibrate --app` writes an app's measured variant table and the shim looks
-// for it: $XDG_CACHE_HOME/glbudget/<executable>.variants.json (~/.cache when unset). Empty
-// when neither variable is set.
-std::string default_variant_table_path(const std::string& executable);
-
 // "0:2:1:0:0:1", one level per pass of the space in its order; nullopt unless it is one of
 // the space's configurations.
 std::optional<Configuration> parse_configuration(std::string_view text, const ConfigurationSpace& space);
@@ -67,6 +64,10 @@ struct ResolvedFrame {
 // The configuration comes from the log's `configuration` column when it has one.
 ResolvedFrame resolve_frame(const LoggedFrame& frame, const VariantTable& table,
                             const Configuration& default_configuration);
+
+// A log's frames as the model sees them, each in the configuration it was drawn in (a frame
+// without a configuration column keeps the one before; the first, every pass at level 0).
+std::vector<ConfiguredSample> configured_samples(std::span<const LoggedFrame> frames, const VariantTable& table);
 
 // The level a configuration gives a pass of the table (a zero-cost level when not in it).
 VariantCost table_level(const VariantTable& table, const std::string& pass, const Configuration& configuration);
