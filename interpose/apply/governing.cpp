@@ -109,9 +109,19 @@ class GovernorThread {
 
   void start() { pthread_create(&thread_, nullptr, &GovernorThread::main, this); }
 
-  // Render thread: never waits. What finds the queue locked is kept for the next try.
-  void push(Frame&& frame) { hand_over(std::move(frame), queue_); }
-  void push_probe(ProbeCapture&& capture) { hand_over(std::move(capture), probes_); }
+  // Render threads never wait on the governor thread: what finds its queues locked waits in
+  // `waiting_` (guarded by waiting_mu_, which only render threads and stop() take) until the
+  // next hand-over of either kind, or until stop() delivers it.
+  void push(Frame&& frame) {
+    std::lock_guard lock(waiting_mu_);
+    waiting_frames_.push_back(std::move(frame));
+    hand_over_waiting();
+  }
+  void push_probe(ProbeCapture&& capture) {
+    std::lock_guard lock(waiting_mu_);
+    waiting_probes_.push_back(std::move(capture));
+    hand_over_waiting();
+  }
 
   bool levels(Levels* out) const {
     const uint64_t packed = decision_.load(std::memory_order_acquire);
@@ -123,7 +133,9 @@ class GovernorThread {
 
   void stop() {
     {
+      std::lock_guard waiting(waiting_mu_);
       std::lock_guard lock(mu_);
+      move_waiting();
       stopping_ = true;
     }
     wake_.notify_one();
@@ -141,16 +153,21 @@ class GovernorThread {
     return nullptr;
   }
 
-  template <typename T>
-  void hand_over(T&& item, std::deque<T>& queue) {
-    thread_local std::vector<T> waiting;
-    waiting.push_back(std::move(item));
+  // Holding waiting_mu_.
+  void hand_over_waiting() {
     std::unique_lock lock(mu_, std::try_to_lock);
     if (!lock.owns_lock()) return;
-    for (T& w : waiting) queue.push_back(std::move(w));
-    waiting.clear();
+    move_waiting();
     lock.unlock();
     wake_.notify_one();
+  }
+
+  // Holding waiting_mu_ and mu_.
+  void move_waiting() {
+    for (Frame& f : waiting_frames_) queue_.push_back(std::move(f));
+    for (ProbeCapture& p : waiting_probes_) probes_.push_back(std::move(p));
+    waiting_frames_.clear();
+    waiting_probes_.clear();
   }
 
   void run() {
@@ -339,6 +356,9 @@ class GovernorThread {
   std::unordered_map<PassId, int> pass_of_program_;
   size_t notes_said_ = 0;
   std::deque<ProbeCapture> probes_;
+  std::mutex waiting_mu_;
+  std::vector<Frame> waiting_frames_;
+  std::vector<ProbeCapture> waiting_probes_;
   struct Held {
     uint64_t frame = 0;
     std::vector<FrameRow> rows;

@@ -668,11 +668,14 @@ struct ProbeFrames::Impl {
     t_probe = nullptr;
   }
 
-  void collect() {
+  // wait: the context goes away (destroyed, or the process exits) and these are its last
+  // read-backs; a bounded wait, so a hung driver cannot hold the app's exit.
+  void collect(bool wait) {
     const ProbeGl& p = pgl();
     while (!pending.empty()) {
       Readback& r = pending.front();
-      const GLenum status = p.ClientWaitSync(r.fence, 0, 0);
+      constexpr GLuint64 kLastWaitNs = 2'000'000'000;
+      const GLenum status = p.ClientWaitSync(r.fence, wait ? GL_SYNC_FLUSH_COMMANDS_BIT : 0, wait ? kLastWaitNs : 0);
       if (status != GL_ALREADY_SIGNALED && status != GL_CONDITION_SATISFIED) return;
       p.DeleteSync(r.fence);
       const GLint pack = get(GL_PIXEL_PACK_BUFFER_BINDING);
@@ -780,12 +783,16 @@ void ProbeFrames::after_present() { impl_->after_present(); }
 void ProbeFrames::after_swap(uint64_t next) {
   Impl& p = *impl_;
   if (!p.probe_possible()) return;
-  p.collect();
+  p.collect(false);
   uint64_t period = probe_settings().period;
   if (p.settled()) period *= probe_settings().settled_factor;
   // Not the first frames: the app may still be setting up what it draws.
   if (period == 0 || next < 3 || next % period != 0) return;
   p.plan(next);
+}
+
+void ProbeFrames::collect(bool wait) {
+  if (impl_->probe_possible()) impl_->collect(wait);
 }
 
 bool ProbeFrames::is_probe_frame(uint64_t frame) const { return frame && frame == impl_->frame; }

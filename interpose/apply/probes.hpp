@@ -54,6 +54,9 @@ class ProbeFrames {
   void after_present();
   // After the swap: collects finished read-backs; decides whether frame `next` is a probe.
   void after_swap(uint64_t next);
+  // Read-backs the GPU has finished reach the governor; wait: all of them (the context is
+  // about to be destroyed or the process to exit, and the last probe frame is otherwise lost).
+  void collect(bool wait);
   bool is_probe_frame(uint64_t frame) const;
   // One of the last probe frames (their rows are logged some frames later).
   bool was_probe_frame(uint64_t frame) const;

@@ -91,9 +91,11 @@ void flush_pending_frames(ContextState& c, FlushMode mode) {
   t_emitting = &c;
   switch (mode) {
     case FlushMode::kCollect:
+      if (c.probes) c.probes->collect(false);
       c.counter->collect(emit_row, PassCounter::Collect::kAvailable);
       break;
     case FlushMode::kWait:
+      if (c.probes) c.probes->collect(true);
       c.counter->collect(emit_row, PassCounter::Collect::kWait);
       break;
     case FlushMode::kCpuOnly:
