@@ -145,6 +145,7 @@ model::OnlineFitter::Event Governor::see(const FrameRecord& record, Decision& de
   const double us = microseconds_since(start);
   times_.learn.add(us);
   if (model_.fits() != fits_before) {
+    if (fits_before == 0) fitted_frame_ = record.frame;
     times_.fit.add(us);
     // The new coefficients take effect from the next frame given to the model: give it this
     // one again, so that a selection now predicts with them (the first fit has no frame yet).
@@ -155,7 +156,15 @@ model::OnlineFitter::Event Governor::see(const FrameRecord& record, Decision& de
 
 bool Governor::selection_due(const FrameRecord& record) const {
   if (!model_.fitted() || record.probe) return false;
-  if (selections_ == 0 || reselect_now_) return true;
+  if (selections_ == 0) {
+    // Under a power budget the first selection waits for a window of measured power at the
+    // configuration the app starts in (its best, usually), at most select_frames after the
+    // fit: that window is what anchors the top of the range (share_of_range_w) and what
+    // the corrections of the configurations measured later are told apart from.
+    if (aim_ != Aim::power || !feedback_.settings().enabled || feedback_.measured(current_)) return true;
+    return record.frame < fitted_frame_ || record.frame - fitted_frame_ >= settings_.select_frames;
+  }
+  if (reselect_now_) return true;
   // Beyond the paper: when the model predicts the chosen configuration over the budget for
   // reselect_over_budget_frames frames in a row (the scene got heavier, or a refit learnt that it costs
   // more), select again at once instead of waiting out select_frames over budget.
@@ -167,6 +176,7 @@ bool Governor::selection_due(const FrameRecord& record) const {
 
 void Governor::select(const FrameRecord& record) {
   Clock::time_point start = Clock::now();
+  model_.refresh_fragment_scales();
   model_.predict_all(power_);
   times_.predict_all.add(microseconds_since(start));
 
@@ -176,14 +186,18 @@ void Governor::select(const FrameRecord& record) {
 
   start = Clock::now();
   margin_w_ = 0.0;
+  double budget_w = std::numeric_limits<double>::infinity();
   if (aim_ == Aim::power) {
+    model_power_.assign(power_.begin(), power_.end());
     feedback_.correct(space_, power_);
+    budget_w = settings_.power.kind == model::Budget::Kind::ShareOfRange ? share_of_range_w()
+                                                                         : model::budget_watts(settings_.power, power_);
     // 100 % of the range admits the best configuration by definition: no margin below it.
     const bool whole_range = settings_.power.kind == model::Budget::Kind::ShareOfRange && settings_.power.value >= 1.0;
     margin_w_ = whole_range ? 0.0 : feedback_.margin_w();
   }
   const model::Selection selection = aim_ == Aim::power
-                                         ? model::select_configuration(power_, error_, settings_.power, margin_w_)
+                                         ? model::select_configuration(power_, error_, budget_w, margin_w_)
                                          : select_within_error(power_, error_, *settings_.error_budget);
   times_.select.add(microseconds_since(start));
 
@@ -203,6 +217,33 @@ void Governor::select(const FrameRecord& record) {
   transition_start_ns_ = record.time_ns;
 }
 
+// A share of the range in watts. Beyond the paper: the range runs between the model's cheapest
+// and best-quality configurations, each moved by its own measured residual where it has one,
+// the cheapest else by the best's. A correction learnt at another configuration (a level whose
+// saving the model misjudged) moves the corrected predictions of every configuration drawing
+// that level, the cheapest's too, or all of them through the offset; a range over corrected
+// predictions follows it away from what the app draws, and the budget with it.
+double Governor::share_of_range_w() const {
+  const std::size_t top = model::range_top(model_power_, error_);
+  if (top >= power_.size()) return std::numeric_limits<double>::infinity();
+  std::size_t cheapest = top;
+  for (std::size_t i = 0; i < model_power_.size(); ++i)
+    if (model_power_[i] < model_power_[cheapest]) cheapest = i;
+  const double shift = feedback_.residual(space_.decode(top));
+  const model::Configuration cheapest_configuration = space_.decode(cheapest);
+  const double high = model_power_[top] + shift;
+  double low = model_power_[cheapest] +
+               (feedback_.measured(cheapest_configuration) ? feedback_.residual(cheapest_configuration) : shift);
+  // Never above the lowest corrected prediction, so that 0 % admits exactly the configuration
+  // the selection takes for the cheapest.
+  for (double p : power_)
+    if (p < low) low = p;
+  const double share = settings_.power.value;
+  // 100 % admits the best configuration as the selection sees it, measured or not.
+  if (share >= 1.0) return std::max(high, power_[top]);
+  return (1.0 - share) * std::min(low, high) + share * high;
+}
+
 void Governor::hold(const FrameRecord& record) {
   if (holding_) return;
   holding_ = true;
@@ -219,8 +260,7 @@ void Governor::hold(const FrameRecord& record) {
 // the budget asks for a selection at once. The frame's prediction is given corrected.
 void Governor::feed_back(const FrameRecord& record, Decision& decision) {
   if (record.probe || !space_.contains(record.configuration)) return;
-  const bool settled =
-      aim_ == Aim::power && selections_ > 0 && !transitioning_ && !holding_ && record.configuration == target_;
+  const bool settled = aim_ == Aim::power && !transitioning_ && !holding_ && record.configuration == target_;
   if (!settled) {
     feedback_.interrupt();
   } else if (const auto window =

@@ -68,6 +68,11 @@ void RunTimeModel::anchor_to_recent(PowerModel& model, const Configuration& conf
   if (n > 0) model.set_frame_alpha(model.frame_alpha() + residual / static_cast<double>(n));
 }
 
+void RunTimeModel::refresh_fragment_scales() {
+  if (predictor_ && history_settings_.enabled)
+    predictor_->set_fragment_scales(measure_fragment_scales(recent_history(), space_));
+}
+
 std::span<const ConfiguredSample> RunTimeModel::recent_history() const {
   const std::size_t kept = std::min(history_.size(), history_settings_.frames);
   return std::span<const ConfiguredSample>(history_).last(kept);

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <iostream>
 #include <limits>
 #include <string>
@@ -53,6 +54,42 @@ std::optional<Budget> parse_budget(std::string_view text) {
   return reject(text, "has no unit");
 }
 
+namespace {
+
+struct Range {
+  double lowest = std::numeric_limits<double>::infinity();
+  double highest = -std::numeric_limits<double>::infinity();
+  std::size_t top = SIZE_MAX;  // the configuration at `highest`
+  bool finite() const { return lowest <= highest; }
+};
+
+// From the lowest prediction to the best-quality configuration's (the highest among those of
+// least error), else to the highest prediction.
+Range range_of(std::span<const double> predicted_power_w, std::span<const double> error) {
+  Range r;
+  for (std::size_t i = 0; i < predicted_power_w.size(); ++i) {
+    const double p = predicted_power_w[i];
+    if (std::isnan(p)) continue;
+    r.lowest = std::min(r.lowest, p);
+    if (p > r.highest) r.highest = p, r.top = i;
+  }
+  if (!r.finite() || error.size() != predicted_power_w.size()) return r;
+  double least_error = std::numeric_limits<double>::infinity(), best = std::nan("");
+  std::size_t best_index = SIZE_MAX;
+  for (std::size_t i = 0; i < error.size(); ++i) {
+    const double p = predicted_power_w[i], e = error[i];
+    if (std::isnan(p) || std::isnan(e)) continue;
+    if (e < least_error || (e == least_error && p > best)) least_error = e, best = p, best_index = i;
+  }
+  if (best >= r.lowest) r.highest = best, r.top = best_index;
+  return r;
+}
+
+// Written as a convex combination so that 0% and 100% give exactly lowest and highest.
+double share_of(const Range& r, double share) { return (1.0 - share) * r.lowest + share * r.highest; }
+
+}  // namespace
+
 double budget_watts(const Budget& budget, std::span<const double> predicted_power_w, std::span<const double> error) {
   switch (budget.kind) {
     case Budget::Kind::Off:
@@ -62,31 +99,24 @@ double budget_watts(const Budget& budget, std::span<const double> predicted_powe
     case Budget::Kind::ShareOfRange:
       break;
   }
-  double lowest = std::numeric_limits<double>::infinity();
-  double highest = -std::numeric_limits<double>::infinity();
-  for (double p : predicted_power_w) {
-    if (std::isnan(p)) continue;
-    lowest = std::min(lowest, p);
-    highest = std::max(highest, p);
-  }
-  if (!(lowest <= highest)) return std::numeric_limits<double>::infinity();  // nothing finite
-  if (error.size() == predicted_power_w.size()) {
-    double least_error = std::numeric_limits<double>::infinity(), best = std::nan("");
-    for (std::size_t i = 0; i < error.size(); ++i) {
-      const double p = predicted_power_w[i], e = error[i];
-      if (std::isnan(p) || std::isnan(e)) continue;
-      if (e < least_error || (e == least_error && p > best)) least_error = e, best = p;
-    }
-    if (best >= lowest) highest = best;
-  }
-  // Written as a convex combination so that 0% and 100% give exactly lowest and highest.
-  return (1.0 - budget.value) * lowest + budget.value * highest;
+  const Range r = range_of(predicted_power_w, error);
+  return r.finite() ? share_of(r, budget.value) : std::numeric_limits<double>::infinity();
+}
+
+std::size_t range_top(std::span<const double> predicted_power_w, std::span<const double> error) {
+  const Range r = range_of(predicted_power_w, error);
+  return r.finite() ? r.top : SIZE_MAX;
 }
 
 Selection select_configuration(std::span<const double> predicted_power_w, std::span<const double> error,
                                const Budget& budget, double margin_w) {
+  return select_configuration(predicted_power_w, error, budget_watts(budget, predicted_power_w, error), margin_w);
+}
+
+Selection select_configuration(std::span<const double> predicted_power_w, std::span<const double> error,
+                               double budget_w, double margin_w) {
   Selection selection;
-  selection.budget_w = budget_watts(budget, predicted_power_w, error);
+  selection.budget_w = budget_w;
   const auto rank = [](double e) { return std::isnan(e) ? std::numeric_limits<double>::infinity() : e; };
 
   const auto lowest_error_within = [&](double limit, std::size_t* index) {

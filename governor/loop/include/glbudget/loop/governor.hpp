@@ -131,6 +131,7 @@ class Governor {
   void hold(const FrameRecord& record);
   void feed_back(const FrameRecord& record, Decision& decision);
   double initial_budget_w() const;
+  double share_of_range_w() const;
 
   model::ConfigurationSpace space_;
   ErrorTable errors_;
@@ -161,8 +162,10 @@ class Governor {
   bool holding_ = false;
   bool hold_noted_ = false;
 
-  model::FrameSample sample_;  // reused: the record as the model sees it
-  std::vector<double> power_;  // reused by selections
+  model::FrameSample sample_;        // reused: the record as the model sees it
+  std::uint64_t fitted_frame_ = 0;   // the frame of the model's first fit
+  std::vector<double> power_;        // reused by selections: corrected predictions
+  std::vector<double> model_power_;  // and the model's own
   std::vector<double> error_;
   StepTimes times_;
   std::vector<std::string> notes_;

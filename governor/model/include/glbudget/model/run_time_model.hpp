@@ -39,6 +39,10 @@ class RunTimeModel {
   // Another configuration for the frame last given to predict_frame().
   double predict(const Configuration& configuration) const;
   void predict_all(std::vector<double>& out) const;
+  // Beyond a fit: the fragments measured at every render-scale or shadow-map level the history
+  // holds replace the declared ones now (fragment_scales.hpp), so that a level drawn since the
+  // last fit predicts the others from what it was measured to draw.
+  void refresh_fragment_scales();
 
   // Learns from the frame last predicted (call after predict_frame, with its prediction).
   OnlineFitter::Event learn(const FrameSample& frame, const Configuration& configuration, double predicted_w);

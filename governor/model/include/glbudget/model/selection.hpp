@@ -29,6 +29,10 @@ std::optional<Budget> parse_budget(std::string_view text);
 double budget_watts(const Budget& budget, std::span<const double> predicted_power_w,
                     std::span<const double> error = {});
 
+// The configuration at the top of a share of the range (see budget_watts); SIZE_MAX when no
+// prediction is finite.
+std::size_t range_top(std::span<const double> predicted_power_w, std::span<const double> error);
+
 struct Selection {
   std::size_t index = 0;  // chosen configuration
   double budget_w = 0.0;
@@ -43,5 +47,8 @@ struct Selection {
 // budget either way).
 Selection select_configuration(std::span<const double> predicted_power_w, std::span<const double> error,
                                const Budget& budget, double margin_w = 0.0);
+// The same under a limit already in watts (budget_w, +inf: none).
+Selection select_configuration(std::span<const double> predicted_power_w, std::span<const double> error,
+                               double budget_w, double margin_w = 0.0);
 
 }  // namespace glbudget::model
