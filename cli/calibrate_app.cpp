@@ -23,6 +23,7 @@
 #include <optional>
 #include <span>
 #include <sstream>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -272,16 +273,26 @@ void add_program(const json& program, LevelSums& s) {
 }
 
 // GLBUDGET_FORCE for the power run: level 0 everywhere, then each level of each pass alone, so
-// that each level's power is told apart from every other's.
-std::vector<std::string> one_level_at_a_time(const manifest::Manifest& m) {
-  std::vector<std::string> configurations{std::string()};
-  for (std::size_t i = 0; i < m.passes.size(); ++i) configurations[0] += i ? ",0" : "0";
+// that each level's power is told apart from every other's; then the cheapest configuration
+// (every pass at its last level) and the best again. The best and the cheapest are the range a
+// share of it is taken over (the governor's calibrated_range); the best measured at both ends
+// of the run averages out a sensor's drift over it.
+std::vector<std::string> power_run_configurations(const manifest::Manifest& m) {
+  std::string best, cheapest;
+  for (std::size_t i = 0; i < m.passes.size(); ++i) {
+    best += i ? ",0" : "0";
+    cheapest += (i ? "," : "") + std::to_string(m.passes[i].levels.empty() ? 0 : m.passes[i].levels.size() - 1);
+  }
+  std::vector<std::string> configurations{best};
   for (std::size_t i = 0; i < m.passes.size(); ++i)
     for (std::size_t l = 1; l < m.passes[i].levels.size(); ++l) {
       std::string c;
       for (std::size_t j = 0; j < m.passes.size(); ++j) c += (j ? "," : "") + std::to_string(j == i ? l : 0);
       configurations.push_back(c);
     }
+  if (std::find(configurations.begin(), configurations.end(), cheapest) == configurations.end())
+    configurations.push_back(cheapest);
+  configurations.push_back(best);
   return configurations;
 }
 
@@ -315,7 +326,7 @@ bool measure_power(const Options& o, const manifest::Manifest& m,
   }
   const std::optional<model::PlatformProfile> profile = model::load_platform_profile(profile_path);  // says why
   if (!profile) return false;
-  const std::vector<std::string> configurations = one_level_at_a_time(m);
+  const std::vector<std::string> configurations = power_run_configurations(m);
   std::string force;
   for (const std::string& c : configurations) force += (force.empty() ? "" : ";") + c;
   const std::string log = (fs::path(scratch) / "power.csv").string();
@@ -328,9 +339,11 @@ bool measure_power(const Options& o, const manifest::Manifest& m,
   if (!o.sensor.empty()) env.emplace_back("GLBUDGET_SENSOR", o.sensor);
   if (!o.fps.empty()) env.emplace_back("GLBUDGET_FPS", o.fps);
   const std::uint64_t frames_needed = configurations.size() * o.power_frames + 2;
-  std::printf("measuring the power of %zu configurations (each level alone), %u frames each%s%s...\n",
-              configurations.size(), o.power_frames, o.fps.empty() ? "" : " at ",
-              o.fps.empty() ? "" : (o.fps + " fps").c_str());
+  std::printf(
+      "measuring the power of %zu configurations (the best, each level alone, the cheapest, the best again), %u "
+      "frames each%s%s...\n",
+      configurations.size(), o.power_frames, o.fps.empty() ? "" : " at ",
+      o.fps.empty() ? "" : (o.fps + " fps").c_str());
   std::fflush(stdout);
   const RunResult run = run_app(o, env, log, frames_needed);
   if (!run.started) return false;
@@ -354,7 +367,9 @@ bool measure_power(const Options& o, const manifest::Manifest& m,
       power[s.configuration].first += s.sample.power_w, ++power[s.configuration].second;
   ordered_json measured = ordered_json::array();
   std::printf("%-24s %9s %7s\n", "configuration", "power W", "frames");
+  std::set<std::string> listed;
   for (const std::string& c : configurations) {
+    if (!listed.insert(c).second) continue;  // the best, measured twice, is one entry
     std::string colon = c;
     std::replace(colon.begin(), colon.end(), ',', ':');
     const auto parsed = model::parse_configuration(colon, variants->space);

@@ -65,11 +65,13 @@ manifest::Manifest governed_manifest(const manifest::Manifest& m) {
 // passes), not from levels that change what each fragment costs.
 struct MeasuredSpace {
   model::ConfigurationSpace space;
-  std::optional<model::PlatformCosts> costs;  // this app's, when calibrate --app measured its power
+  std::optional<model::PlatformCosts> costs;                    // this app's, when calibrate --app measured its power
+  std::optional<model::VariantTable::MeasuredRange> range;      // and its best and cheapest configurations'
+  std::vector<std::pair<model::Configuration, double>> powers;  // every configuration it measured
 };
 MeasuredSpace measured_space(const manifest::Manifest& m, bool budget) {
   const std::string& named = options().costs_path;
-  if (named == "off") return {loop::space_from_manifest(m), std::nullopt};
+  if (named == "off") return {loop::space_from_manifest(m), std::nullopt, std::nullopt, {}};
   std::string path = named.empty() ? sensors::default_variant_table_path(executable_name()) : named;
   std::error_code ec;
   if (named.empty() && (path.empty() || !std::filesystem::is_regular_file(path, ec))) {
@@ -82,14 +84,22 @@ MeasuredSpace measured_space(const manifest::Manifest& m, bool budget) {
           (path.empty() ? std::string("no cache directory") : path) +
           "): the model predicts savings from render scales and skipped passes only; "
           "`glbudget calibrate --app -- APP` measures them");
-    return {loop::space_from_manifest(m), std::nullopt};
+    return {loop::space_from_manifest(m), std::nullopt, std::nullopt, {}};
   }
   const std::optional<model::VariantTable> table = model::load_variant_table(path);  // says why when it fails
-  if (!table) return {loop::space_from_manifest(m), std::nullopt};
+  if (!table) return {loop::space_from_manifest(m), std::nullopt, std::nullopt, {}};
   std::vector<std::string> problems;
   model::ConfigurationSpace space = loop::space_from_manifest(m, *table, problems);
   for (const std::string& p : problems) say(path + ": " + p);
-  return {std::move(space), table->platform_costs};
+  // The table measured the manifest's passes; the governor's space may add passes of one
+  // level (the "app" pass), which leave its best and cheapest configurations the table's.
+  bool same_ends = space.pass_count() >= table->space.pass_count();
+  for (std::size_t i = 0; same_ends && i < space.pass_count(); ++i)
+    same_ends = i < table->space.pass_count()
+                    ? space.passes()[i].levels.size() == table->space.passes()[i].levels.size()
+                    : space.passes()[i].levels.size() == 1;
+  if (!same_ends) return {std::move(space), table->platform_costs, std::nullopt, {}};
+  return {std::move(space), table->platform_costs, table->measured_range, table->measured_power_w};
 }
 
 std::string default_profile_path() {
@@ -420,6 +430,8 @@ bool governor_start() {
     manifest::Manifest m = governed_manifest(active_manifest());
     MeasuredSpace measured = measured_space(m, budget);
     if (measured.costs) profile->costs = measured.costs;
+    settings.calibrated_range = measured.range;
+    settings.calibrated_powers = std::move(measured.powers);
     loop::Governor governor(*profile, std::move(measured.space), loop::errors_from_manifest(m), settings);
     const bool steering = governor.governing();
     g_thread = new GovernorThread(std::move(governor), std::move(m), o.probe_scale);

@@ -80,13 +80,15 @@ check([l.get("fragment_scale", 1.0) for l in passes["resolution"]] == [1.0, 0.8 
       "the render scale's fragment scales")
 check(passes["reflections"][1].get("hashes") == passes["reflections"][0].get("hashes"),
       "a level that only holds uniforms keeps the app program's log name")
-# The power run: each level alone, its power, and the costs fitted from it.
+# The power run: each level alone, the cheapest (the range's bottom), their power, and the costs
+# fitted from them.
 costs = table.get("platform_costs", {})
 check(sorted(costs) == ["batch", "fragment", "instruction", "texel", "vertex"] and
       all(v >= 0 for v in costs.values()), f"platform costs fitted: {costs}")
 configurations = [c["configuration"] for c in table.get("power", {}).get("configurations", [])]
-check(len(configurations) == 13 and configurations[0] == "0:0:0:0:0:0" and "0:0:0:0:2:0" in configurations,
-      f"level 0, then each of the 12 other levels alone: {configurations}")
+check(len(configurations) == 14 and configurations[0] == "0:0:0:0:0:0" and "0:0:0:0:2:0" in configurations and
+      configurations[-1] == "2:2:2:2:2:2",
+      f"level 0, each of the 12 other levels alone, then the cheapest: {configurations}")
 check(all(c["power_w"] > 0 and c["frames"] >= 2 for c in table["power"]["configurations"]), "each one's power")
 
 # 2. Ground truth: the demo's own programs at each of its levels.

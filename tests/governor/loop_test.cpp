@@ -837,6 +837,44 @@ TEST_CASE("measured power corrects what the model cannot see, and keeps windows 
   CHECK(total_on < 0.8 * total_off);
 }
 
+TEST_CASE("a calibrated range sets the bottom of a share of the range", "[loop][extremes]") {
+  // The best and cheapest configurations' power from `glbudget calibrate --app`: the bottom of
+  // the range is the best's power above P_m scaled by the cheapest's share of it, instead of
+  // the model's prediction of the cheapest. A cheapest measured at the best's power leaves
+  // nothing to save: 40 % is the best's power, and the first selection is of lower estimated
+  // error than under the model's range; one at P_m puts 40 % below the model's range's, and
+  // the first selection has the higher error.
+  const double p_min = model::testing::synthetic_profile().p_min_w;
+  struct Result {
+    double first_budget_w = std::nan("");
+    double error = std::nan("");  // of the first selection's target
+  };
+  auto run = [](std::optional<model::VariantTable::MeasuredRange> range) {
+    GovernorSettings settings = power_budget("40%");
+    settings.calibrated_range = range;
+    App app(settings);
+    const std::vector<Step> steps = app.run(20 * kFps);
+    Result r;
+    for (const Step& s : steps)
+      if (s.decision.event == Event::select) {
+        r.first_budget_w = s.decision.budget_w;
+        r.error = app.governor().errors().estimate(s.target);
+        break;
+      }
+    return r;
+  };
+  const Result none = run(std::nullopt);
+  const Result flat = run(model::VariantTable::MeasuredRange{60.0, 60.0});
+  const Result deep = run(model::VariantTable::MeasuredRange{60.0, p_min});
+  INFO("first budgets: the model's range " << none.first_budget_w << " W, nothing to save " << flat.first_budget_w
+                                           << " W, all saved " << deep.first_budget_w << " W");
+  REQUIRE(std::isfinite(none.first_budget_w));
+  CHECK(flat.first_budget_w > none.first_budget_w);
+  CHECK(deep.first_budget_w < none.first_budget_w);
+  CHECK(flat.error < none.error);
+  CHECK(deep.error > none.error);
+}
+
 TEST_CASE("power feedback: windows, residuals, the margin and the additive correction", "[loop][feedback]") {
   PowerFeedback feedback{FeedbackSettings{}};
   const Configuration a{0, 0}, b{2, 0};
@@ -883,4 +921,23 @@ TEST_CASE("power feedback: windows, residuals, the margin and the additive corre
   PowerFeedback off(FeedbackSettings{false});
   for (int k = 0; k <= 10; ++k) CHECK_FALSE(off.add(a, k * 100'000'000LL, 11.0, 10.0));
   CHECK(off.bias(a) == 0.0);
+}
+
+TEST_CASE("power feedback: a prior per level corrects before any window, and windows outweigh it", "[loop][feedback]") {
+  PowerFeedback feedback{FeedbackSettings{}};
+  const Configuration best{0, 0}, shadows{0, 2}, both{1, 2};
+  feedback.set_prior({{0.0, 3.0}, {0.0, 0.0, -5.0}});
+  CHECK(feedback.bias(best) == Approx(0.0).margin(1e-9));
+  CHECK(feedback.bias(shadows) == Approx(-5.0));
+  CHECK(feedback.bias(both) == Approx(-2.0));  // additive, as the terms are
+  // Windows at the best (as the governor measures first) predicted right, then at the shadows
+  // level saying it saves 1 W less than predicted, not 5 more: the level's term follows them.
+  std::int64_t t = 0;
+  for (int w = 0; w < 4; ++w)
+    for (int k = 0; k < 10; ++k, t += 100'000'000) feedback.add(best, t, 30.0 + 0.1 * (k % 2), 30.05);
+  for (int w = 0; w < 8; ++w)
+    for (int k = 0; k < 10; ++k, t += 100'000'000) feedback.add(shadows, t, 29.0 + 0.1 * (k % 2), 30.05);
+  CHECK(feedback.measured(shadows));
+  CHECK(feedback.bias(shadows) == Approx(-1.0).margin(0.2));
+  CHECK(feedback.bias(Configuration{1, 0}) == Approx(3.0).margin(0.5));  // a level never drawn keeps its prior
 }

@@ -181,7 +181,7 @@ TEST_CASE("configurations read from the log's column are checked against the spa
     CHECK(!parse_configuration(bad, space));
   }
   // A bad column value falls back to the programs' levels instead of failing the frame.
-  VariantTable table{space, {}, std::nullopt};
+  VariantTable table{space, {}, std::nullopt, std::nullopt, {}};
   LoggedFrame frame;
   frame.configuration = "9:9";
   CHECK(resolve_frame(frame, table, {1, 1}).configuration == Configuration{1, 1});
@@ -280,5 +280,34 @@ TEST_CASE("a variant table's platform costs: read whole or not at all", "[model]
     CHECK_FALSE(table->platform_costs);
     CHECK(captured.str().find("glbudget: inline: \"platform_costs\" needs batch, vertex, fragment, instruction and "
                               "texel") != std::string::npos);
+  }
+}
+
+TEST_CASE("a variant table's measured range: the best and the cheapest configuration's power, both or none",
+          "[model][variants][extremes]") {
+  const std::string passes =
+      R"("passes": [{"name": "a", "levels": [{"ins_f": 3}, {"ins_f": 1}]},
+                    {"name": "b", "levels": [{"ins_f": 3}, {"ins_f": 2}, {"ins_f": 1}]}])";
+  auto parse = [&](const std::string& power) {
+    return parse_variant_table("{" + passes + (power.empty() ? "" : ", \"power\": " + power) + "}", "inline");
+  };
+  const auto both = parse(R"({"configurations": [{"configuration": "0:0", "power_w": 30.5},
+      {"configuration": "1:0", "power_w": 25}, {"configuration": "1:2", "power_w": 12.25}]})");
+  REQUIRE(both);
+  REQUIRE(both->measured_range);
+  CHECK(both->measured_range->best_w == 30.5);
+  CHECK(both->measured_range->cheapest_w == 12.25);
+  for (const std::string& power :
+       {std::string(), std::string(R"({"configurations": [{"configuration": "0:0", "power_w": 30}]})"),
+        std::string(R"({"configurations": [{"configuration": "1:2", "power_w": 12}]})"),
+        std::string(R"({"configurations": [{"configuration": "0:0", "power_w": 30},
+                                           {"configuration": "1:2", "power_w": 0}]})"),
+        std::string(R"({"configurations": [{"configuration": "0:0", "power_w": "30"},
+                                           {"configuration": "1:2", "power_w": 12}]})"),
+        std::string(R"({"configurations": {"0:0": 30, "1:2": 12}})"), std::string("[]")}) {
+    CAPTURE(power);
+    const auto table = parse(power);
+    REQUIRE(table);
+    CHECK_FALSE(table->measured_range);
   }
 }

@@ -1,5 +1,6 @@
 #include "glbudget/loop/governor.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -67,6 +68,7 @@ Governor::Governor(model::PlatformProfile profile, model::ConfigurationSpace spa
       errors_(std::move(errors)),
       settings_(settings),
       model_(profile, space_, settings.fit, settings.history),
+      p_min_w_(profile.p_min_w),
       feedback_(settings.feedback) {
   if (!errors_.fits(space_)) {
     notes_.push_back("the error table does not match the configuration space (" + std::to_string(errors_.pass_count()) +
@@ -189,12 +191,13 @@ void Governor::select(const FrameRecord& record) {
   double budget_w = std::numeric_limits<double>::infinity();
   if (aim_ == Aim::power) {
     model_power_.assign(power_.begin(), power_.end());
+    set_calibrated_prior();
     feedback_.correct(space_, power_);
     budget_w = settings_.power.kind == model::Budget::Kind::ShareOfRange ? share_of_range_w()
                                                                          : model::budget_watts(settings_.power, power_);
     // 100 % of the range admits the best configuration by definition: no margin below it.
     const bool whole_range = settings_.power.kind == model::Budget::Kind::ShareOfRange && settings_.power.value >= 1.0;
-    margin_w_ = whole_range ? 0.0 : feedback_.margin_w();
+    margin_w_ = whole_range ? 0.0 : feedback_.margin_w() + overshoot_w_;
   }
   const model::Selection selection = aim_ == Aim::power
                                          ? model::select_configuration(power_, error_, budget_w, margin_w_)
@@ -217,31 +220,80 @@ void Governor::select(const FrameRecord& record) {
   transition_start_ns_ = record.time_ns;
 }
 
-// A share of the range in watts. Beyond the paper: the range runs between the model's cheapest
-// and best-quality configurations, each moved by its own measured residual where it has one,
-// the cheapest else by the best's. A correction learnt at another configuration (a level whose
-// saving the model misjudged) moves the corrected predictions of every configuration drawing
-// that level, the cheapest's too, or all of them through the offset; a range over corrected
+// A share of the range in watts. Beyond the paper: the range runs from the cheapest
+// configuration to the best-quality one, each at the model's prediction moved by its own
+// measured residual where it has one (the app starts at its best), the cheapest's else by the
+// best's; with a calibrated range (`glbudget calibrate --app` measured the best and the
+// cheapest, every pass at its last level) the cheapest is the best's power above P_m times
+// the share the calibration measured, unless the run has measured it itself. A correction
+// learnt at another configuration (a level whose saving the model misjudged) moves every
+// corrected prediction drawing that level, the cheapest's too; a range over corrected
 // predictions follows it away from what the app draws, and the budget with it.
 double Governor::share_of_range_w() const {
   const std::size_t top = model::range_top(model_power_, error_);
   if (top >= power_.size()) return std::numeric_limits<double>::infinity();
-  std::size_t cheapest = top;
-  for (std::size_t i = 0; i < model_power_.size(); ++i)
-    if (model_power_[i] < model_power_[cheapest]) cheapest = i;
-  const double shift = feedback_.residual(space_.decode(top));
-  const model::Configuration cheapest_configuration = space_.decode(cheapest);
-  const double high = model_power_[top] + shift;
-  double low = model_power_[cheapest] +
-               (feedback_.measured(cheapest_configuration) ? feedback_.residual(cheapest_configuration) : shift);
-  // Never above the lowest corrected prediction, so that 0 % admits exactly the configuration
-  // the selection takes for the cheapest.
-  for (double p : power_)
-    if (p < low) low = p;
+  const double high = model_power_[top] + feedback_.residual(space_.decode(top));
+  const double shift = high - model_power_[top];
+  double low = std::numeric_limits<double>::infinity();
+  const auto& range = settings_.calibrated_range;
+  model::Configuration last_levels;
+  for (const model::PassVariants& pass : space_.passes())
+    last_levels.push_back(static_cast<int>(pass.levels.size()) - 1);
+  if (range && feedback_.measured(last_levels)) {
+    low = power_[space_.index_of(last_levels)];
+  } else if (range) {
+    // A share, so that a scene lighter or heavier than the calibration's, or a sensor that
+    // drifted since, moves both ends together.
+    const double above = range->best_w - p_min_w_;
+    if (above > 0.0 && high > p_min_w_)
+      low = p_min_w_ + (high - p_min_w_) * std::clamp((range->cheapest_w - p_min_w_) / above, 0.0, 1.0);
+  }
+  if (!std::isfinite(low)) {
+    std::size_t cheapest = top;
+    for (std::size_t i = 0; i < model_power_.size(); ++i)
+      if (model_power_[i] < model_power_[cheapest]) cheapest = i;
+    const model::Configuration c = space_.decode(cheapest);
+    low = model_power_[cheapest] + (feedback_.measured(c) ? feedback_.residual(c) : shift);
+  }
   const double share = settings_.power.value;
-  // 100 % admits the best configuration as the selection sees it, measured or not.
+  // 0 % admits exactly the configuration the selection takes for the cheapest, 100 % the best
+  // as the selection sees it, measured or not.
+  if (share <= 0.0) return std::min(low, *std::min_element(power_.begin(), power_.end()));
   if (share >= 1.0) return std::max(high, power_[top]);
   return (1.0 - share) * std::min(low, high) + share * high;
+}
+
+// Beyond the paper: `glbudget calibrate --app` measured the best configuration and each level
+// alone; a level's measured difference from the best, scaled to the best's power now above
+// P_m, less the difference the model predicts for this frame, is what the model misjudges of
+// that level (on the demo's Sponza: a shadow map 4x smaller saves 5 W measured, and the model,
+// which sees no fragment-shader work in a depth-only pass, predicts nothing). It is the
+// feedback's prior for the level, until windows measured in the run say otherwise.
+void Governor::set_calibrated_prior() {
+  const auto& measured = settings_.calibrated_powers;
+  const auto& range = settings_.calibrated_range;
+  if (measured.empty() || !range || !feedback_.settings().enabled) return;
+  const model::Configuration best(space_.pass_count(), 0);
+  const std::size_t best_index = space_.index_of(best);
+  const double best_now = model_power_[best_index] + feedback_.residual(best);
+  const double above = range->best_w - p_min_w_;
+  if (!(above > 0.0) || !(best_now > p_min_w_) || !std::isfinite(best_now)) return;
+  const double scale = (best_now - p_min_w_) / above;
+  std::vector<std::vector<double>> prior(space_.pass_count());
+  for (const auto& [calibrated, watts] : measured) {
+    model::Configuration c = calibrated;
+    c.resize(space_.pass_count(), 0);
+    std::size_t pass = 0, changed = 0;
+    for (std::size_t i = 0; i < c.size(); ++i)
+      if (c[i] != 0) pass = i, ++changed;
+    if (changed != 1 || !space_.contains(c)) continue;  // the best, the cheapest: not one level alone
+    const std::size_t level = static_cast<std::size_t>(c[pass]);
+    const double predicted = model_power_[space_.index_of(c)] - model_power_[best_index];
+    if (!std::isfinite(predicted)) continue;
+    if (prior[pass].size() <= level) prior[pass].resize(level + 1, 0.0);
+    prior[pass][level] = scale * (watts - range->best_w) - predicted;
+  }
+  feedback_.set_prior(std::move(prior));
 }
 
 void Governor::hold(const FrameRecord& record) {
@@ -265,7 +317,16 @@ void Governor::feed_back(const FrameRecord& record, Decision& decision) {
     feedback_.interrupt();
   } else if (const auto window =
                  feedback_.add(record.configuration, record.time_ns, record.power_w, decision.predicted_w)) {
-    if (std::isfinite(budget_w_) && window->measured_w > budget_w_) reselect_now_ = true;
+    if (std::isfinite(budget_w_) && selections_ > 0) {
+      if (window->measured_w > budget_w_) reselect_now_ = true;
+      // Beyond the paper: windows over the budget accumulate, and windows under it pay back,
+      // what the next selection keeps under the budget besides the spread's margin (integral
+      // control). Where the model misjudges the savings of configurations not yet drawn, the
+      // corrections learnt one configuration at a time converge slowly; this does not wait
+      // for them. Never negative: it never admits more than the predictions do.
+      overshoot_w_ =
+          std::clamp(overshoot_w_ + (window->measured_w - budget_w_), 0.0, std::max(0.0, budget_w_ - p_min_w_));
+    }
   }
   if (std::isfinite(decision.predicted_w)) decision.predicted_w += feedback_.bias(record.configuration);
 }

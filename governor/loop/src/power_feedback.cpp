@@ -83,8 +83,13 @@ double PowerFeedback::residual(const model::Configuration& configuration) const 
   return it == residuals_.end() ? 0.0 : it->second.value;
 }
 
+void PowerFeedback::set_prior(std::vector<std::vector<double>> terms) {
+  prior_ = std::move(terms);
+  fit();
+}
+
 double PowerFeedback::bias(const model::Configuration& configuration) const {
-  if (!settings_.enabled || residuals_.empty()) return 0.0;
+  if (!settings_.enabled || (residuals_.empty() && prior_.empty())) return 0.0;
   double b = offset_;
   for (std::size_t i = 0; i < configuration.size() && i < terms_.size(); ++i) {
     const auto level = static_cast<std::size_t>(configuration[i]);
@@ -107,6 +112,12 @@ void PowerFeedback::fit() {
       if (std::find(columns.begin(), columns.end(), key) == columns.end()) columns.push_back(key);
     }
   }
+  for (std::size_t pass = 0; pass < prior_.size(); ++pass)
+    for (std::size_t level = 1; level < prior_[pass].size(); ++level) {
+      const std::pair<std::size_t, std::size_t> key{pass, level};
+      if (prior_[pass][level] != 0.0 && std::find(columns.begin(), columns.end(), key) == columns.end())
+        columns.push_back(key);
+    }
   const std::size_t n = columns.size() + 1;
   Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
@@ -126,7 +137,11 @@ void PowerFeedback::fit() {
   const double prior = std::max(1e-6, settings_.prior_share * mean_power_w_);
   const double spread = std::max(spread_w(), 1e-3 * prior);
   const double ridge = (spread * spread) / (prior * prior);
-  for (std::size_t c = 1; c < n; ++c) normal(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(c)) += ridge;
+  for (std::size_t c = 1; c < n; ++c) {
+    const auto i = static_cast<Eigen::Index>(c);
+    normal(i, i) += ridge;
+    rhs[i] += ridge * prior_at(columns[c - 1].first, columns[c - 1].second);
+  }
   normal(0, 0) += 1e-9;  // a well-posed system even if every column were collinear with the offset
   const Eigen::VectorXd x = normal.ldlt().solve(rhs);
 
@@ -148,7 +163,7 @@ double PowerFeedback::spread_w() const {
 double PowerFeedback::margin_w() const { return z_ * spread_w(); }
 
 void PowerFeedback::correct(const model::ConfigurationSpace& space, std::vector<double>& predicted_w) const {
-  if (!settings_.enabled || residuals_.empty()) return;
+  if (!settings_.enabled || (residuals_.empty() && prior_.empty())) return;
   for (std::size_t i = 0; i < predicted_w.size() && i < space.size(); ++i) predicted_w[i] += bias(space.decode(i));
 }
 

@@ -49,6 +49,40 @@ std::vector<std::string> level_hashes(const json& level, const std::string& wher
   return hashes;
 }
 
+// "power": {"configurations": [{"configuration": "0:0", "power_w": ...}, ...]}: the entries
+// that name a configuration of the space with a positive power (others are left out silently:
+// an older table, a run cut short).
+std::vector<std::pair<Configuration, double>> measured_powers(const json& document, const ConfigurationSpace& space) {
+  std::vector<std::pair<Configuration, double>> out;
+  const auto power = document.find("power");
+  if (power == document.end() || !power->is_object()) return out;
+  const auto list = power->find("configurations");
+  if (list == power->end() || !list->is_array() || space.pass_count() == 0) return out;
+  for (const json& entry : *list) {
+    if (!entry.is_object()) continue;
+    const auto name = entry.find("configuration"), watts = entry.find("power_w");
+    if (name == entry.end() || !name->is_string() || watts == entry.end() || !watts->is_number()) continue;
+    const double w = watts->get<double>();
+    const std::optional<Configuration> c = parse_configuration(name->get<std::string>(), space);
+    if (c && std::isfinite(w) && w > 0.0) out.emplace_back(*c, w);
+  }
+  return out;
+}
+
+// Best (every pass at level 0) and cheapest (every pass at its last level), when both were measured.
+std::optional<VariantTable::MeasuredRange> measured_range(std::span<const std::pair<Configuration, double>> powers,
+                                                          const ConfigurationSpace& space) {
+  Configuration best(space.pass_count(), 0), cheapest;
+  for (const PassVariants& pass : space.passes()) cheapest.push_back(static_cast<int>(pass.levels.size()) - 1);
+  std::optional<double> best_w, cheapest_w;
+  for (const auto& [c, w] : powers) {
+    if (c == best) best_w = w;
+    if (c == cheapest) cheapest_w = w;
+  }
+  if (!best_w || !cheapest_w) return std::nullopt;
+  return VariantTable::MeasuredRange{*best_w, *cheapest_w};
+}
+
 }  // namespace
 
 std::optional<VariantTable> parse_variant_table(const std::string& json_text, const std::string& source) {
@@ -100,7 +134,7 @@ std::optional<VariantTable> parse_variant_table(const std::string& json_text, co
     }
     if (!variants.levels.empty()) passes.push_back(std::move(variants));
   }
-  VariantTable table{ConfigurationSpace(std::move(passes)), std::move(by_hash), std::nullopt};
+  VariantTable table{ConfigurationSpace(std::move(passes)), std::move(by_hash), std::nullopt, std::nullopt, {}};
   if (const auto it = document.find("platform_costs"); it != document.end()) {
     PlatformCosts costs;
     bool ok = it->is_object();
@@ -121,6 +155,8 @@ std::optional<VariantTable> parse_variant_table(const std::string& json_text, co
                 << ": \"platform_costs\" needs batch, vertex, fragment, instruction "
                    "and texel, numbers >= 0; ignored\n";
   }
+  table.measured_power_w = measured_powers(document, table.space);
+  table.measured_range = measured_range(table.measured_power_w, table.space);
   return table;
 }
 

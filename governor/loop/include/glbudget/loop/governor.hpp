@@ -23,6 +23,7 @@
 #include "glbudget/model/power_model.hpp"
 #include "glbudget/model/run_time_model.hpp"
 #include "glbudget/model/selection.hpp"
+#include "glbudget/model/variant_table.hpp"
 
 namespace glbudget::loop {
 
@@ -39,6 +40,15 @@ struct GovernorSettings {
   // from the measured spread keeps windows within a power budget, and a window measured
   // over the budget selects again at once (power_feedback.hpp).
   FeedbackSettings feedback = {};
+  // Beyond the paper: the power `glbudget calibrate --app` measured at the best and the
+  // cheapest configuration (the variant table's "power"). A share of the range then takes
+  // the cheapest's saving from them rather than from the model, which has seen the cheapest
+  // drawn only if the run went there (share_of_range_w).
+  std::optional<model::VariantTable::MeasuredRange> calibrated_range;
+  // And every configuration it measured (each level alone): what the model misjudges of a
+  // level's saving, against what was measured, is the feedback's prior for that level
+  // (Governor::calibrated_prior). In the space's pass order; passes beyond them at level 0.
+  std::vector<std::pair<model::Configuration, double>> calibrated_powers;
   model::FitSettings fit = {};
   model::HistorySettings history = {};
 };
@@ -132,11 +142,13 @@ class Governor {
   void feed_back(const FrameRecord& record, Decision& decision);
   double initial_budget_w() const;
   double share_of_range_w() const;
+  void set_calibrated_prior();
 
   model::ConfigurationSpace space_;
   ErrorTable errors_;
   GovernorSettings settings_;
   model::RunTimeModel model_;
+  double p_min_w_ = 0.0;  // the profile's P_m
   Aim aim_ = Aim::observe;
   bool governing_ = false;
 
@@ -153,6 +165,7 @@ class Governor {
   std::uint64_t last_selection_frame_ = 0;
   double budget_w_ = 0.0;
   double margin_w_ = 0.0;
+  double overshoot_w_ = 0.0;  // windows' excess over the budget, less what later windows paid back
   std::size_t chosen_index_ = 0;
   bool within_budget_ = true;
   PowerFeedback feedback_;

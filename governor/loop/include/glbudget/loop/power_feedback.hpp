@@ -61,6 +61,11 @@ class PowerFeedback {
   // window has closed.
   double margin_w() const;
   double spread_w() const;
+  // Beyond the measured windows: what each pass's level is expected to add to the model's
+  // prediction before any configuration drawing it is measured ([pass][level], watts; level 0
+  // is the reference and ignored). The terms are drawn towards it instead of towards 0, as
+  // strongly as towards 0 without it; measured windows outweigh it as they do the 0 prior.
+  void set_prior(std::vector<std::vector<double>> terms);
   // Adds bias() to every configuration's prediction (by space index), in place.
   void correct(const model::ConfigurationSpace& space, std::vector<double>& predicted_w) const;
 
@@ -89,6 +94,10 @@ class PowerFeedback {
   // The fitted correction: offset + terms_[pass][level] (levels beyond a pass's size: 0).
   double offset_ = 0.0;
   std::vector<std::vector<double>> terms_;
+  std::vector<std::vector<double>> prior_;  // set_prior()
+  double prior_at(std::size_t pass, std::size_t level) const {
+    return pass < prior_.size() && level < prior_[pass].size() ? prior_[pass][level] : 0.0;
+  }
   double mean_power_w_ = 0.0;
   // Mean squared deviation of a window's residual from its configuration's residual before
   // it (between windows), and the within-window estimate used until there is one.

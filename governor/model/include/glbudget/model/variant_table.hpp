@@ -40,6 +40,15 @@ struct VariantTable {
   // numbers of a profile's "costs"): the run-time model starts from these rather than the
   // profile's, which came from other apps or none.
   std::optional<PlatformCosts> platform_costs;
+  // The power `glbudget calibrate --app` measured at the best configuration (every pass at
+  // level 0) and at the cheapest (every pass at its last level), from its "power" section.
+  struct MeasuredRange {
+    double best_w = 0.0, cheapest_w = 0.0;
+  };
+  std::optional<MeasuredRange> measured_range;
+  // Every configuration of the power run with its measured power (the best, each level alone,
+  // the cheapest), in the table's space.
+  std::vector<std::pair<Configuration, double>> measured_power_w;
 };
 
 // Malformed entries: one `glbudget:` line each, and the entry is left out.
