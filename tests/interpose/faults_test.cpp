@@ -472,3 +472,49 @@ TEST_CASE("fault: a driver without pipeline statistics, timer queries, compute s
     unlink(log.c_str());
   }
 }
+
+TEST_CASE("fault: a context destroyed, current, in the middle of a probe frame", "[integration][faults]") {
+  // probe_destroy_mid_frame draws its fourth frame and destroys the context without a swap; a
+  // new context draws the frames left. With the window at its second render-scale level and
+  // probes every other frame, the fourth frame is a probe frame: its shadow targets and
+  // read-backs go with the context. The app must end as it would without probes: its exit
+  // code, its last image byte for byte, no glbudget: line; the log whole for both contexts
+  // (the first context's frames 1-3, the second's 1-4), the second's probe frame flagged and
+  // measured.
+  auto run = [](int probe_period, const std::string& image, const std::string& log) {
+    unlink(log.c_str());
+    return run_process({probe_path("probe_destroy_mid_frame"), "--frames", "8", "--out", image},
+                       {{"LD_PRELOAD", shim_path()},
+                        {"GLBUDGET_LOG", log},
+                        {"GLBUDGET_SENSOR", "cpu"},
+                        {"GLBUDGET_FORCE", "1"},
+                        {"GLBUDGET_PROBE_PERIOD", std::to_string(probe_period)}});
+  };
+  const std::string image_off = temp_path("destroyed_off.ppm"), image_on = temp_path("destroyed_on.ppm");
+  const std::string log_off = temp_path("destroyed_off.csv"), log_on = temp_path("destroyed_on.csv");
+  const ProcessResult off = run(0, image_off, log_off);
+  const ProcessResult on = run(2, image_on, log_on);
+  INFO("without probes: " << off.err << "\nwith probes: " << on.err);
+  REQUIRE(off.exit_code == 0);
+  CHECK(on.exit_code == 0);
+  const std::string expected = read_file(image_off);
+  REQUIRE(!expected.empty());
+  CHECK(read_file(image_on) == expected);
+  CHECK(count_lines_with(on.err, "glbudget:") == 0);
+  const std::string text = read_file(log_on);
+  REQUIRE(!text.empty());
+  CHECK(text.back() == '\n');
+  std::map<std::string, std::set<long>> frames;  // by context
+  std::set<long> probed;
+  for (const Row& row : read_csv_rows_by_name(log_on)) {
+    REQUIRE(is_integer(row.at("frame")));
+    frames[row.at("context")].insert(std::stol(row.at("frame")));
+    if (row.at("probe") == "1" && row.at("context") == "1") {
+      probed.insert(std::stol(row.at("frame")));
+      CHECK(is_number(row.at("probe_error")));
+    }
+  }
+  CHECK(frames == std::map<std::string, std::set<long>>{{"0", {1, 2, 3}}, {"1", {1, 2, 3, 4}}});
+  CHECK(probed == std::set<long>{4});
+  for (const std::string& path : {image_off, image_on, log_off, log_on}) unlink(path.c_str());
+}
