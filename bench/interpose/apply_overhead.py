@@ -15,35 +15,19 @@
 Runs are interleaved (rounds), so drift in the machine's load hits every case alike.
 Usage: apply_overhead.py BUILD_DIR [--rounds N] [--scene S] [--size WxH]
 """
-import argparse
 import csv
 import os
 import statistics
-import subprocess
 import tempfile
-import time
 
-
-def run(cmd, env):
-    start = time.perf_counter()
-    subprocess.run(cmd, env=env, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    return time.perf_counter() - start
+from demo_bench import MANIFEST, Build, clean_environment, parser, run
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("build")
-    ap.add_argument("--rounds", type=int, default=5)
-    ap.add_argument("--scene", default="hall")
-    ap.add_argument("--size", default="320x180")
-    ap.add_argument("--frames", type=int, default=40)
-    a = ap.parse_args()
-    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    demo = os.path.join(a.build, "testapps/demo/demo")
-    shim = os.path.join(a.build, "interpose/libglbudget.so")
-    manifest = os.path.join(root, "testapps/demo/glbudget.toml")
-    w, h = a.size.split("x")
-    base = {k: v for k, v in os.environ.items() if k != "LD_PRELOAD" and not k.startswith("GLBUDGET_")}
+    a = parser(__doc__, rounds=5, frames=40).parse_args()
+    build = Build(a)
+    shim, manifest = build.shim, MANIFEST
+    base = clean_environment()
     cases = {
         "no shim": base,
         "shim, no manifest": dict(base, LD_PRELOAD=shim, GLBUDGET_SENSOR="cpu"),
@@ -51,8 +35,7 @@ def main():
                                             GLBUDGET_FORCE="0,0,0,0,0,0"),
     }
 
-    def demo_cmd(frames):
-        return [demo, "--scene", a.scene, "--detail", "0.2", "--width", w, "--height", h, "--frames", str(frames)]
+    demo_cmd = build.demo_cmd
 
     short, long_ = 1, 1 + a.frames
     times = {name: {"short": [], "long": []} for name in cases}

@@ -13,41 +13,24 @@ thread shares the machine's cores with the app's (llvmpipe renders on both here)
 its whole cost to the frame rate, not only the hand-over on the render thread.
 Usage: governor_overhead.py BUILD_DIR [--rounds N] [--scene S] [--size WxH] [--frames N]
 """
-import argparse
 import os
 import statistics
-import subprocess
 import tempfile
-import time
 
-
-def run(cmd, env):
-    start = time.perf_counter()
-    subprocess.run(cmd, env=env, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    return time.perf_counter() - start
+from demo_bench import MANIFEST, PROFILE, Build, clean_environment, parser, run
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("build")
-    ap.add_argument("--rounds", type=int, default=5)
-    ap.add_argument("--scene", default="hall")
-    ap.add_argument("--size", default="320x180")
-    ap.add_argument("--frames", type=int, default=300)
-    a = ap.parse_args()
-    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    demo = os.path.join(a.build, "testapps/demo/demo")
-    shim = os.path.join(a.build, "interpose/libglbudget.so")
-    w, h = a.size.split("x")
-    base = {k: v for k, v in os.environ.items() if k != "LD_PRELOAD" and not k.startswith("GLBUDGET_")}
-    logging = dict(base, LD_PRELOAD=shim, GLBUDGET_SENSOR="cpu",
-                   GLBUDGET_CONFIG=os.path.join(root, "testapps/demo/glbudget.toml"), GLBUDGET_COSTS="off")
+    a = parser(__doc__, rounds=5, frames=300).parse_args()
+    build = Build(a)
+    logging = dict(clean_environment(), LD_PRELOAD=build.shim, GLBUDGET_SENSOR="cpu", GLBUDGET_CONFIG=MANIFEST,
+                   GLBUDGET_COSTS="off")
     cases = {
         "logging": logging,
         "governor": dict(logging, GLBUDGET_POWER="100%", GLBUDGET_PROBE_PERIOD="0", GLBUDGET_SELECT_FRAMES="30",
-                         GLBUDGET_PROFILE=os.path.join(root, "tests/data/logs/demo_cpu.profile.json")),
+                         GLBUDGET_PROFILE=PROFILE),
     }
-    args = [demo, "--scene", a.scene, "--detail", "0.2", "--width", w, "--height", h]
+    args = build.demo_cmd()
     per_frame = {name: [] for name in cases}
     with tempfile.TemporaryDirectory() as tmp:
         for _ in range(a.rounds):

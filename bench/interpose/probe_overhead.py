@@ -11,19 +11,12 @@ machine's load hits every case alike.
 10 frames until every pass has been probed, then every 60), the configuration still forced.
 Usage: probe_overhead.py BUILD_DIR [--rounds N] [--scene S] [--size WxH] [--periods 10,30,default]
 """
-import argparse
 import csv
 import os
 import statistics
-import subprocess
 import tempfile
-import time
 
-
-def run(cmd, env):
-    start = time.perf_counter()
-    subprocess.run(cmd, env=env, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    return time.perf_counter() - start
+from demo_bench import MANIFEST, PROFILE, Build, clean_environment, parser, run
 
 
 def frame_intervals(log):
@@ -39,34 +32,24 @@ def frame_intervals(log):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("build")
-    ap.add_argument("--rounds", type=int, default=3)
-    ap.add_argument("--scene", default="hall")
-    ap.add_argument("--size", default="320x180")
-    ap.add_argument("--frames", type=int, default=60)
+    ap = parser(__doc__, rounds=3, frames=60)
     ap.add_argument("--periods", default="10,30")
     ap.add_argument("--config", default="1,0,0,1,0,0")
     a = ap.parse_args()
-    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    demo = os.path.join(a.build, "testapps/demo/demo")
-    shim = os.path.join(a.build, "interpose/libglbudget.so")
-    manifest = os.path.join(root, "testapps/demo/glbudget.toml")
-    w, h = a.size.split("x")
-    base = {k: v for k, v in os.environ.items() if k != "LD_PRELOAD" and not k.startswith("GLBUDGET_")}
-    shimmed = dict(base, LD_PRELOAD=shim, GLBUDGET_SENSOR="cpu", GLBUDGET_CONFIG=manifest, GLBUDGET_FORCE=a.config)
+    build = Build(a)
+    shimmed = dict(clean_environment(), LD_PRELOAD=build.shim, GLBUDGET_SENSOR="cpu", GLBUDGET_CONFIG=MANIFEST,
+                   GLBUDGET_FORCE=a.config)
     cases = {"no probes": dict(shimmed, GLBUDGET_PROBE_PERIOD="0")}
     for p in a.periods.split(","):
         if p == "default":
             # A budget starts the governor and so the default probes; at 100 % it draws the best
             # configuration (one probe stream), so its baseline is the same run without probes.
-            governed = dict(shimmed, GLBUDGET_POWER="100%",
-                            GLBUDGET_PROFILE=os.path.join(root, "tests/data/logs/demo_cpu.profile.json"))
+            governed = dict(shimmed, GLBUDGET_POWER="100%", GLBUDGET_PROFILE=PROFILE)
             cases["governed, none"] = dict(governed, GLBUDGET_PROBE_PERIOD="0")
             cases["governed, default"] = governed
         else:
             cases[f"probes every {p}"] = dict(shimmed, GLBUDGET_PROBE_PERIOD=p)
-    args = [demo, "--scene", a.scene, "--detail", "0.2", "--width", w, "--height", h]
+    args = build.demo_cmd()
     per_frame = {name: [] for name in cases}
     probe_ratio = {name: [] for name in cases}
     with tempfile.TemporaryDirectory() as tmp:
