@@ -220,6 +220,15 @@ void Governor::select(const FrameRecord& record) {
   transition_start_ns_ = record.time_ns;
 }
 
+// The calibration's watts above P_m to the run's: the best's power now above P_m over the
+// calibrated best's; NaN without a calibrated range, or when either is not above P_m.
+double Governor::calibrated_scale(double best_now_w) const {
+  const auto& range = settings_.calibrated_range;
+  if (!range || !(range->best_w > p_min_w_) || !std::isfinite(best_now_w) || !(best_now_w > p_min_w_))
+    return std::numeric_limits<double>::quiet_NaN();
+  return (best_now_w - p_min_w_) / (range->best_w - p_min_w_);
+}
+
 // A share of the range in watts. Beyond the paper: the range runs from the cheapest
 // configuration to the best-quality one, each at the model's prediction moved by its own
 // measured residual where it has one (the app starts at its best), the cheapest's else by the
@@ -241,12 +250,10 @@ double Governor::share_of_range_w() const {
     last_levels.push_back(static_cast<int>(pass.levels.size()) - 1);
   if (range && feedback_.measured(last_levels)) {
     low = power_[space_.index_of(last_levels)];
-  } else if (range) {
+  } else if (const double k = calibrated_scale(high); std::isfinite(k)) {
     // A share, so that a scene lighter or heavier than the calibration's, or a sensor that
     // drifted since, moves both ends together.
-    const double above = range->best_w - p_min_w_;
-    if (above > 0.0 && high > p_min_w_)
-      low = p_min_w_ + (high - p_min_w_) * std::clamp((range->cheapest_w - p_min_w_) / above, 0.0, 1.0);
+    low = p_min_w_ + k * std::clamp(range->cheapest_w - p_min_w_, 0.0, range->best_w - p_min_w_);
   }
   if (!std::isfinite(low)) {
     std::size_t cheapest = top;
@@ -275,10 +282,8 @@ void Governor::set_calibrated_prior() {
   if (measured.empty() || !range || !feedback_.settings().enabled) return;
   const model::Configuration best(space_.pass_count(), 0);
   const std::size_t best_index = space_.index_of(best);
-  const double best_now = model_power_[best_index] + feedback_.residual(best);
-  const double above = range->best_w - p_min_w_;
-  if (!(above > 0.0) || !(best_now > p_min_w_) || !std::isfinite(best_now)) return;
-  const double scale = (best_now - p_min_w_) / above;
+  const double scale = calibrated_scale(model_power_[best_index] + feedback_.residual(best));
+  if (!std::isfinite(scale)) return;
   std::vector<std::vector<double>> prior(space_.pass_count());
   for (const auto& [calibrated, watts] : measured) {
     model::Configuration c = calibrated;

@@ -141,6 +141,7 @@ class Governor {
   void hold(const FrameRecord& record);
   void feed_back(const FrameRecord& record, Decision& decision);
   double initial_budget_w() const;
+  double calibrated_scale(double best_now_w) const;
   double share_of_range_w() const;
   void set_calibrated_prior();
 
