@@ -197,7 +197,9 @@ void Governor::select(const FrameRecord& record) {
                                                                          : model::budget_watts(settings_.power, power_);
     // 100 % of the range admits the best configuration by definition: no margin below it.
     const bool whole_range = settings_.power.kind == model::Budget::Kind::ShareOfRange && settings_.power.value >= 1.0;
-    margin_w_ = whole_range ? 0.0 : feedback_.margin_w() + overshoot_w_;
+    // Besides the spread's margin and the windows' overshoot, what the quality probes add to
+    // the power of all frames: the model's predictions leave them out, the user's meter not.
+    margin_w_ = whole_range ? 0.0 : feedback_.margin_w() + overshoot_w_ + probe_overhead_.watts();
   }
   const model::Selection selection = aim_ == Aim::power
                                          ? model::select_configuration(power_, error_, budget_w, margin_w_)
@@ -323,14 +325,15 @@ void Governor::feed_back(const FrameRecord& record, Decision& decision) {
   } else if (const auto window =
                  feedback_.add(record.configuration, record.time_ns, record.power_w, decision.predicted_w)) {
     if (std::isfinite(budget_w_) && selections_ > 0) {
-      if (window->measured_w > budget_w_) reselect_now_ = true;
+      // The window as the user's meter sees it: its frames and the probes drawn among them.
+      const double measured_w = window->measured_w + probe_overhead_.watts();
+      if (measured_w > budget_w_) reselect_now_ = true;
       // Beyond the paper: windows over the budget accumulate, and windows under it pay back,
       // what the next selection keeps under the budget besides the spread's margin (integral
       // control). Where the model misjudges the savings of configurations not yet drawn, the
       // corrections learnt one configuration at a time converge slowly; this does not wait
       // for them. Never negative: it never admits more than the predictions do.
-      overshoot_w_ =
-          std::clamp(overshoot_w_ + (window->measured_w - budget_w_), 0.0, std::max(0.0, budget_w_ - p_min_w_));
+      overshoot_w_ = std::clamp(overshoot_w_ + (measured_w - budget_w_), 0.0, std::max(0.0, budget_w_ - p_min_w_));
     }
   }
   if (std::isfinite(decision.predicted_w)) decision.predicted_w += feedback_.bias(record.configuration);
@@ -338,6 +341,7 @@ void Governor::feed_back(const FrameRecord& record, Decision& decision) {
 
 Decision Governor::on_frame(const FrameRecord& record) {
   if (!started_) start(record);
+  probe_overhead_.add(record.probe, record.power_w);
   Decision decision;
   const model::OnlineFitter::Event learnt = see(record, decision);
   switch (learnt) {

@@ -16,6 +16,7 @@
 
 #include "glbudget/loop/error_table.hpp"
 #include "glbudget/loop/power_feedback.hpp"
+#include "glbudget/loop/probe_overhead.hpp"
 #include "glbudget/loop/step_times.hpp"
 #include "glbudget/model/configuration_space.hpp"
 #include "glbudget/model/online_fitter.hpp"
@@ -108,6 +109,7 @@ class Governor {
   const model::RunTimeModel& model() const { return model_; }
   const model::ConfigurationSpace& space() const { return space_; }
   const PowerFeedback& feedback() const { return feedback_; }
+  const ProbeOverhead& probe_overhead() const { return probe_overhead_; }
   // The last selection: every configuration's predicted power (corrected) and estimated
   // error, by ConfigurationSpace index, and the margin kept under the budget.
   struct SelectionTable {
@@ -170,6 +172,7 @@ class Governor {
   std::size_t chosen_index_ = 0;
   bool within_budget_ = true;
   PowerFeedback feedback_;
+  ProbeOverhead probe_overhead_;
   bool reselect_now_ = false;  // a window was measured over the budget
 
   std::size_t missing_power_ = 0;
