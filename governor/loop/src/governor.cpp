@@ -339,9 +339,18 @@ void Governor::feed_back(const FrameRecord& record, Decision& decision) {
   if (std::isfinite(decision.predicted_w)) decision.predicted_w += feedback_.bias(record.configuration);
 }
 
-Decision Governor::on_frame(const FrameRecord& record) {
-  if (!started_) start(record);
-  probe_overhead_.add(record.probe, record.power_w);
+Decision Governor::on_frame(const FrameRecord& frame) {
+  if (!started_) start(frame);
+  probe_overhead_.add(frame.probe, frame.power_w);
+  // The frame after a probe reads the probe's images back and compares them: part of its power
+  // is the probe's (counted by probe_overhead_), so neither the model nor the feedback takes
+  // it for its configuration's; it is seen as a frame without power.
+  const bool after_probe = !frame.probe && probe_overhead_.in_span();
+  if (after_probe) {
+    after_probe_record_ = frame;
+    after_probe_record_.power_w = std::numeric_limits<double>::quiet_NaN();
+  }
+  const FrameRecord& record = after_probe ? after_probe_record_ : frame;
   Decision decision;
   const model::OnlineFitter::Event learnt = see(record, decision);
   switch (learnt) {
@@ -356,8 +365,8 @@ Decision Governor::on_frame(const FrameRecord& record) {
       break;
   }
 
-  // A probe frame's power is not the frame's own: it neither counts as missing nor as back.
-  if (!record.probe) missing_power_ = std::isfinite(record.power_w) ? 0 : missing_power_ + 1;
+  // A probe's power is not the frame's own: it neither counts as missing nor as back.
+  if (!record.probe && !after_probe) missing_power_ = std::isfinite(record.power_w) ? 0 : missing_power_ + 1;
   if (missing_power_ > 0 && missing_power_ >= settings_.hold_after_missing_power) {
     hold(record);
     decision.event = Event::hold;

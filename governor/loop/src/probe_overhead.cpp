@@ -31,6 +31,7 @@ void ProbeOverhead::add(bool probe, double power_w) {
     span_left_ = kSpanFrames;
   }
   const bool finite = std::isfinite(power_w);
+  last_in_span_ = span_left_ > 0;
   if (span_left_ > 0) {
     // The probe frame's power must be measured for the span to count; the next frame's
     // excess is added when it is.

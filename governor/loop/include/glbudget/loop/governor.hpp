@@ -173,7 +173,8 @@ class Governor {
   bool within_budget_ = true;
   PowerFeedback feedback_;
   ProbeOverhead probe_overhead_;
-  bool reselect_now_ = false;  // a window was measured over the budget
+  FrameRecord after_probe_record_;  // reused: the frame after a probe, its power left out
+  bool reselect_now_ = false;       // a window was measured over the budget
 
   std::size_t missing_power_ = 0;
   bool holding_ = false;

@@ -15,6 +15,9 @@ class ProbeOverhead {
  public:
   // Every frame, in order; power NaN when not measured.
   void add(bool probe, double power_w);
+  // The frame last added is a probe's or the one after it: its power is not its
+  // configuration's own.
+  bool in_span() const { return last_in_span_; }
 
   // Watts the probes add to the mean of all frames (>= 0; 0 before a probe with power).
   double watts() const;
@@ -33,6 +36,7 @@ class ProbeOverhead {
   int span_left_ = 0;
   double span_excess_w_ = 0.0;
   bool span_measured_ = false;
+  bool last_in_span_ = false;
   double excess_w_ = 0.0;  // the probes' excess, exponentially (about 4 probes)
   std::size_t measured_ = 0;
   double probes_ = 0.0, frames_ = 0.0;  // decaying counts (about 200 frames)
