@@ -11,6 +11,7 @@ namespace demo {
 enum class Knob { Resolution, BaseShading, Reflections, Shadows, Metals, Antialiasing };
 inline constexpr int kKnobCount = 6;
 inline constexpr int kLevelCount = 3;
+inline constexpr int kConfigCount = 729;  // kLevelCount^kKnobCount
 
 struct Config {
   std::array<int, kKnobCount> level{};  // all best by default

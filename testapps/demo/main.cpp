@@ -15,6 +15,32 @@
 
 namespace {
 
+// One frame in every configuration, for ground truth over the whole space (the governor's error
+// estimates against the images they estimate): the frames are functions of time only, so each
+// image is the one a run at that configuration draws at that frame.
+int dump_all_configs(demo::Renderer& renderer, demo::GlContext& context, const demo::Scene& scene,
+                     const demo::Options& o) {
+  if (o.dump_dir.empty()) {
+    std::fprintf(stderr, "demo: --all-configs needs --dump DIR\n");
+    return 2;
+  }
+  const double time = static_cast<double>(o.start_frame) / o.fps;
+  for (int index = 0; index < demo::kConfigCount; ++index) {
+    const demo::Config config = demo::Config::from_index(index);
+    renderer.render(config, time);
+    const std::string path = demo::dump_path(o.dump_dir, scene.name, demo::format_config(config), o.start_frame);
+    const std::string error = demo::write_rgb_image(path, o.width, o.height, renderer.read_pixels());
+    if (!error.empty()) {
+      std::fprintf(stderr, "demo: %s\n", error.c_str());
+      return 1;
+    }
+    context.swap_buffers();
+  }
+  std::fprintf(stderr, "demo: frame %ld of %s at %dx%d in all %d configurations on %s, into %s\n", o.start_frame,
+               scene.name.c_str(), o.width, o.height, demo::kConfigCount, context.kind(), o.dump_dir.c_str());
+  return 0;
+}
+
 int run(const demo::Options& o) {
   const demo::Scene scene = *demo::make_scene(o.scene, o.detail);
   auto context = o.glx ? demo::create_glx_context(o.width, o.height) : demo::create_egl_context(o.width, o.height);
@@ -32,6 +58,7 @@ int run(const demo::Options& o) {
   }
 
   if (!o.dump_dir.empty()) std::filesystem::create_directories(o.dump_dir);
+  if (o.all_configs) return dump_all_configs(renderer, *context, scene, o);
   const std::string config_text = demo::format_config(o.config);
   long dumped = 0;
   for (long i = 0; i < o.frames; ++i) {

@@ -31,11 +31,12 @@ void number(std::string_view flag, std::string_view text, T& target, T min, T ma
 const char* usage() {
   return "usage: demo [--scene hall|sponza|valley|subway] [--width W] [--height H] [--detail D]\n"
          "            [--frames N] [--start-frame F] [--fps R] [--config r,b,s,h,m,a]\n"
-         "            [--dump DIR] [--dump-every K] [--glx] [--stats] [--bench]\n"
+         "            [--dump DIR] [--dump-every K] [--glx] [--stats] [--bench] [--all-configs]\n"
          "  --config   quality level per pass, 0 best .. 2 cheapest: resolution, base shading,\n"
          "             reflections, shadows, metals, antialiasing (default 0,0,0,0,0,0)\n"
          "  --stats    print the scene's statistics row (triangles, objects, size, draws per pass)\n"
-         "  --bench    print mean frame times of the best and the cheapest configuration\n";
+         "  --bench    print mean frame times of the best and the cheapest configuration\n"
+         "  --all-configs  dump the start frame in each of the 729 configurations into --dump\n";
 }
 
 Options parse_options(int argc, char** argv) {
@@ -45,6 +46,7 @@ Options parse_options(int argc, char** argv) {
     bool* const switch_flag = flag == "--glx"                      ? &o.glx
                               : flag == "--stats"                  ? &o.stats
                               : flag == "--bench"                  ? &o.bench
+                              : flag == "--all-configs"            ? &o.all_configs
                               : (flag == "--help" || flag == "-h") ? &o.help
                                                                    : nullptr;
     if (switch_flag) {

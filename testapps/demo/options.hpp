@@ -15,11 +15,12 @@ struct Options {
   long start_frame = 0;  // first frame number (time = frame / fps)
   double fps = 30.0;
   Config config = Config::best();
-  std::string dump_dir;  // empty: no images
-  long dump_every = 1;   // dump frames start, start + k, start + 2k, ...
-  bool glx = false;      // GLX window under X instead of EGL surfaceless
-  bool stats = false;    // print the statistics table row and exit
-  bool bench = false;    // time best and cheapest configurations and exit
+  std::string dump_dir;      // empty: no images
+  long dump_every = 1;       // dump frames start, start + k, start + 2k, ...
+  bool glx = false;          // GLX window under X instead of EGL surfaceless
+  bool stats = false;        // print the statistics table row and exit
+  bool bench = false;        // time best and cheapest configurations and exit
+  bool all_configs = false;  // dump the start frame in each of the 729 configurations and exit
   bool help = false;
 };
 
