@@ -311,13 +311,16 @@ class GovernorThread {
       row.est_error = d.est_error;
       row.decision = loop::event_name(d.event);
     }
+    // `first` lives in f.rows, which a probe frame's rows leave for held_ (and flush_held may
+    // free at once).
+    const uint64_t frame = first.frame;
     if (first.probe) {
-      held_.push_back({first.frame, std::move(f.rows)});
+      held_.push_back({frame, std::move(f.rows)});
       flush_held(0);
     } else {
       for (FrameRow& row : f.rows) FrameLog::get().push(row);
     }
-    if (first.frame > kHoldFrames) flush_held(first.frame - kHoldFrames);
+    if (frame > kHoldFrames) flush_held(frame - kHoldFrames);
   }
 
   // Every configuration's corrected prediction and estimated error at a selection, beside the
