@@ -50,6 +50,16 @@ void* next_after(const void* caller, const char* name) {
   link_map* from = object_of(caller);
   if (!from || !me) return nullptr;
   int id = find_hook(name);
+  if (from->l_next == me) {
+    // The caller comes just before us (a sanitizer runtime preloaded ahead of us, resolving
+    // its interceptors' real functions while it starts): what follows it is us, then what
+    // follows us, which glibc searches itself when asked from here. No dlopen either, which
+    // such a runtime intercepts and cannot serve before it has started.
+    if (void* p = real_dlsym(RTLD_NEXT, name)) return id < 0 ? p : hook_for_proc(name, p);
+    if (id < 0) return nullptr;
+    void* p = real_entry(id);
+    return p ? kHookAddress[id] : nullptr;
+  }
   for (link_map* l = from->l_next; l; l = l->l_next) {
     if (l == me) {
       if (id < 0) continue;  // we define nothing else for others to see

@@ -2,7 +2,6 @@
 
 #include <dlfcn.h>
 #include <cstdint>
-#include <cstring>
 
 namespace glbudget {
 
@@ -17,13 +16,21 @@ static uint64_t fnv1a(const char* s) {
   return x;
 }
 
+// Not strcmp: a sanitizer's runtime reaches here through dlsym while it starts, when its own
+// strcmp interceptor has no real function to call yet.
+static bool same_name(const char* a, const char* b) {
+  for (; *a && *a == *b; ++a, ++b) {
+  }
+  return *a == *b;
+}
+
 int find_hook(const char* name) {
   if (!name) return -1;
   const uint64_t mask = static_cast<uint64_t>(kHashSlots - 1);
   for (uint64_t j = fnv1a(name) & mask;; j = (j + 1) & mask) {
     const int id = kHashTable[j];
     if (id < 0) return -1;
-    if (std::strcmp(kHookNames[id], name) == 0) return id;
+    if (same_name(kHookNames[id], name)) return id;
   }
 }
 
@@ -31,12 +38,16 @@ using DlsymFn = void* (*)(void*, const char*);
 
 void* real_dlsym(void* handle, const char* name) {
   // dlvsym is not interposed, so it reaches glibc's own dlsym. glibc >= 2.34 versions it
-  // GLIBC_2.34; older glibc (and other x86-64 builds) GLIBC_2.2.5.
-  static DlsymFn fn = [] {
-    auto f = reinterpret_cast<DlsymFn>(dlvsym(RTLD_NEXT, "dlsym", "GLIBC_2.34"));
-    if (!f) f = reinterpret_cast<DlsymFn>(dlvsym(RTLD_NEXT, "dlsym", "GLIBC_2.2.5"));
-    return f;
-  }();
+  // GLIBC_2.34; older glibc (and other x86-64 builds) GLIBC_2.2.5. Looked up without a
+  // function-local static's guard, which ThreadSanitizer intercepts and cannot serve while
+  // it starts (it calls here through dlsym then); threads racing here store the same value.
+  static DlsymFn cached = nullptr;
+  DlsymFn fn = __atomic_load_n(&cached, __ATOMIC_ACQUIRE);
+  if (!fn) {
+    fn = reinterpret_cast<DlsymFn>(dlvsym(RTLD_NEXT, "dlsym", "GLIBC_2.34"));
+    if (!fn) fn = reinterpret_cast<DlsymFn>(dlvsym(RTLD_NEXT, "dlsym", "GLIBC_2.2.5"));
+    __atomic_store_n(&cached, fn, __ATOMIC_RELEASE);
+  }
   return fn ? fn(handle, name) : nullptr;
 }
 
