@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -24,6 +25,15 @@ bool file_exists(const std::string& path) {
   return stat(path.c_str(), &st) == 0;
 }
 
+std::string preload_value(const std::string& shim) {
+#ifdef SANITIZER_PRELOAD
+  // The sanitizer's runtime must be loaded before anything it intercepts is called.
+  return std::string(SANITIZER_PRELOAD) + ":" + shim;
+#else
+  return shim;
+#endif
+}
+
 int spawn_process(const std::vector<std::string>& argv, const std::map<std::string, std::string>& env,
                   const std::string& out_path, const std::string& err_path) {
   std::vector<std::string> env_strings;
@@ -32,7 +42,14 @@ int spawn_process(const std::vector<std::string>& argv, const std::map<std::stri
     std::string name = s.substr(0, s.find('='));
     if (!env.count(name) && name != "LD_PRELOAD" && name.rfind("GLBUDGET_", 0) != 0) env_strings.push_back(s);
   }
-  for (auto& [k, v] : env) env_strings.push_back(k + "=" + v);
+  for (auto& [k, v] : env) env_strings.push_back(k + "=" + (k == "LD_PRELOAD" && !v.empty() ? preload_value(v) : v));
+#ifdef SANITIZER_ENV
+  // The sanitizer's options for GL hosts (the top CMakeLists.txt says why), unless the test
+  // or the user set them. Any report fails the host's exit code, which every test checks.
+  const std::string sanitizer_env = SANITIZER_ENV;
+  const std::string sanitizer_var = sanitizer_env.substr(0, sanitizer_env.find('='));
+  if (!env.count(sanitizer_var) && !getenv(sanitizer_var.c_str())) env_strings.push_back(sanitizer_env);
+#endif
   std::vector<char*> envp, args;
   for (auto& s : env_strings) envp.push_back(s.data());
   envp.push_back(nullptr);

@@ -9,7 +9,12 @@ struct ProcessResult {
   std::string out, err;
 };
 
+// An env map's LD_PRELOAD is given to the process as preload_value(its value).
 ProcessResult run_process(const std::vector<std::string>& argv, const std::map<std::string, std::string>& env);
+
+// What LD_PRELOAD must hold to preload `shim`: in a sanitizer build (GLBUDGET_SANITIZED_SHIM)
+// the sanitizer's runtime ahead of it, since the host is not linked with it; else the shim.
+std::string preload_value(const std::string& shim);
 
 // The same, started and left running: its stdin is /dev/null, stdout and stderr go to the
 // files named (created or truncated). Returns its pid, or -1. wait_process() reaps it and

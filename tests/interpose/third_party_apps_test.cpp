@@ -35,7 +35,7 @@ ProcessResult run_under_xvfb(const std::vector<std::string>& wrapper, const std:
   std::vector<std::string> argv = {
       "xvfb-run", "-a", "-n", std::to_string(500 + getpid() % 400), "-s", "-screen 0 320x240x24"};
   argv.insert(argv.end(), wrapper.begin(), wrapper.end());
-  argv.insert(argv.end(), {"env", "LD_PRELOAD=" + shim_path()});
+  argv.insert(argv.end(), {"env", "LD_PRELOAD=" + preload_value(shim_path())});
   for (const auto& [name, value] : shim_env) argv.push_back(name + "=" + value);
   argv.insert(argv.end(), command.begin(), command.end());
   return run_process(argv, {});
