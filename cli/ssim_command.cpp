@@ -24,7 +24,7 @@ namespace {
 
 using namespace glbudget::quality;
 
-constexpr const char* kUsage = "usage: glbudget ssim A.png B.png [--scale 1|2|4] [--gpu]";
+constexpr const char* kUsage = "usage: glbudget ssim A.png B.png [C.png ...] [--scale 1|2|4] [--gpu]";
 
 void print_help() {
   std::printf("%s\n\n", kUsage);
@@ -36,7 +36,10 @@ void print_help() {
       "5-pixel border. --scale 2 or 4 first box-averages 2x2 or 4x4 blocks: faster, and a coarser\n"
       "measure (pixel noise and aliasing count less, banding and missing effects more).\n"
       "--gpu computes the same SSIM with the shim's compute shaders (GpuSsim) in an EGL\n"
-      "surfaceless OpenGL 4.3 (or OpenGL ES 3.1) context instead of on the CPU. See docs/ssim.md.\n");
+      "surfaceless OpenGL 4.3 (or OpenGL ES 3.1) context instead of on the CPU. See docs/ssim.md.\n"
+      "With more than two images, each after the first against the first, one line each:\n"
+      "its SSIM, a tab and its path (an image that cannot be compared is said on stderr, the\n"
+      "others still compared, and the exit status is 2).\n");
 }
 
 // One line: OpenImageIO's messages may run over several.
@@ -114,22 +117,38 @@ int ssim_main(std::span<char* const> args) {
       paths.emplace_back(arg);
     }
   }
-  if (paths.size() != 2) return fail(std::string("ssim needs two images; ") + kUsage);
+  if (paths.size() < 2) return fail(std::string("ssim needs two images; ") + kUsage);
   std::string error;
   const auto a = read_image(paths[0], error);
   if (!a) return fail(error);
-  const auto b = read_image(paths[1], error);
-  if (!b) return fail(error);
-  if (a->width != b->width || a->height != b->height)
-    return fail(paths[0] + " is " + std::to_string(a->width) + "x" + std::to_string(a->height) + " but " + paths[1] +
-                " is " + std::to_string(b->width) + "x" + std::to_string(b->height));
-  try {
-    const double value = gpu ? ssim_on_gpu(*a, *b, scale) : ssim(luma_of(*a).view(), luma_of(*b).view(), {scale, 0});
-    std::printf("%.9f\n", value);
-  } catch (const std::exception& e) {
-    return fail(e.what());
+  // Many images against one (a configuration space's against its best) in one process: the
+  // reference's luma once, and no process start per image.
+  const bool many = paths.size() > 2;
+  std::optional<LumaImage> a_luma;
+  int status = 0;
+  for (std::size_t i = 1; i < paths.size(); ++i) {
+    const auto b = read_image(paths[i], error);
+    if (!b) {
+      status = fail(error);
+      continue;
+    }
+    if (a->width != b->width || a->height != b->height) {
+      status = fail(paths[0] + " is " + std::to_string(a->width) + "x" + std::to_string(a->height) + " but " +
+                    paths[i] + " is " + std::to_string(b->width) + "x" + std::to_string(b->height));
+      continue;
+    }
+    try {
+      if (!gpu && !a_luma) a_luma = luma_of(*a);
+      const double value = gpu ? ssim_on_gpu(*a, *b, scale) : ssim(a_luma->view(), luma_of(*b).view(), {scale, 0});
+      if (many)
+        std::printf("%.9f\t%s\n", value, paths[i].c_str());
+      else
+        std::printf("%.9f\n", value);
+    } catch (const std::exception& e) {
+      status = fail(e.what());
+    }
   }
-  return 0;
+  return status;
 }
 
 }  // namespace glbudget::cli

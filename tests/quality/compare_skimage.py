@@ -209,6 +209,20 @@ def check_bad_input(glbudget, directory, a, b_other_size):
     return failures
 
 
+def check_batch(glbudget, directory, a, b, value):
+    """Several images against one: a line each (SSIM, tab, path), in order; one that cannot be
+    compared is said on stderr and the others still are, with exit status 2."""
+    missing = os.path.join(directory, "no-such-image.png")
+    result = run_glbudget(glbudget, a, b, a, missing, b)
+    lines = [line.split("\t") for line in result.stdout.splitlines()]
+    got = [(float(v), path) for v, path in lines] if all(len(line) == 2 for line in lines) else []
+    ok = (result.returncode == 2 and len(result.stderr.splitlines()) == 1 and "no-such-image" in result.stderr
+          and [path for _, path in got] == [b, a, b] and abs(got[0][0] - value) <= 1e-9
+          and got[1][0] == 1.0 and got[2][0] == got[0][0])
+    print(f"\nmany images against one: {'ok' if ok else 'FAIL'} (status {result.returncode}, {len(got)} lines)")
+    return 0 if ok else 1
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("glbudget", help="the glbudget command")
@@ -245,6 +259,9 @@ def main():
         other_size = os.path.join(directory, "other_size.png")
         write_png(other_size, constant(7, 5, 0))
         failures += check_bad_input(options.glbudget, directory, os.path.join(directory, "pair00_a.png"), other_size)
+        a, b = os.path.join(directory, "pair00_a.png"), os.path.join(directory, "pair00_b.png")
+        single = run_glbudget(options.glbudget, a, b)
+        failures += check_batch(options.glbudget, directory, a, b, float(single.stdout.split()[0]))
     if failures:
         print(f"\n{failures} failure(s)")
         return 1
