@@ -1,0 +1,216 @@
+#!/usr/bin/env python3
+"""The governor's error estimates against ground truth over the whole configuration space
+(issue 14, paper §6.2 and Fig. 10 with every configuration instead of a sample).
+
+Per scene of the demo:
+  1. the demo under `glbudget run --power P%` (probes at the shim's default, paced at --fps,
+     the cpu sensor), its level costs measured first by `glbudget calibrate --app` unless
+     --costs says otherwise; the governor's last selection logs every configuration's
+     predicted power and estimated error (additive over passes from its latest probes);
+  2. the demo's own image of that frame in all 729 configurations (`demo --all-configs`);
+     true error = 1 - SSIM of each against the best configuration's (`glbudget ssim`, one
+     process for all);
+  3. Spearman's rho and the mean absolute error between estimated and true error, and the
+     selection regret at each budget: the true error of the configuration the estimates pick
+     among those the governor predicts within the budget, less the lowest true error among
+     them (the estimates' cost in quality, the power predictions held fixed).
+Budgets are shares of the range of the selection's predictions (the cheapest to the best).
+
+Writes DIR/error-estimates.md and DIR/error_estimates.png.
+Usage: error_estimates.py BUILD_DIR --out DIR [--scenes hall,sponza,valley,subway]
+       [--budget 50] [--regret-budgets 30,40,50,60,70] [--frames 200] [--fps 10] [--size 320x180]
+       [--detail 0.2] [--costs measure|off|PATH] [--quick]
+"""
+import argparse
+import csv
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from evaluate import MANIFEST, PROFILE, ROOT, KNOBS, mean, number, spearman  # noqa: E402
+
+BEST = "0:0:0:0:0:0"
+
+
+def last_selection(selections_csv):
+    """{configuration: (predicted_w, est_error)} at the log's last selection, and its frame."""
+    with open(selections_csv) as f:
+        rows = list(csv.DictReader(f))
+    if not rows:
+        return {}, None
+    last = max(int(r["frame"]) for r in rows)
+    table = {r["configuration"]: (number(r["predicted_w"]), number(r["est_error"]))
+             for r in rows if int(r["frame"]) == last}
+    return table, last
+
+
+def regret(table, truth, share):
+    """The regret of picking by estimated error within a share of the predicted range."""
+    power = {c: p for c, (p, _) in table.items() if p is not None and c in truth}
+    if BEST not in power:
+        return float("nan")
+    low, high = min(power.values()), power[BEST]
+    budget = low + share * (high - low)
+    feasible = [c for c, p in power.items() if p <= budget]
+    if not feasible:
+        return float("nan")
+    picked = min(feasible, key=lambda c: (table[c][1], power[c]))
+    return truth[picked] - min(truth[c] for c in feasible)
+
+
+class Study:
+    def __init__(self, a, tmp):
+        self.a, self.tmp = a, tmp
+        self.demo = os.path.join(a.build, "testapps/demo/demo")
+        self.glbudget = os.path.join(a.build, "cli/glbudget")
+        self.width, self.height = a.size.split("x")
+        env = {k: v for k, v in os.environ.items() if not k.startswith("GLBUDGET_") and k != "LD_PRELOAD"}
+        env.update(GLBUDGET_SENSOR="cpu", GLBUDGET_SELECT_FRAMES=str(a.select_frames), GLBUDGET_TRANSITION_S="1")
+        self.env = dict(env, GLBUDGET_PROBE_PERIOD="0")
+        self.governed_env = env
+
+    def common(self, scene, frames):
+        return [self.demo, "--scene", scene, "--detail", str(self.a.detail), "--width", self.width,
+                "--height", self.height, "--frames", str(frames)]
+
+    def quiet(self, cmd, env):
+        subprocess.run(cmd, env=env, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+    def ssim_errors(self, reference, images):
+        """{image: 1 - SSIM against reference}, in one `glbudget ssim` process."""
+        out = subprocess.run([self.glbudget, "ssim", reference] + images, capture_output=True, text=True).stdout
+        errors = {}
+        for line in out.splitlines():
+            value, _, path = line.partition("\t")
+            try:
+                errors[path] = 1.0 - float(value)
+            except ValueError:
+                pass
+        return errors
+
+    def scene(self, scene):
+        a = self.a
+        env = dict(self.governed_env)
+        if a.costs == "measure":
+            costs = os.path.join(self.tmp, f"{scene}.variants.json")
+            self.quiet([self.glbudget, "calibrate", "--app", "--config", MANIFEST, "--frames", "20", "--power-frames",
+                        "20", "--fps", str(a.fps), "--sensor", "cpu", "--profile", PROFILE, "--output", costs, "--"]
+                       + self.common(scene, 100000), self.env)
+            env["GLBUDGET_COSTS"] = costs
+        elif a.costs != "off":
+            env["GLBUDGET_COSTS"] = a.costs
+        log = os.path.join(self.tmp, f"{scene}.csv")
+        self.quiet([self.glbudget, "run", "--fps", str(a.fps), "--log", log, "--power", f"{a.budget}%", "--profile",
+                    PROFILE, "--config", MANIFEST, "--"] + self.common(scene, a.frames), env)
+        table, frame = last_selection(log + ".selections.csv")
+        if frame is None:
+            return {"scene": scene, "error": "no selection in the governed run"}
+        images = os.path.join(self.tmp, f"{scene}_all")
+        self.quiet(self.common(scene, 1) + ["--start-frame", str(frame), "--all-configs", "--dump", images], self.env)
+        by_config = {}
+        for name in os.listdir(images):
+            levels = name.rsplit("_c", 1)[1].split("_f")[0]
+            by_config[":".join(levels)] = os.path.join(images, name)
+        others = [path for c, path in by_config.items() if c != BEST]
+        errors = self.ssim_errors(by_config[BEST], others)
+        truth = {c: 0.0 if c == BEST else errors[path] for c, path in by_config.items() if c == BEST or path in errors}
+        pairs = [(table[c][1], truth[c]) for c in truth if c in table and table[c][1] is not None]
+        estimated, computed = [p[0] for p in pairs], [p[1] for p in pairs]
+        return {"scene": scene, "frame": frame, "configurations": len(pairs),
+                "rho": spearman(estimated, computed),
+                "mae": mean([abs(e - t) for e, t in pairs]),
+                "largest": max((abs(e - t) for e, t in pairs), default=float("nan")),
+                "regret": {b: regret(table, truth, b / 100.0) for b in a.regret_budgets},
+                "pairs": pairs}
+
+
+def write(results, a, command):
+    lines = ["# Error estimates against ground truth, every configuration", "", "```sh", command, "```", "",
+             f"Each scene at {a.size}, detail {a.detail}, {a.frames} frames paced at {a.fps:g} fps under "
+             f"`glbudget run --power {a.budget}%` (the cpu sensor, quality probes at the shim's default, level costs "
+             f"{a.costs}). At the governor's last selection every configuration's estimated error (additive over "
+             "passes from its latest probes, paper §6.2) against the true error of the demo's own image of that "
+             "frame in that configuration (1 − SSIM against its best), all 729 configurations of "
+             f"({KNOBS}).", "",
+             "Regret at a budget: among the configurations the governor predicts within it (a share of the range "
+             "of its predictions), the true error of the one the estimates pick less the lowest true error there: "
+             "what the estimates cost in quality, the power predictions held fixed. Goal ≤ 0.005.", "",
+             "| scene | frame | configurations | Spearman ρ | mean abs. error | largest | "
+             + " | ".join(f"regret {b} %" for b in a.regret_budgets) + " |",
+             "|---|---:|---:|---:|---:|---:|" + "---:|" * len(a.regret_budgets)]
+    for r in results:
+        if "error" in r:
+            lines.append(f"| {r['scene']} | {r['error']} |")
+            continue
+        lines.append(f"| {r['scene']} | {r['frame']} | {r['configurations']} | {r['rho']:.3f} | {r['mae']:.4f} | "
+                     f"{r['largest']:.4f} | " + " | ".join(f"{r['regret'][b]:.4f}" for b in a.regret_budgets) + " |")
+    lines += ["", "![estimated against true error](error_estimates.png)", ""]
+    with open(os.path.join(a.out, "error-estimates.md"), "w") as f:
+        f.write("\n".join(lines))
+
+
+def plot(results, out):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(5.4, 4.8))
+    top = 0.0
+    for r in results:
+        if r.get("pairs"):
+            ax.scatter([p[1] for p in r["pairs"]], [p[0] for p in r["pairs"]], s=4, alpha=0.5,
+                       label=f"{r['scene']} (ρ {r['rho']:.2f})")
+            top = max(top, max(max(p) for p in r["pairs"]))
+    ax.plot([0, top * 1.05 or 1], [0, top * 1.05 or 1], color="grey", lw=0.8)
+    ax.set_xlabel("true error (1 - SSIM of the configuration's own image)")
+    ax.set_ylabel("estimated error (governor, last selection)")
+    ax.legend(fontsize=8, markerscale=3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "error_estimates.png"), dpi=100)
+    plt.close(fig)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("build")
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--scenes", default="hall,sponza,valley,subway")
+    ap.add_argument("--budget", type=int, default=50, help="the governed run's power budget, %%")
+    ap.add_argument("--regret-budgets", default="30,40,50,60,70")
+    ap.add_argument("--frames", type=int, default=200)
+    ap.add_argument("--fps", type=float, default=10.0)
+    ap.add_argument("--size", default="320x180")
+    ap.add_argument("--detail", type=float, default=0.2)
+    ap.add_argument("--select-frames", type=int, default=60)
+    ap.add_argument("--costs", default="measure")
+    ap.add_argument("--quick", action="store_true", help="one scene, small: checks every step runs")
+    a = ap.parse_args()
+    if a.quick:
+        a.scenes, a.size, a.detail, a.frames, a.select_frames, a.costs = "valley", "160x90", 0.05, 80, 20, "off"
+    a.regret_budgets = [int(b) for b in a.regret_budgets.split(",")]
+    a.build = os.path.abspath(a.build)
+    os.makedirs(a.out, exist_ok=True)
+    command = "python3 bench/evaluation/error_estimates.py build --out " + os.path.relpath(a.out, ROOT) + (
+        " --quick" if a.quick else "")
+    results = []
+    with tempfile.TemporaryDirectory() as tmp:
+        study = Study(a, tmp)
+        for scene in a.scenes.split(","):
+            r = study.scene(scene)
+            results.append(r)
+            if "error" in r:
+                print(f"{scene}: {r['error']}", flush=True)
+                continue
+            print(f"{scene}: frame {r['frame']}, {r['configurations']} configurations, rho {r['rho']:.3f}, "
+                  f"MAE {r['mae']:.4f}, regret " + ", ".join(f"{b} % {r['regret'][b]:.4f}" for b in a.regret_budgets),
+                  flush=True)
+    plot(results, a.out)
+    write(results, a, command)
+    print(f"error estimates: {os.path.join(a.out, 'error-estimates.md')}")
+    return 0 if all("error" not in r for r in results) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
