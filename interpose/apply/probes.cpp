@@ -780,6 +780,17 @@ ProbeFrames::~ProbeFrames() {
 void ProbeFrames::before_present() { impl_->before_present(); }
 void ProbeFrames::after_present() { impl_->after_present(); }
 
+void ProbeFrames::abandon_frame() {
+  Impl& p = *impl_;
+  if (!p.frame) return;
+  const ProbeGl& g = pgl();
+  if (GLsync fence = g.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0)) {
+    g.ClientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, 2'000'000'000);
+    g.DeleteSync(fence);
+  }
+  p.end_frame();
+}
+
 void ProbeFrames::after_swap(uint64_t next) {
   Impl& p = *impl_;
   if (!p.probe_possible()) return;

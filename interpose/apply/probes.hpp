@@ -57,6 +57,10 @@ class ProbeFrames {
   // Read-backs the GPU has finished reach the governor; wait: all of them (the context is
   // about to be destroyed or the process to exit, and the last probe frame is otherwise lost).
   void collect(bool wait);
+  // The context is destroyed while current, in the middle of a probe frame: waits (bounded)
+  // for the GPU to finish what the frame has drawn into the streams' shadows, before the
+  // driver frees them with the context, and ends the frame.
+  void abandon_frame();
   bool is_probe_frame(uint64_t frame) const;
   // One of the last probe frames (their rows are logged some frames later).
   bool was_probe_frame(uint64_t frame) const;

@@ -142,12 +142,14 @@ void context_destroyed(void* handle) {
   std::lock_guard lock(r.mu);
   bool current_here = t_ctx && t_ctx->handle == handle;
   if (current_here) instrumentation_release(*t_ctx);  // called before the real destroy
+  if (current_here && t_ctx->probes) t_ctx->probes->abandon_frame();
   retire(r, handle, current_here);
   // A destroyed context that is still current stays usable (GLX) until released; we stop
   // counting on it, since its queries are about to vanish.
   if (current_here) {
     t_ctx = nullptr;
     t_draw = nullptr;
+    t_probe = nullptr;
   }
 }
 
