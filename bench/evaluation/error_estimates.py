@@ -30,7 +30,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from evaluate import MANIFEST, PROFILE, ROOT, KNOBS, mean, number, spearman  # noqa: E402
+from evaluate import MANIFEST, PROFILE, ROOT, KNOBS, Evaluation, mean, number, spearman  # noqa: E402
 
 BEST = "0:0:0:0:0:0"
 
@@ -61,20 +61,8 @@ def regret(table, truth, share):
     return truth[picked] - min(truth[c] for c in feasible)
 
 
-class Study:
-    def __init__(self, a, tmp):
-        self.a, self.tmp = a, tmp
-        self.demo = os.path.join(a.build, "testapps/demo/demo")
-        self.glbudget = os.path.join(a.build, "cli/glbudget")
-        self.width, self.height = a.size.split("x")
-        env = {k: v for k, v in os.environ.items() if not k.startswith("GLBUDGET_") and k != "LD_PRELOAD"}
-        env.update(GLBUDGET_SENSOR="cpu", GLBUDGET_SELECT_FRAMES=str(a.select_frames), GLBUDGET_TRANSITION_S="1")
-        self.env = dict(env, GLBUDGET_PROBE_PERIOD="0")
-        self.governed_env = env
-
-    def common(self, scene, frames):
-        return [self.demo, "--scene", scene, "--detail", str(self.a.detail), "--width", self.width,
-                "--height", self.height, "--frames", str(frames)]
+class Study(Evaluation):
+    """The evaluation's runs (its binaries, sizes and environments), for another question."""
 
     def quiet(self, cmd, env):
         subprocess.run(cmd, env=env, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
@@ -185,6 +173,7 @@ def main():
     ap.add_argument("--detail", type=float, default=0.2)
     ap.add_argument("--select-frames", type=int, default=60)
     ap.add_argument("--costs", default="measure")
+    ap.add_argument("--feedback", default="1", choices=["0", "1"], help="GLBUDGET_FEEDBACK of the governed run")
     ap.add_argument("--quick", action="store_true", help="one scene, small: checks every step runs")
     a = ap.parse_args()
     if a.quick:
