@@ -24,8 +24,6 @@ Usage: error_estimates.py BUILD_DIR --out DIR [--scenes hall,sponza,valley,subwa
 import argparse
 import csv
 import os
-import statistics
-import subprocess
 import sys
 import tempfile
 
@@ -64,32 +62,9 @@ def regret(table, truth, share):
 class Study(Evaluation):
     """The evaluation's runs (its binaries, sizes and environments), for another question."""
 
-    def quiet(self, cmd, env):
-        subprocess.run(cmd, env=env, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-
-    def ssim_errors(self, reference, images):
-        """{image: 1 - SSIM against reference}, in one `glbudget ssim` process."""
-        out = subprocess.run([self.glbudget, "ssim", reference] + images, capture_output=True, text=True).stdout
-        errors = {}
-        for line in out.splitlines():
-            value, _, path = line.partition("\t")
-            try:
-                errors[path] = 1.0 - float(value)
-            except ValueError:
-                pass
-        return errors
-
     def scene(self, scene):
         a = self.a
-        env = dict(self.governed_env)
-        if a.costs == "measure":
-            costs = os.path.join(self.tmp, f"{scene}.variants.json")
-            self.quiet([self.glbudget, "calibrate", "--app", "--config", MANIFEST, "--frames", "20", "--power-frames",
-                        "20", "--fps", str(a.fps), "--sensor", "cpu", "--profile", PROFILE, "--output", costs, "--"]
-                       + self.common(scene, 100000), self.env)
-            env["GLBUDGET_COSTS"] = costs
-        elif a.costs != "off":
-            env["GLBUDGET_COSTS"] = a.costs
+        env = dict(self.governed_env, GLBUDGET_COSTS=self.level_costs(scene))
         log = os.path.join(self.tmp, f"{scene}.csv")
         self.quiet([self.glbudget, "run", "--fps", str(a.fps), "--log", log, "--power", f"{a.budget}%", "--profile",
                     PROFILE, "--config", MANIFEST, "--"] + self.common(scene, a.frames), env)
@@ -97,7 +72,7 @@ class Study(Evaluation):
         if frame is None:
             return {"scene": scene, "error": "no selection in the governed run"}
         images = os.path.join(self.tmp, f"{scene}_all")
-        self.quiet(self.common(scene, 1) + ["--start-frame", str(frame), "--all-configs", "--dump", images], self.env)
+        self.quiet(self.common(scene, 1) + ["--start-frame", str(frame), "--all-configs", "--dump", images])
         by_config = {}
         for name in os.listdir(images):
             levels = name.rsplit("_c", 1)[1].split("_f")[0]
@@ -172,7 +147,9 @@ def main():
     ap.add_argument("--size", default="320x180")
     ap.add_argument("--detail", type=float, default=0.2)
     ap.add_argument("--select-frames", type=int, default=60)
-    ap.add_argument("--costs", default="measure")
+    ap.add_argument("--costs", default="measure", help="the levels' costs: 'measure' (glbudget calibrate --app "
+                    "on each scene first), 'off', or a path")
+    ap.add_argument("--calibrate-frames", type=int, default=20, help="frames per level of glbudget calibrate --app")
     ap.add_argument("--feedback", default="1", choices=["0", "1"], help="GLBUDGET_FEEDBACK of the governed run")
     ap.add_argument("--quick", action="store_true", help="one scene, small: checks every step runs")
     a = ap.parse_args()

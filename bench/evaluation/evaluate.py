@@ -107,6 +107,36 @@ class Evaluation:
         return [self.demo, "--scene", scene, "--detail", str(self.a.detail), "--width", self.width,
                 "--height", self.height, "--frames", str(frames or self.a.frames)]
 
+    def quiet(self, cmd, env=None):
+        """Runs cmd to its end, its output discarded; env: the reference runs' unless given."""
+        subprocess.run(cmd, env=self.env if env is None else env, check=True, stdout=subprocess.DEVNULL,
+                       stderr=subprocess.DEVNULL)
+
+    def level_costs(self, scene):
+        """GLBUDGET_COSTS for the governed runs of a scene: with --costs measure, the levels'
+        costs and each level's power measured by `glbudget calibrate --app` first, as a user would,
+        at the pace the app will run at under a budget; else --costs as given (off, or a path)."""
+        a = self.a
+        if a.costs != "measure":
+            return a.costs
+        costs = os.path.join(self.tmp, f"{scene}.variants.json")
+        self.quiet([self.glbudget, "calibrate", "--app", "--config", MANIFEST, "--frames", str(a.calibrate_frames),
+                    "--power-frames", str(a.calibrate_frames), "--fps", str(a.fps), "--sensor", "cpu", "--profile",
+                    PROFILE, "--output", costs, "--"] + self.common(scene, 100000))
+        return costs
+
+    def ssim_errors(self, reference, images):
+        """{image: 1 - SSIM against reference} for many images, in one `glbudget ssim` process."""
+        out = subprocess.run([self.glbudget, "ssim", reference] + images, capture_output=True, text=True).stdout
+        errors = {}
+        for line in out.splitlines():
+            value, _, path = line.partition("\t")
+            try:
+                errors[path] = 1.0 - float(value)
+            except ValueError:
+                pass
+        return errors
+
     def ssim_error(self, reference, image):
         out = subprocess.run([self.glbudget, "ssim", reference, image], capture_output=True, text=True).stdout
         try:
@@ -129,26 +159,14 @@ class Evaluation:
         cmd = [self.glbudget, "run", "--fps", str(self.a.fps), "--log", log] + extra + ["--"] + self.common(scene)
         if dump:
             cmd += ["--dump", dump, "--dump-every", str(self.a.every)]
-        subprocess.run(cmd, env=self.governed_env if governed else self.env, check=True, stdout=subprocess.DEVNULL,
-                       stderr=subprocess.DEVNULL)
+        self.quiet(cmd, self.governed_env if governed else self.env)
         return log
 
     def scene(self, scene):
         a, result = self.a, {"scene": scene}
-        if a.costs == "measure":
-            costs = os.path.join(self.tmp, f"{scene}.variants.json")
-            # As a user would: the levels' instruction and texel counts, then each level's
-            # power alone at the pace the app will run at under a budget.
-            subprocess.run([self.glbudget, "calibrate", "--app", "--config", MANIFEST, "--frames", str(a.calibrate_frames),
-                            "--power-frames", str(a.calibrate_frames), "--fps", str(a.fps), "--sensor", "cpu",
-                            "--profile", PROFILE, "--output", costs, "--"] + self.common(scene, 100000),
-                           env=self.env, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-            self.governed_env["GLBUDGET_COSTS"] = costs
-        else:
-            self.governed_env["GLBUDGET_COSTS"] = a.costs
+        self.governed_env["GLBUDGET_COSTS"] = self.level_costs(scene)
         truth = os.path.join(self.tmp, f"{scene}_truth")
-        subprocess.run(self.common(scene) + ["--dump", truth, "--dump-every", str(a.every)], env=self.env, check=True,
-                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        self.quiet(self.common(scene) + ["--dump", truth, "--dump-every", str(a.every)])
         tail = lambda frames: [number(r["power_w"]) for f, r in frames.items() if f > a.frames // 2]
         best = frames_of(self.run(scene, "best", ["--force", "0,0,0,0,0,0", "--config", MANIFEST]))
         cheapest_shown = os.path.join(self.tmp, f"{scene}_cheapest_shown")
@@ -228,19 +246,17 @@ class Evaluation:
         picked = [estimates[round(i * (len(estimates) - 1) / max(1, k - 1))] for i in range(k)]
         frames = self.a.error_frame
         reference = os.path.join(self.tmp, f"{scene}_fig10_best")
-        subprocess.run(self.common(scene, frames) + ["--dump", reference, "--dump-every", str(frames)], env=self.env,
-                       check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        self.quiet(self.common(scene, frames) + ["--dump", reference, "--dump-every", str(frames)])
         best_image = os.path.join(reference, sorted(os.listdir(reference))[-1])
-        out = []
+        shown_images = []
         for estimate, configuration in dict((c, (e, c)) for e, c in picked).values():
             shown = os.path.join(self.tmp, f"{scene}_fig10_{configuration.replace(':', '')}")
-            subprocess.run(self.common(scene, frames) + ["--config", configuration.replace(":", ","), "--dump", shown,
-                                                         "--dump-every", str(frames)],
-                           env=self.env, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-            computed = self.ssim_error(best_image, os.path.join(shown, sorted(os.listdir(shown))[-1]))
-            if computed is not None:
-                out.append((configuration, estimate, computed))
-        return out
+            self.quiet(self.common(scene, frames) + ["--config", configuration.replace(":", ","), "--dump", shown,
+                                                     "--dump-every", str(frames)])
+            shown_images.append((configuration, estimate, os.path.join(shown, sorted(os.listdir(shown))[-1])))
+        computed = self.ssim_errors(best_image, [path for _, _, path in shown_images])
+        return [(configuration, estimate, computed[path]) for configuration, estimate, path in shown_images
+                if path in computed]
 
 
 def plot(results, fig10, out_dir, a):
