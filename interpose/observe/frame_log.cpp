@@ -34,7 +34,7 @@ int format_row(const FrameRow& r, char* out, int size) {
   }
   char power[128];
   sensors::format_power_fields(r.energy, power, sizeof power);
-  char governed[96] = "";
+  char governed[128] = "";  // three numbers of up to 31 characters, the decision
   if (r.decision) {
     auto number = [](double v, const char* format, char* text, size_t size) {
       if (std::isfinite(v))

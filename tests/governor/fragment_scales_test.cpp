@@ -13,7 +13,7 @@ using namespace glbudget::model::testing;
 namespace {
 
 // A render scale (area 1, 0.64, 0.36) over a scene pass, and a shadow map scaling itself.
-ConfigurationSpace scaled_space() {
+ConfigurationSpace fragment_scales_space() {
   std::vector<PassVariants> passes;
   passes.push_back({"resolution", {{0, 0, 0, 1.0}, {0, 0, 0, 0.64}, {0, 0, 0, 0.36}}, {"scene"}});
   passes.push_back({"scene", {{10, 100, 2}, {10, 50, 1}}, {}});
@@ -29,7 +29,7 @@ ConfiguredSample frame(const Configuration& c, double scene_fragments, double sh
 
 TEST_CASE("fragment scales start as declared and take the measured ratio of a level seen often enough",
           "[model][scales]") {
-  const ConfigurationSpace space = scaled_space();
+  const ConfigurationSpace space = fragment_scales_space();
   const FragmentScales declared(space);
   CHECK(declared.at(1, 0, 1) == 0.64);
   CHECK(declared.at(2, 2, 1) == 0.25);
@@ -67,7 +67,7 @@ TEST_CASE("fragment scales ignore frames that cannot tell and passes scaled twic
   }
   CHECK(!measure_fragment_scales(history, twice, 5).measured(1, 0, 1));
 
-  const ConfigurationSpace space = scaled_space();
+  const ConfigurationSpace space = fragment_scales_space();
   std::vector<ConfiguredSample> broken;
   for (int t = 0; t < 10; ++t) {
     broken.push_back(frame({0, 0, 0}, 1000.0, 4000.0));
@@ -82,7 +82,7 @@ TEST_CASE("fragment scales ignore frames that cannot tell and passes scaled twic
 }
 
 TEST_CASE("the predictor converts counts between levels with the measured scales", "[model][scales]") {
-  const ConfigurationSpace space = scaled_space();
+  const ConfigurationSpace space = fragment_scales_space();
   PowerModel model(synthetic_profile());
   model.set("scene", {0.0, 0.0, 50.0});
   model.set("shadows", {0.0, 0.0, 10.0});

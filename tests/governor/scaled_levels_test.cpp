@@ -16,7 +16,7 @@ using namespace glbudget::model::testing;
 namespace {
 
 // resolution (scales scene and glass), scene, shadows (scales itself), glass (off at level 1).
-ConfigurationSpace scaled_space() {
+ConfigurationSpace scaled_levels_space() {
   PassVariants resolution{"resolution", {}, {"scene", "glass"}};
   for (double s : {1.0, 0.64, 0.36}) {
     VariantCost level;
@@ -58,7 +58,7 @@ std::vector<PassFrame> drawn_in(const ConfigurationSpace& space, const Configura
 }  // namespace
 
 TEST_CASE("render scale and shadow-map size predict every configuration from any other", "[model][reuse][scale]") {
-  const ConfigurationSpace space = scaled_space();
+  const ConfigurationSpace space = scaled_levels_space();
   REQUIRE(space.size() == 36);
   const PowerModel model = scaled_model();
   // Costs per fragment do not depend on how many are drawn: coefficients fitted in one
@@ -86,7 +86,7 @@ TEST_CASE("render scale and shadow-map size predict every configuration from any
 
 TEST_CASE("predict-all agrees with predict for every configuration with shader levels, scales and skips",
           "[model][reuse][scale]") {
-  const ConfigurationSpace space = scaled_space();
+  const ConfigurationSpace space = scaled_levels_space();
   ConfigurationPredictor predictor(space, scaled_model(), {0, 0, 0, 0}, {0.01, 0.2});
   predictor.set_frame(drawn_in(space, {1, 1, 1, 0}), {1, 1, 1, 0});
   std::vector<double> all;
@@ -98,7 +98,7 @@ TEST_CASE("predict-all agrees with predict for every configuration with shader l
 }
 
 TEST_CASE("a skipped pass is predicted from what it drew when it was last on", "[model][reuse][scale]") {
-  const ConfigurationSpace space = scaled_space();
+  const ConfigurationSpace space = scaled_levels_space();
   const PowerModel model = scaled_model();
   ConfigurationPredictor predictor(space, model, {0, 0, 0, 0}, {});
   // Never seen on: glass adds nothing, whatever its level.

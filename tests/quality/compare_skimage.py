@@ -15,6 +15,7 @@ Also checks that bad input exits with status 2 and one line `glbudget: ...` on s
 Prints a table; exits 1 on any failure.
 """
 import argparse
+import functools
 import io
 import os
 import subprocess
@@ -33,8 +34,10 @@ C1, C2 = (0.01 * 255) ** 2, (0.03 * 255) ** 2
 
 # ---- images -------------------------------------------------------------------------------
 
+@functools.lru_cache(maxsize=None)
 def rendered(width, height, shift=0.0, seed=0):
-    """A rendered-like RGB frame: sky gradient, checkered floor in perspective, lit spheres."""
+    """A rendered-like RGB frame: sky gradient, checkered floor in perspective, lit spheres.
+    Cached (several pairs share a frame); callers never write into it."""
     v, u = np.mgrid[0:height, 0:width].astype(np.float64)
     u = (u + 0.5 + shift) / width
     v = (v + 0.5) / height
@@ -57,7 +60,9 @@ def rendered(width, height, shift=0.0, seed=0):
         specular = np.maximum(0, -0.3 * dx - 0.4 * dy + 0.87 * nz) ** 40
         shaded = np.array(colour) * (0.1 + 0.9 * lambert)[..., None] + 255 * specular[..., None]
         image = np.where((r2 < 1)[..., None], shaded, image)
-    return to_u8(image)
+    frame = to_u8(image)
+    frame.flags.writeable = False
+    return frame
 
 
 def to_u8(image):
@@ -178,10 +183,11 @@ def pairs():
 
 
 def write_png(path, array):
+    # compress_level 1: the 4096x4096 pair takes seconds to deflate at the default level.
     if array.dtype == np.uint16:
-        Image.fromarray(array.astype(np.uint16)).save(path)  # mode I;16
+        Image.fromarray(array.astype(np.uint16)).save(path, compress_level=1)  # mode I;16
     else:
-        Image.fromarray(array).save(path)
+        Image.fromarray(array).save(path, compress_level=1)
 
 
 def run_glbudget(glbudget, *args):

@@ -5,10 +5,11 @@
 #include "glbudget/sensors/energy_integrator.hpp"
 #include "glbudget/sensors/energy_timeline.hpp"
 
+#include "nanoseconds.hpp"
+
 using namespace glbudget::sensors;
 
 namespace {
-constexpr std::int64_t ms = 1'000'000;
 Reading energy(double joules) { return Reading{ReadStatus::ok, ReadingKind::energy_j, joules, {}}; }
 Reading power(double watts) { return Reading{ReadStatus::ok, ReadingKind::power_w, watts, {}}; }
 Reading status(ReadStatus s) { return Reading{s, ReadingKind::energy_j, 0.0, "test"}; }

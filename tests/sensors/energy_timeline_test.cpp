@@ -4,11 +4,9 @@
 
 #include "glbudget/sensors/energy_timeline.hpp"
 
-using namespace glbudget::sensors;
+#include "nanoseconds.hpp"
 
-namespace {
-constexpr std::int64_t ms = 1'000'000;
-}
+using namespace glbudget::sensors;
 
 TEST_CASE("an empty timeline knows nothing", "[timeline]") {
   EnergyTimeline timeline;

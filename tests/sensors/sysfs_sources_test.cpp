@@ -6,6 +6,8 @@
 #include "glbudget/sensors/energy_integrator.hpp"
 #include "glbudget/sensors/registry.hpp"
 
+#include "nanoseconds.hpp"
+
 using namespace glbudget::sensors;
 using glbudget::sensors::testing::FakeSysfs;
 
@@ -156,7 +158,6 @@ TEST_CASE("a rapl counter that really goes backwards is rejected downstream", "[
   auto opened = open(sysfs, "rapl");
   REQUIRE(opened.source);
   EnergyIntegrator integrator;
-  constexpr std::int64_t ms = 1'000'000;
   integrator.accept(0, opened.source->read(0));
   sysfs.write("class/powercap/intel-rapl:0/energy_uj", "49000000");  // 1 J backwards
   // Read as a wrap it would be 262 kJ in 10 ms: implausible, so dropped.
