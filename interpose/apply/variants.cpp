@@ -3,12 +3,17 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <set>
 
 #include "apply_gl.hpp"
+#include "gl_calls.hpp"
+#include "gl_errors.hpp"
 #include "messages.hpp"
+#include "options.hpp"
 #include "glbudget/instrument/defines.hpp"
 #include "pass_names.hpp"
 #include "shader_instrumentation.hpp"
@@ -357,6 +362,33 @@ std::vector<ShaderSource> variant_sources(const std::vector<ShaderSource>& app, 
   return out;
 }
 
+// Set once the driver has run out of memory building a variant: none is built after it (each
+// would ask for more of what is short); levels without one draw the app's programs.
+std::atomic<bool> g_out_of_memory{false};
+
+// GLBUDGET_TEST_OUT_OF_MEMORY=pass:level (a test switch): while that level's variant is built,
+// ask the driver for a buffer no machine has, for a real GL_OUT_OF_MEMORY from the driver.
+void provoke_out_of_memory_for_test(const std::string& pass, size_t level) {
+  const auto& wanted = options().test_out_of_memory;
+  if (std::find(wanted.begin(), wanted.end(), std::pair{pass, level}) == wanted.end()) return;
+  const GlCalls& g = gl();
+  if (!g.GenBuffers || !g.BindBuffer || !g.BufferData || !g.DeleteBuffers) return;
+  GLint bound = 0;
+  g.GetIntegerv(GL_COPY_WRITE_BUFFER_BINDING, &bound);
+  GLuint buffer = 0;
+  g.GenBuffers(1, &buffer);
+  g.BindBuffer(GL_COPY_WRITE_BUFFER, buffer);
+  g.BufferData(GL_COPY_WRITE_BUFFER, std::numeric_limits<GLsizeiptr>::max() / 2, nullptr, GL_STATIC_DRAW);
+  g.BindBuffer(GL_COPY_WRITE_BUFFER, static_cast<GLuint>(bound));
+  g.DeleteBuffers(1, &buffer);
+}
+
+std::string error_names(const std::vector<GLenum>& errors) {
+  std::string names;
+  for (GLenum e : errors) names += (names.empty() ? "" : ", ") + gl_error_name(e);
+  return names;
+}
+
 GLuint link_sources(GLuint app, const std::vector<ShaderSource>& sources, const GlCaps& caps,
                     const NameBindings& bindings, std::string* error) {
   const ApplyGl& g = agl();
@@ -466,7 +498,7 @@ std::shared_ptr<VariantSet> build_variants(GLuint program, PassId app_hash, int 
     Variant v;
     v.pass_hash = app_hash;
     v.draws = level.draws;
-    if (level.changes_program()) {
+    if (level.changes_program() && !g_out_of_memory) {
       const std::string where =
           "pass '" + mp.name + "' level " + std::to_string(l) + (level.name.empty() ? "" : " (" + level.name + ")");
       if (!apply_gl_has_program_uniforms()) {
@@ -497,8 +529,28 @@ std::shared_ptr<VariantSet> build_variants(GLuint program, PassId app_hash, int 
           }
           map_subroutines(app_stages, stages, v);
           hold_uniforms(mp, l, level, v.program);
-          set->programs.push_back(v.program);
         }
+        // The app's errors were moved aside by the caller (OwnGlWork): what is pending now,
+        // the variant's build raised. A variant built amid errors is not drawn.
+        provoke_out_of_memory_for_test(mp.name, l);
+        const std::vector<GLenum> raised = drain_gl_errors();
+        const bool out_of_memory = std::find(raised.begin(), raised.end(), GL_OUT_OF_MEMORY) != raised.end();
+        if (!raised.empty()) {
+          if (v.program) agl().DeleteProgram(v.program);
+          v = Variant{};
+          v.pass_hash = app_hash;
+          v.draws = level.draws;
+        }
+        if (out_of_memory) {
+          g_out_of_memory = true;
+          say(where + ": the driver ran out of memory (GL_OUT_OF_MEMORY) building the variant of program " +
+              hash_text(app_hash) + "; no more variants are built, and levels without one draw the app's programs");
+        } else if (!raised.empty()) {
+          say_once(where + hash_text(app_hash) + "errors", where + ": building the variant of program " +
+                                                               hash_text(app_hash) + " raised " + error_names(raised) +
+                                                               "; this level draws the app's program");
+        }
+        if (v.program) set->programs.push_back(v.program);
       }
     }
     any |= v.program != 0 || !v.draws;

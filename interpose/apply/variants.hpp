@@ -89,6 +89,9 @@ struct NameBindings {
 };
 // With `inst` (instrumentation on in this context) each variant is instrumented too, counting
 // under its own program hash; one that does not build instrumented is built plainly.
+// The caller has moved the app's pending GL errors aside (state/gl_errors.hpp, OwnGlWork): a
+// level whose build raises an error is dropped with one glbudget: line, and after a
+// GL_OUT_OF_MEMORY no variant is built again in the process.
 std::shared_ptr<VariantSet> build_variants(GLuint program, PassId app_hash, int pass,
                                            const std::vector<ShaderSource>& sources, const GlCaps& caps,
                                            const NameBindings& bindings, Instrumentation* inst);

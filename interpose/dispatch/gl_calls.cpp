@@ -28,6 +28,7 @@ bool load_gl_calls() {
   load_one(g.BindBuffer, "glBindBuffer");
   load_one(g.GetShaderiv, "glGetShaderiv");
   load_one(g.Flush, "glFlush");
+  load_one(g.GetError, "glGetError");
   load_one(g.GetProgramiv, "glGetProgramiv");
   load_one(g.GetProgramResourceIndex, "glGetProgramResourceIndex");
   load_one(g.ShaderStorageBlockBinding, "glShaderStorageBlockBinding");

@@ -1,6 +1,7 @@
 // The GL entry points the shim itself calls, resolved once per process. The shim calls
 // only these, and only in ways that cannot raise a GL error (so the app's glGetError never
-// sees one of ours); it never calls glGetError, which would swallow the app's errors.
+// sees one of ours). It calls glGetError only with the app's pending errors moved aside
+// (state/gl_errors.hpp), around work that can fail (building variants).
 #pragma once
 #include "gl_types.hpp"
 
@@ -20,6 +21,7 @@ struct GlCalls {
   PFNGLBINDBUFFERPROC BindBuffer = nullptr;
   PFNGLGETSHADERIVPROC GetShaderiv = nullptr;
   void(APIENTRYP Flush)(void) = nullptr;
+  GLenum(APIENTRYP GetError)(void) = nullptr;
   // Shader instrumentation (GLBUDGET_INSTRUMENT / GLBUDGET_DUMP).
   PFNGLGETPROGRAMIVPROC GetProgramiv = nullptr;
   PFNGLGETPROGRAMRESOURCEINDEXPROC GetProgramResourceIndex = nullptr;

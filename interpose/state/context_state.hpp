@@ -90,6 +90,9 @@ struct ContextState {
   // With a pipeline bound and no program, non-DSA glUniform* go to its active program.
   std::shared_ptr<const VariantSet> pipeline_uniform_variants;
   bool list_compile_only = false;
+  // Errors the app had not read when the shim's own GL work began (state/gl_errors.hpp):
+  // its glGetError answers these first.
+  std::vector<GLenum> app_errors;
 
   uint64_t frame = 0;
   int64_t next_deadline_ns = 0;  // GLBUDGET_FPS pacing

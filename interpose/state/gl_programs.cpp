@@ -8,6 +8,7 @@
 #include "hook_table.hpp"
 #include "governing.hpp"
 #include "gl_calls.hpp"
+#include "gl_errors.hpp"
 #include "shader_instrumentation.hpp"
 #include "subroutines.hpp"
 #include "variant_dump.hpp"
@@ -205,6 +206,7 @@ void handle_glLinkProgram(pfn_glLinkProgram real, GLuint program) {
     }
     p.pass = program_hash(std::move(hashes));
     p.linked = true;
+    const OwnGlWork own(*c);  // instrumenting and building variants: the errors the app's link raised stay its
     after_link(*c, *c->group, program, p, real);
     shadow_program(*c, *c->group, program, p);
   }
@@ -223,6 +225,7 @@ GLuint handle_glCreateShaderProgramv(pfn_glCreateShaderProgramv real, GLenum typ
     p.pass = program_hash({shader_hash(type, source)});
     p.linked = true;
     // No shader objects to hook: the variants are built from the strings themselves.
+    const OwnGlWork own(*c);
     shadow_program(*c, *c->group, program, p, {{type, source}});
   }
   return program;

@@ -41,6 +41,8 @@ constexpr const char* kKnownVariables[] = {
     // A test switch, to be documented in README's options table: GL extensions the shim
     // takes as absent (comma-separated), e.g. to run it as on a driver without timer queries.
     "GLBUDGET_TEST_HIDE_EXTENSIONS",
+    // A test switch: pass:level pairs whose variant builds meet a real GL_OUT_OF_MEMORY.
+    "GLBUDGET_TEST_OUT_OF_MEMORY",
 };
 
 void warn(std::string* out, const std::string& text) { *out += "glbudget: " + text + "\n"; }
@@ -128,6 +130,20 @@ Options parse_options(char** env, std::string* warnings) {
         while (!item.empty() && item.front() == ' ') item.erase(item.begin());
         while (!item.empty() && item.back() == ' ') item.pop_back();
         if (!item.empty()) o.hide_extensions.push_back(item);
+        start = comma + 1;
+      }
+    } else if (name == "GLBUDGET_TEST_OUT_OF_MEMORY") {
+      for (size_t start = 0; start <= value.size();) {
+        size_t comma = value.find(',', start);
+        if (comma == std::string::npos) comma = value.size();
+        const std::string item = value.substr(start, comma - start);
+        const size_t colon = item.rfind(':');
+        char* end = nullptr;
+        const unsigned long level = colon == std::string::npos ? 0 : std::strtoul(item.c_str() + colon + 1, &end, 10);
+        if (colon == std::string::npos || colon == 0 || !end || end == item.c_str() + colon + 1 || *end != '\0')
+          warn(warnings, "GLBUDGET_TEST_OUT_OF_MEMORY item '" + item + "' is not pass:level; ignored");
+        else
+          o.test_out_of_memory.emplace_back(item.substr(0, colon), level);
         start = comma + 1;
       }
     } else if (name == "GLBUDGET_FORCE_EVERY") {

@@ -4,6 +4,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace glbudget {
@@ -35,6 +36,10 @@ struct Options {
   // faults_test.cpp); the shim's capability probe (detect_caps) takes these extensions, and the
   // features they name even where the core version includes them, as absent.
   std::vector<std::string> hide_extensions;
+  // GLBUDGET_TEST_OUT_OF_MEMORY=pass:level,...: a test switch (tests/interpose/shadowing_test.cpp);
+  // while building that level's variant the shim asks the driver for a buffer no machine has,
+  // so that the driver raises a real GL_OUT_OF_MEMORY.
+  std::vector<std::pair<std::string, size_t>> test_out_of_memory;
 };
 
 const Options& options();

@@ -3,7 +3,9 @@
 // and a level may replace the fragment stage with one that does not link. The app draws as
 // usual: two programs of the same sources (so glbudget meets the same failing variant twice),
 // each with its own u_val, every frame; slot 1 of a GL_RGBA32UI target holds (u_val, BAD, 0x5a).
-// Checked here: every draw shows the values the app set and BAD = 1. Printed per draw:
+// Checked here: every draw shows the values the app set and BAD = 1, and an error the app
+// raised before linking is still its to read after (glbudget builds its variants, and reads
+// the errors that raises, inside the app's glLinkProgram). Printed per draw:
 // "frame F draw D mark M" (VARIANT_MARK).
 #define GL_GLEXT_PROTOTYPES 1
 #include <cstdio>
@@ -39,11 +41,17 @@ int main(int argc, char** argv) {
   EglFns egl;
   EglWindow w;
   if (!open_current_window(probe.name(), egl, ContextKind::kCore45, 4, 4, &w)) return 2;
+  probe.check_gl_error("before linking");
+  glBindBuffer(0x1234, 0);  // the app's own GL_INVALID_ENUM, left pending across its links
   GLuint progs[2];
   for (GLuint& p : progs) {
     p = build_program(probe.name(), {{GL_VERTEX_SHADER, quad_vertex_shader()}, {GL_FRAGMENT_SHADER, kFragment}});
     if (!p) return 2;
   }
+  const GLenum first = glGetError(), second = glGetError();
+  if (first != GL_INVALID_ENUM || second != GL_NO_ERROR)
+    probe.fail("after linking, glGetError() = 0x%04x then 0x%04x; the app's GL_INVALID_ENUM then none expected", first,
+               second);
   bind_fullscreen_quad(4, 4);
   SlotTarget target;
   if (!target.create(4, 4)) return 2;

@@ -74,10 +74,9 @@ struct Forced {
 };
 
 Run run_probe(const std::string& probe, Mode mode, const std::string& manifest_name, const Forced& forced, int frames,
-              const std::vector<std::string>& extra_args = {}) {
+              const std::vector<std::string>& extra_args = {}, std::map<std::string, std::string> env = {}) {
   std::vector<std::string> args = {probe_path(probe), "--frames", std::to_string(frames)};
   args.insert(args.end(), extra_args.begin(), extra_args.end());
-  std::map<std::string, std::string> env;
   Run run;
   if (mode != Mode::plain) {
     env["LD_PRELOAD"] = shim_path();
@@ -422,5 +421,30 @@ TEST_CASE("shadowing 8: a variant that does not compile or link: one line each, 
   CHECK(count_lines_with(r.result.err, "this level draws the app's program") == 2);
   // Levels 1 and 3 draw the app's program (mark 0), level 2 its variant.
   check_marks(r, 2 * frames, [&](const Draw& d) { return forced.level(d.frame) == 2 ? 2u : 0u; });
+  check_log_configurations(r, forced, frames);
+}
+
+TEST_CASE("faults: GL_OUT_OF_MEMORY while building a variant: one line, no more variants, the app's errors its own",
+          "[integration][shadowing][faults]") {
+  // GLBUDGET_TEST_OUT_OF_MEMORY=fragile:2 has the shim, while it builds level 2's variant, ask
+  // the driver for a buffer no machine has: a real GL_OUT_OF_MEMORY, which the shim must read
+  // (the level is dropped and, the driver short of memory, no variant is built after it) and
+  // the app must not: the probe raised GL_INVALID_ENUM before linking and reads exactly that
+  // after, then no error to the end. Level 1 (does not compile) was built before; level 3 and
+  // the second program's variants are not tried.
+  const Forced forced{{0, 1, 2, 3}};
+  const int frames = 8;
+  const Run r = run_probe("probe_bad_variant", Mode::shadowed, "bad_variant", forced, frames, {},
+                          {{"GLBUDGET_TEST_OUT_OF_MEMORY", "fragile:2"}});
+  INFO(r.result.out << r.result.err);
+  CHECK(r.result.exit_code == 0);
+  CHECK(count_lines_with(r.result.err, "glbudget:") == 2);
+  CHECK(count_lines_with(r.result.err, "glbudget: pass 'fragile' level 1 (syntax error): ") == 1);
+  CHECK(count_lines_with(r.result.err,
+                         "glbudget: pass 'fragile' level 2 (marked): the driver ran out of memory "
+                         "(GL_OUT_OF_MEMORY) building the variant of program ") == 1);
+  CHECK(count_lines_with(r.result.err, "no more variants are built") == 1);
+  CHECK(count_lines_with(r.result.err, "does not link") == 0);
+  check_marks(r, 2 * frames, [](const Draw&) { return 0u; });  // the app's programs at every level
   check_log_configurations(r, forced, frames);
 }

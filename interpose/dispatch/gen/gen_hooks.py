@@ -51,6 +51,7 @@ CUSTOM = [
     'glClear', 'glClearBufferfv', 'glClearBufferiv', 'glClearBufferuiv', 'glClearBufferfi',
     'glBindAttribLocation', 'glBindFragDataLocation', 'glBindFragDataLocationIndexed',
     'glActiveShaderProgram', 'glGetProgramPipelineiv',
+    'glGetError',  # state/gl_errors.cpp: the app's errors, kept apart from the shim's own
 ]
 ALIASES_OF_CUSTOM = {
     'glUseProgramObjectARB': 'glUseProgram',
