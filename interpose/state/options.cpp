@@ -137,6 +137,8 @@ Options parse_options(char** env, std::string* warnings) {
         size_t comma = value.find(',', start);
         if (comma == std::string::npos) comma = value.size();
         const std::string item = value.substr(start, comma - start);
+        start = comma + 1;
+        if (item.empty()) continue;
         const size_t colon = item.rfind(':');
         char* end = nullptr;
         const unsigned long level = colon == std::string::npos ? 0 : std::strtoul(item.c_str() + colon + 1, &end, 10);
@@ -144,7 +146,6 @@ Options parse_options(char** env, std::string* warnings) {
           warn(warnings, "GLBUDGET_TEST_OUT_OF_MEMORY item '" + item + "' is not pass:level; ignored");
         else
           o.test_out_of_memory.emplace_back(item.substr(0, colon), level);
-        start = comma + 1;
       }
     } else if (name == "GLBUDGET_FORCE_EVERY") {
       errno = 0;

@@ -113,3 +113,16 @@ TEST_CASE("GLBUDGET_TEST_HIDE_EXTENSIONS: a comma-separated list of extensions, 
   CHECK(parse_env({"GLBUDGET_TEST_HIDE_EXTENSIONS="}, &w).hide_extensions.empty());
   CHECK(parse_env({}, &w).hide_extensions.empty());
 }
+
+TEST_CASE("GLBUDGET_TEST_OUT_OF_MEMORY: pass:level items; others said and ignored", "[unit]") {
+  std::string w;
+  Options o = parse_env({"GLBUDGET_TEST_OUT_OF_MEMORY=fragile:2,,a:b:0"}, &w);
+  CHECK(w.empty());
+  CHECK(o.test_out_of_memory == std::vector<std::pair<std::string, size_t>>{{"fragile", 2}, {"a:b", 0}});
+  o = parse_env({"GLBUDGET_TEST_OUT_OF_MEMORY=nolevel,:3,x:,x:1y,ok:1"}, &w);
+  CHECK(o.test_out_of_memory == std::vector<std::pair<std::string, size_t>>{{"ok", 1}});
+  for (const char* bad : {"'nolevel'", "':3'", "'x:'", "'x:1y'"})
+    CHECK(w.find(std::string("GLBUDGET_TEST_OUT_OF_MEMORY item ") + bad + " is not pass:level; ignored") !=
+          std::string::npos);
+  CHECK(parse_env({"GLBUDGET_TEST_OUT_OF_MEMORY="}, &w).test_out_of_memory.empty());
+}
