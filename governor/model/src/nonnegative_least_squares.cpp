@@ -6,17 +6,11 @@
 namespace glbudget::model {
 namespace {
 
-// Up to this many unknowns (8 passes x 3 terms) all workspace has a fixed maximum size and
-// lives on the stack: the free-set solves below run once per change of the free set, and
-// their heap allocations cost as much as the arithmetic at these sizes.
-constexpr int kStackUnknowns = 24;
-
-template <int Max>
 class ActiveSetSolver {
  public:
-  using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, Max, Max>;
-  using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, Max, 1>;
-  using Indices = Eigen::Matrix<Eigen::Index, Eigen::Dynamic, 1, 0, Max, 1>;
+  using Matrix = Eigen::MatrixXd;
+  using Vector = Eigen::VectorXd;
+  using Indices = Eigen::Matrix<Eigen::Index, Eigen::Dynamic, 1>;
 
   ActiveSetSolver(const Eigen::Ref<const Eigen::MatrixXd>& gram, const Eigen::Ref<const Eigen::VectorXd>& rhs)
       : gram_(gram), rhs_(rhs), n_(rhs.size()), free_(n_), is_free_(n_) {}
@@ -115,18 +109,14 @@ class ActiveSetSolver {
   Eigen::Index n_;
   Indices free_;  // the free set (first free_count_ entries), in the order variables entered
   Eigen::Index free_count_ = 0;
-  Eigen::Matrix<char, Eigen::Dynamic, 1, 0, Max, 1> is_free_;
+  Eigen::Matrix<char, Eigen::Dynamic, 1> is_free_;
 };
 
 }  // namespace
 
 void solve_nonnegative(const Eigen::Ref<const Eigen::MatrixXd>& gram, const Eigen::Ref<const Eigen::VectorXd>& rhs,
                        Eigen::Ref<Eigen::VectorXd> z) {
-  if (rhs.size() <= kStackUnknowns) {
-    ActiveSetSolver<kStackUnknowns>(gram, rhs).solve(z);
-  } else {
-    ActiveSetSolver<Eigen::Dynamic>(gram, rhs).solve(z);
-  }
+  ActiveSetSolver(gram, rhs).solve(z);
 }
 
 Eigen::VectorXd solve_nonnegative(const Eigen::MatrixXd& gram, const Eigen::VectorXd& rhs) {

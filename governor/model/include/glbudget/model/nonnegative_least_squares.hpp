@@ -8,9 +8,7 @@ namespace glbudget::model {
 
 Eigen::VectorXd solve_nonnegative(const Eigen::MatrixXd& gram, const Eigen::VectorXd& rhs);
 
-// The same, writing into `z` (sized like rhs). Takes any column-major storage without a copy,
-// so callers with fixed-maximum-size (stack) matrices allocate nothing; for up to 24 unknowns
-// the solver's own workspace is on the stack too.
+// The same, writing into `z` (sized like rhs), taking any column-major storage without a copy.
 void solve_nonnegative(const Eigen::Ref<const Eigen::MatrixXd>& gram, const Eigen::Ref<const Eigen::VectorXd>& rhs,
                        Eigen::Ref<Eigen::VectorXd> z);
 
