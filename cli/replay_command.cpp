@@ -47,7 +47,7 @@ T parse_or_keep(const char* flag, const char* text, T fallback) {
 constexpr const char* kUsage =
     "usage: glbudget replay LOG.csv --profile PROFILE.json [--variants VARIANTS.json]\n"
     "                       [--fit-window N] [--check-window N] [--threshold SHARE] [--average N]\n"
-    "                       [--paper] [--drift-frames N] [--frames-csv PATH]\n";
+    "                       [--paper] [--frames-csv PATH]\n";
 
 void print_help() {
   std::printf("%s\n", kUsage);
@@ -61,7 +61,6 @@ void print_help() {
       "programs are which level of which pass (tests/data/logs/README.md). Options:\n"
       "  --fit-window N, --check-window N, --threshold SHARE   the online fitter's (30, 10, 0.1)\n"
       "  --paper            the paper's path only: no fit over several configurations\n"
-      "  --drift-frames N   follow the last N frames' residual between fits (0: off)\n"
       "  --frames-csv PATH  every scored frame: measured power and both predictions\n");
 }
 
@@ -95,8 +94,6 @@ int replay_main(std::span<char* const> args) {
       settings.refit_threshold = parse_or_keep("--threshold", args[++i], settings.refit_threshold);
     else if (arg == "--paper")
       options.history.enabled = false;
-    else if (arg == "--drift-frames" && has_value)
-      options.history.drift_frames = static_cast<std::size_t>(std::atoi(args[++i]));
     else if (arg == "--frames-csv" && has_value)
       frames_csv = args[++i];
     else if (arg == "--average" && has_value)

@@ -6,6 +6,7 @@
 #include <map>
 #include <set>
 #include <string>
+#include <utility>
 
 #include "glbudget/model/nonnegative_least_squares.hpp"
 #include "glbudget/model/power_curve.hpp"
@@ -134,25 +135,13 @@ std::optional<HistoryFit> fit_history(std::span<const ConfiguredSample> samples,
   z_prior(psi_column) = prior_reuse.psi;
   z_prior(frame_column) = prior.frame_alpha();
 
-  // Unit columns, a ridge towards the prior, non-negative costs.
-  Eigen::VectorXd scale = a.colwise().norm().transpose();
-  for (Eigen::Index c = 0; c < cols; ++c) {
-    if (scale(c) > 0.0) a.col(c) /= scale(c);
-  }
-  // The per-frame load is not pulled towards its prior: what no count explains is the
-  // frame's own cost first, rather than the cost of a pass that happens to draw every frame.
+  // A ridge towards the prior, non-negative costs (ridge_nonnegative). The per-frame load is
+  // not pulled towards its prior: what no count explains is the frame's own cost first, rather
+  // than the cost of a pass that happens to draw every frame.
   const double strength = profile.costs ? settings.calibrated_ridge : settings.ridge;
-  const double lambda = strength * strength * static_cast<double>(cols);
-  Eigen::VectorXd ridge = Eigen::VectorXd::Constant(cols, lambda);
+  Eigen::VectorXd ridge = Eigen::VectorXd::Constant(cols, strength * strength * static_cast<double>(cols));
   ridge(frame_column) = settings.frame_ridge * settings.frame_ridge * static_cast<double>(cols);
-  Eigen::MatrixXd gram = a.transpose() * a;
-  gram.diagonal() += ridge;
-  const Eigen::VectorXd scaled_prior = z_prior.cwiseProduct(scale);
-  const Eigen::VectorXd z = solve_nonnegative(gram, a.transpose() * y + ridge.cwiseProduct(scaled_prior));
-  Eigen::VectorXd unknowns = z_prior;  // a column with no data keeps its prior
-  for (Eigen::Index c = 0; c < cols; ++c) {
-    if (scale(c) > 0.0) unknowns(c) = z(c) / scale(c);
-  }
+  const Eigen::VectorXd unknowns = ridge_nonnegative(std::move(a), y, z_prior, ridge);
 
   HistoryFit fit{prior,
                  express_at,

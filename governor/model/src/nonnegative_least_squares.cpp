@@ -125,4 +125,25 @@ Eigen::VectorXd solve_nonnegative(const Eigen::MatrixXd& gram, const Eigen::Vect
   return z;
 }
 
+Eigen::VectorXd ridge_nonnegative(Eigen::MatrixXd a, const Eigen::VectorXd& y, const Eigen::VectorXd& prior,
+                                  const Eigen::VectorXd& ridge) {
+  const Eigen::Index cols = a.cols();
+  const Eigen::VectorXd scale = a.colwise().norm().transpose();
+  for (Eigen::Index c = 0; c < cols; ++c) {
+    if (scale(c) > 0.0) a.col(c) /= scale(c);
+  }
+  const Eigen::VectorXd scaled_prior = prior.cwiseProduct(scale);
+  Eigen::MatrixXd gram = a.transpose() * a;
+  gram.diagonal() += ridge;
+  for (Eigen::Index c = 0; c < cols; ++c) {
+    if (scale(c) == 0.0) gram(c, c) = 1.0;  // no data: its unknown is 0 and discarded below
+  }
+  const Eigen::VectorXd z = solve_nonnegative(gram, a.transpose() * y + ridge.cwiseProduct(scaled_prior));
+  Eigen::VectorXd unknowns = prior;
+  for (Eigen::Index c = 0; c < cols; ++c) {
+    if (scale(c) > 0.0) unknowns(c) = z(c) / scale(c);
+  }
+  return unknowns;
+}
+
 }  // namespace glbudget::model

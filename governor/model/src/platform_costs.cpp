@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <map>
+#include <utility>
 
 #include "glbudget/model/nonnegative_least_squares.hpp"
 #include "glbudget/model/power_curve.hpp"
@@ -92,23 +93,12 @@ std::optional<PlatformCostsFit> fit_platform_costs(std::span<const CostLog> logs
     a.block<1, kCostColumns>(r, 0) = target.weight * cost_row(profile, *logs[row.log].space, *row.sample);
     a(r, kCostColumns + static_cast<Eigen::Index>(row.log)) = target.weight;
   }
-  // As the other fits: unit columns, a faint ridge (towards 0) so that a cost no log can
+  // As the other fits (ridge_nonnegative): a faint ridge towards 0 so that a cost no log can
   // identify (no pass samples a texture) stays 0 instead of taking noise, costs >= 0. The
-  // per-frame loads are left free.
-  Eigen::VectorXd scale = a.colwise().norm().transpose();
-  for (Eigen::Index c = 0; c < cols; ++c) {
-    if (scale(c) > 0.0) a.col(c) /= scale(c);
-  }
-  Eigen::MatrixXd gram = a.transpose() * a;
-  for (Eigen::Index c = 0; c < kCostColumns; ++c) gram(c, c) += 1e-10 * static_cast<double>(cols);
-  for (Eigen::Index c = 0; c < cols; ++c) {
-    if (scale(c) == 0.0) gram(c, c) = 1.0;  // an empty column: a log with no usable frame
-  }
-  const Eigen::VectorXd z = solve_nonnegative(gram, a.transpose() * y);
-  Eigen::VectorXd unknowns = Eigen::VectorXd::Zero(cols);
-  for (Eigen::Index c = 0; c < cols; ++c) {
-    if (scale(c) > 0.0) unknowns(c) = z(c) / scale(c);
-  }
+  // per-frame loads are left free; a log with no usable frame keeps a load of 0.
+  Eigen::VectorXd ridge = Eigen::VectorXd::Zero(cols);
+  ridge.head<kCostColumns>().setConstant(1e-10 * static_cast<double>(cols));
+  const Eigen::VectorXd unknowns = ridge_nonnegative(std::move(a), y, Eigen::VectorXd::Zero(cols), ridge);
 
   PlatformCostsFit fit;
   fit.costs = {unknowns(0), unknowns(1), unknowns(2), unknowns(3), unknowns(4)};

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "glbudget/model/nonnegative_least_squares.hpp"
 #include "glbudget/model/power_curve.hpp"
@@ -63,18 +64,11 @@ ReuseCoefficients solve_reuse(const PowerModel& fitted, const ConfigurationSpace
     a(r, 1) = rows[r][1];
     y(r) = rows[r][2];
   }
-  // Same scheme as the window fit: unit columns, a small ridge towards the previous values
-  // holds what the data cannot identify, both costs non-negative.
-  Eigen::Vector2d scale = a.colwise().norm().transpose();
-  for (int c = 0; c < 2; ++c) {
-    if (scale(c) > 0.0) a.col(c) /= scale(c);
-  }
-  const double lambda = 1e-6 * 2.0;
-  Eigen::MatrixXd gram = a.transpose() * a;
-  gram.diagonal().array() += lambda;
-  const Eigen::Vector2d z_previous(previous.chi * scale(0), previous.psi * scale(1));
-  const Eigen::VectorXd z = solve_nonnegative(gram, a.transpose() * y + lambda * z_previous);
-  return {scale(0) > 0.0 ? z(0) / scale(0) : previous.chi, scale(1) > 0.0 ? z(1) / scale(1) : previous.psi};
+  // A small ridge towards the previous values holds what the data cannot identify, both costs
+  // non-negative (ridge_nonnegative, as the other fits).
+  const Eigen::VectorXd z = ridge_nonnegative(std::move(a), y, Eigen::Vector2d(previous.chi, previous.psi),
+                                              Eigen::VectorXd::Constant(2, 1e-6 * 2.0));
+  return {z(0), z(1)};
 }
 
 ConfigurationPredictor::ConfigurationPredictor(const ConfigurationSpace& space, const PowerModel& fitted,
@@ -164,7 +158,7 @@ void ConfigurationPredictor::set_frame(const std::vector<PassFrame>& frame, cons
 
   // Reference counts of the space's passes; the rest load every configuration alike.
   for (ReferenceCounts& r : reference_) r = ReferenceCounts{{}, true};
-  alpha_outside_space_ = fitted_.frame_alpha() + load_offset_;
+  alpha_outside_space_ = fitted_.frame_alpha();
   for (const PassFrame& p : frame) {
     bool in_space = false;
     for (std::size_t i = 0; i < passes; ++i) {

@@ -86,13 +86,6 @@ OnlineFitter::Event RunTimeModel::learn(const FrameSample& frame, const Configur
       history_.erase(history_.begin(), history_.end() - static_cast<std::ptrdiff_t>(history_settings_.frames));
     }
   }
-  if (predictor_ && history_settings_.drift_frames > 0 && is_usable(frame) && std::isfinite(predicted_w)) {
-    // The residual in load terms: what the frame measured beyond what was predicted.
-    const PlatformProfile& profile = model_.profile();
-    const double residual = linearise_power(profile, frame.power_w).alpha - linearise_power(profile, predicted_w).alpha;
-    drift_alpha_ += residual / static_cast<double>(history_settings_.drift_frames);
-    predictor_->set_load_offset(drift_alpha_);
-  }
   if (!predictor_ && is_usable(frame)) seed_prior(frame, configuration);
   const OnlineFitter::Event event = fitter_.add_frame(frame, predicted_w);
   if (event != OnlineFitter::Event::Fitted) return event;
@@ -125,8 +118,6 @@ OnlineFitter::Event RunTimeModel::learn(const FrameSample& frame, const Configur
       }
     }
   }
-  // A fit (and its anchoring to the window) starts the drift correction afresh.
-  drift_alpha_ = 0.0;
   fitted_configuration_ = fitted_at;
   model_ = model;
   if (predictor_)
@@ -136,7 +127,6 @@ OnlineFitter::Event RunTimeModel::learn(const FrameSample& frame, const Configur
   // Beyond the paper, with the history: fragments at every render-scale or shadow-map level
   // seen in it as measured, not as the table's declared areas (fragment_scales.hpp).
   if (history_settings_.enabled) predictor_->set_fragment_scales(measure_fragment_scales(recent_history(), space_));
-  predictor_->set_load_offset(0.0);
   return event;
 }
 

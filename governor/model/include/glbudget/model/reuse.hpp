@@ -52,9 +52,6 @@ class ConfigurationPredictor {
   // set_frame() on (fragment_scales.hpp).
   void set_fragment_scales(FragmentScales scales) { scales_ = std::move(scales); }
 
-  // A load added to every configuration from the next set_frame() on (a drift correction).
-  void set_load_offset(double alpha) { load_offset_ = alpha; }
-
   // Per-pass, per-level loads for a frame drawn in `frame_configuration`. Counts of passes
   // outside the space (say the fixed-function pass) add the same load to every configuration.
   void set_frame(const std::vector<PassFrame>& frame, const Configuration& frame_configuration);
@@ -107,7 +104,6 @@ class ConfigurationPredictor {
   // that combination's levels (one combination when no pass scales another).
   std::vector<std::vector<std::vector<LevelTerm>>> tables_;
   double alpha_outside_space_ = 0.0;
-  double load_offset_ = 0.0;
   // Scratch space of predict_all(), so that it allocates nothing once warm.
   mutable Enumeration front_, back_;
   mutable std::vector<int> held_scratch_;

@@ -21,12 +21,6 @@ struct HistorySettings {
   bool enabled = true;
   std::size_t frames = 300;  // usable frames kept, newest last
   HistoryFitSettings fit;
-  // Beyond the paper: between fits, the measured power's drift away from the fitted
-  // coefficients (a sensor's or machine's slow drift, a scene's slow change) is followed by
-  // an exponential average of the last frames' residuals over this many frames, added to
-  // every configuration's load. 0: off (the default, so that predictions of a configuration
-  // not yet fitted use no measurement of it; the README gives the measured trade).
-  std::size_t drift_frames = 0;
 };
 
 class RunTimeModel {
@@ -78,7 +72,6 @@ class RunTimeModel {
   std::set<Configuration> fitted_configurations_;
   ReuseCoefficients reuse_;
   std::size_t history_fits_ = 0;
-  double drift_alpha_ = 0.0;
 };
 
 }  // namespace glbudget::model
