@@ -493,6 +493,7 @@ std::shared_ptr<VariantSet> build_variants(GLuint program, PassId app_hash, int 
   std::array<StageInterface, kShaderStages> app_stages;
   bool app_stages_read = false;
   bool any = false;
+  drain_gl_errors();  // raised by the shim's work before this (instrumenting the app's program): not a variant's
   for (size_t l = 0; l < mp.levels.size(); ++l) {
     const manifest::Level& level = mp.levels[l];
     Variant v;
