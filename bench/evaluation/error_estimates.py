@@ -21,14 +21,14 @@ Usage: error_estimates.py BUILD_DIR --out DIR [--scenes hall,sponza,valley,subwa
        [--budget 50] [--regret-budgets 30,40,50,60,70] [--frames 200] [--fps 10] [--size 320x180]
        [--detail 0.2] [--costs measure|off|PATH] [--quick]
 """
-import argparse
 import csv
 import os
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from evaluate import MANIFEST, PROFILE, ROOT, KNOBS, Evaluation, mean, number, spearman  # noqa: E402
+from evaluate import (MANIFEST, PROFILE, KNOBS, Evaluation, mean, number, parse_study_arguments,  # noqa: E402
+                      spearman, study_arguments)
 
 BEST = "0:0:0:0:0:0"
 
@@ -71,7 +71,9 @@ class Study(Evaluation):
         table, frame = last_selection(log + ".selections.csv")
         if frame is None:
             return {"scene": scene, "error": "no selection in the governed run"}
-        images = os.path.join(self.tmp, f"{scene}_all")
+        # One folder per frame: a study that runs a scene again (probe_trades.py) must not mix
+        # another frame's images into this one's truth.
+        images = os.path.join(self.tmp, f"{scene}_all_f{frame}")
         self.quiet(self.common(scene, 1) + ["--start-frame", str(frame), "--all-configs", "--dump", images])
         by_config = {}
         for name in os.listdir(images):
@@ -136,30 +138,11 @@ def plot(results, out):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("build")
-    ap.add_argument("--out", required=True)
-    ap.add_argument("--scenes", default="hall,sponza,valley,subway")
+    ap = study_arguments(__doc__.splitlines()[0], "hall,sponza,valley,subway")
     ap.add_argument("--budget", type=int, default=50, help="the governed run's power budget, %%")
     ap.add_argument("--regret-budgets", default="30,40,50,60,70")
-    ap.add_argument("--frames", type=int, default=200)
-    ap.add_argument("--fps", type=float, default=10.0)
-    ap.add_argument("--size", default="320x180")
-    ap.add_argument("--detail", type=float, default=0.2)
-    ap.add_argument("--select-frames", type=int, default=60)
-    ap.add_argument("--costs", default="measure", help="the levels' costs: 'measure' (glbudget calibrate --app "
-                    "on each scene first), 'off', or a path")
-    ap.add_argument("--calibrate-frames", type=int, default=20, help="frames per level of glbudget calibrate --app")
-    ap.add_argument("--feedback", default="1", choices=["0", "1"], help="GLBUDGET_FEEDBACK of the governed run")
-    ap.add_argument("--quick", action="store_true", help="one scene, small: checks every step runs")
-    a = ap.parse_args()
-    if a.quick:
-        a.scenes, a.size, a.detail, a.frames, a.select_frames, a.costs = "valley", "160x90", 0.05, 80, 20, "off"
+    a, command = parse_study_arguments(ap, "error_estimates.py")
     a.regret_budgets = [int(b) for b in a.regret_budgets.split(",")]
-    a.build = os.path.abspath(a.build)
-    os.makedirs(a.out, exist_ok=True)
-    command = "python3 bench/evaluation/error_estimates.py build --out " + os.path.relpath(a.out, ROOT) + (
-        " --quick" if a.quick else "")
     results = []
     with tempfile.TemporaryDirectory() as tmp:
         study = Study(a, tmp)

@@ -91,6 +91,39 @@ def spearman(a, b):
     return cov / (va * vb) if va > 0 and vb > 0 else float("nan")
 
 
+def study_arguments(description, scenes):
+    """The arguments of a study built on the evaluation's runs (error_estimates.py,
+    error_budgets.py, probe_trades.py): the build, --out, the scenes and how each run is made."""
+    ap = argparse.ArgumentParser(description=description)
+    ap.add_argument("build")
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--scenes", default=scenes)
+    ap.add_argument("--frames", type=int, default=200)
+    ap.add_argument("--fps", type=float, default=10.0)
+    ap.add_argument("--size", default="320x180")
+    ap.add_argument("--detail", type=float, default=0.2)
+    ap.add_argument("--select-frames", type=int, default=60)
+    ap.add_argument("--costs", default="measure", help="the levels' costs: 'measure' (glbudget calibrate --app "
+                    "on each scene first), 'off', or a path")
+    ap.add_argument("--calibrate-frames", type=int, default=20, help="frames per level of glbudget calibrate --app")
+    ap.add_argument("--feedback", default="1", choices=["0", "1"], help="GLBUDGET_FEEDBACK of the governed runs")
+    ap.add_argument("--quick", action="store_true", help="one scene, small: checks every step runs")
+    return ap
+
+
+def parse_study_arguments(ap, script):
+    """Parsed, --quick applied (Valley at 160x90, detail 0.05, 80 frames, costs off), --out made;
+    also the command line that reproduces the run, for the study's page."""
+    a = ap.parse_args()
+    if a.quick:
+        a.scenes, a.size, a.detail, a.frames, a.select_frames, a.costs = "valley", "160x90", 0.05, 80, 20, "off"
+    a.build = os.path.abspath(a.build)
+    os.makedirs(a.out, exist_ok=True)
+    command = f"python3 bench/evaluation/{script} build --out " + os.path.relpath(a.out, ROOT) + (
+        " --quick" if a.quick else "")
+    return a, command
+
+
 class Evaluation:
     def __init__(self, a, tmp):
         self.a, self.tmp = a, tmp
