@@ -46,6 +46,18 @@ constexpr const char* kKnownVariables[] = {
 };
 
 void warn(std::string* out, const std::string& text) { *out += "glbudget: " + text + "\n"; }
+
+// The items of a comma-separated value as written, empty ones included.
+std::vector<std::string> comma_items(const std::string& value) {
+  std::vector<std::string> items;
+  for (size_t start = 0; start <= value.size();) {
+    size_t comma = value.find(',', start);
+    if (comma == std::string::npos) comma = value.size();
+    items.push_back(value.substr(start, comma - start));
+    start = comma + 1;
+  }
+  return items;
+}
 }  // namespace
 
 Options parse_options(char** env, std::string* warnings) {
@@ -123,21 +135,13 @@ Options parse_options(char** env, std::string* warnings) {
       else
         warn(warnings, "GLBUDGET_FEEDBACK='" + value + "' is not 0/1/on/off; on");
     } else if (name == "GLBUDGET_TEST_HIDE_EXTENSIONS") {
-      for (size_t start = 0; start <= value.size();) {
-        size_t comma = value.find(',', start);
-        if (comma == std::string::npos) comma = value.size();
-        std::string item = value.substr(start, comma - start);
+      for (std::string item : comma_items(value)) {
         while (!item.empty() && item.front() == ' ') item.erase(item.begin());
         while (!item.empty() && item.back() == ' ') item.pop_back();
         if (!item.empty()) o.hide_extensions.push_back(item);
-        start = comma + 1;
       }
     } else if (name == "GLBUDGET_TEST_OUT_OF_MEMORY") {
-      for (size_t start = 0; start <= value.size();) {
-        size_t comma = value.find(',', start);
-        if (comma == std::string::npos) comma = value.size();
-        const std::string item = value.substr(start, comma - start);
-        start = comma + 1;
+      for (const std::string& item : comma_items(value)) {
         if (item.empty()) continue;
         const size_t colon = item.rfind(':');
         char* end = nullptr;
