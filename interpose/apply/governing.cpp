@@ -48,7 +48,8 @@ manifest::Manifest governed_manifest(const manifest::Manifest& m) {
     bool scales_window = false;
     for (const manifest::Level& l : p.levels)
       for (const manifest::Target& t : l.targets)
-        scales_window |= t.kind == manifest::Target::Kind::default_framebuffer;
+        scales_window |=
+            t.kind == manifest::Target::Kind::default_framebuffer || t.kind == manifest::Target::Kind::window_sized;
     if (scales_window) {
       // The window holds every pass's final image: its scale shrinks whatever draws into it.
       p.scales.clear();

@@ -329,6 +329,9 @@ double TargetScaler::scale_for(GLuint name, const Framebuffer& f, const Levels& 
         case manifest::Target::Kind::texture:
           for (const Attachment& a : f.attachments) hit |= !a.renderbuffer && a.name == t.id;
           break;
+        case manifest::Target::Kind::window_sized:
+          hit = window_sized(f);
+          break;
         case manifest::Target::Kind::default_framebuffer:
           break;
       }
@@ -336,6 +339,19 @@ double TargetScaler::scale_for(GLuint name, const Framebuffer& f, const Levels& 
     }
   }
   return s;
+}
+
+// Every image the app gave the window's size (as the app specified it, whatever it is stored
+// at now); a framebuffer with no known image is not.
+bool TargetScaler::window_sized(const Framebuffer& f) const {
+  if (f.attachments.empty() || window_width_ <= 0 || window_height_ <= 0) return false;
+  for (const Attachment& a : f.attachments) {
+    const auto& images = a.renderbuffer ? renderbuffers_ : textures_;
+    auto it = images.find(a.name);
+    if (it == images.end() || it->second.app_size.empty()) return false;
+    if (it->second.app_size[0][0] != window_width_ || it->second.app_size[0][1] != window_height_) return false;
+  }
+  return true;
 }
 
 void TargetScaler::learn_attachments(Framebuffer& f) {

@@ -133,6 +133,7 @@ class TargetScaler {
   void unbind_window_copy();
   double wanted_scale(GLuint name, const Framebuffer& f) const { return scale_for(name, f, config_); }
   double scale_for(GLuint name, const Framebuffer& f, const Levels& config) const;
+  bool window_sized(const Framebuffer& f) const;
   void learn_attachments(Framebuffer& f);
   void ensure_scale(GLuint name, Framebuffer& f, bool carry = true);
   void rescale(GLuint name, Image& image, double scale, bool carry);

@@ -78,7 +78,7 @@ replace = { fragment = "cheap.frag", vertex = "cheap.frag" }
 uniforms = { u_z = 16, u_f = 0.5, u_on = true, u_off = false, u_v = [1, 2.5, 3], u_m = [[1, 0], [0, 1]] }
 draws = false
 scale = 0.5
-targets = ["self", "pass:other", "default", "texture:12", "framebuffer:3", "self"]
+targets = ["self", "pass:other", "default", "window-sized", "texture:12", "framebuffer:3", "self"]
 fragment_scale = 0.3
 
 [[pass]]
@@ -123,7 +123,7 @@ match.source = "OTHER"
   CHECK(cheap.scale == 0.5);
   CHECK(cheap.targets == std::vector<Target>{target(Target::Kind::self), target(Target::Kind::pass, "other"),
                                              target(Target::Kind::default_framebuffer),
-                                             target(Target::Kind::texture, {}, 12),
+                                             target(Target::Kind::window_sized), target(Target::Kind::texture, {}, 12),
                                              target(Target::Kind::framebuffer, {}, 3)});
   CHECK(cheap.fragment_scale == 0.3);
   CHECK(cheap.fragment_scale_or_default() == 0.3);
@@ -206,8 +206,15 @@ targets = ["framebuffer:2"]
 [[pass]]
 name = "plain"
 match.source = "plain"
+
+[[pass]]
+name = "offscreen"
+[[pass.level]]
+[[pass.level]]
+scale = 0.5
+targets = ["window-sized"]
 )toml");
-  REQUIRE(m.passes.size() == 5);
+  REQUIRE(m.passes.size() == 6);
   // No match: the default framebuffer; it scales every pass that has a match.
   CHECK(m.passes[0].levels[1].targets == std::vector<Target>{target(Target::Kind::default_framebuffer)});
   CHECK(m.passes[0].scales == std::vector<std::string>{"shadows", "scene", "plain"});
@@ -218,6 +225,8 @@ match.source = "plain"
   // Texture and framebuffer names say nothing about passes.
   CHECK(m.passes[3].scales.empty());
   CHECK(m.passes[4].scales.empty());
+  // The window-sized framebuffers may hold any pass's image: every pass that has a match.
+  CHECK(m.passes[5].scales == std::vector<std::string>{"shadows", "scene", "plain"});
 }
 
 TEST_CASE("a TOML syntax error is fatal, with the parser's line and column") {
@@ -620,7 +629,8 @@ TEST_CASE("the built-in resolution pass") {
     if (i == 0)
       CHECK(pass.levels[i].targets.empty());
     else
-      CHECK(pass.levels[i].targets == std::vector<Target>{target(Target::Kind::default_framebuffer)});
+      CHECK(pass.levels[i].targets ==
+            std::vector<Target>{target(Target::Kind::default_framebuffer), target(Target::Kind::window_sized)});
   }
   CHECK(pass.levels[0].identity());
 }

@@ -105,3 +105,57 @@ TEST_CASE("the window at 60 % through GLX under Xvfb", "[integration]") {
   kill(xvfb, SIGTERM);
   waitpid(xvfb, nullptr, 0);
 }
+
+TEST_CASE("an app's window-sized framebuffers follow the window's scale, smaller ones keep their size",
+          "[integration]") {
+  // probe_offscreen draws the known scene into a window-sized framebuffer, a quarter-sized
+  // copy of it, and composes both into the window: at 60 % the scene and the window are drawn
+  // at 60 % (about 0.36 of the fragments), the quarter-sized pass as the app made it.
+  const std::string plain_img = temp_path("offscreen_plain.ppm");
+  REQUIRE(run_process({probe_path("probe_offscreen"), "--frames", "3", "--size", "128", "--out", plain_img}, {})
+              .exit_code == 0);
+  std::map<std::string, std::map<std::string, double>> fragments;  // level -> pass -> fragments of frame 2
+  std::map<std::string, std::string> images;
+  for (const std::string level : {"0", "2"}) {
+    const std::string log = temp_path("offscreen_" + level + ".csv"), img = temp_path("offscreen_" + level + ".ppm");
+    unlink(log.c_str());
+    const ProcessResult r = run_process(
+        {probe_path("probe_offscreen"), "--frames", "3", "--size", "128", "--out", img},
+        {{"LD_PRELOAD", shim_path()}, {"GLBUDGET_LOG", log}, {"GLBUDGET_SENSOR", "cpu"}, {"GLBUDGET_FORCE", level}});
+    INFO("level " << level << "\n" << r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.err.find("glbudget:") == std::string::npos);
+    for (const auto& row : read_csv_rows_by_name(log)) {
+      CHECK(row.at("configuration") == level);
+      // Frame 2: the last frame also copies the window for the app's glReadPixels.
+      if (row.at("frame") == "2") fragments[level][row.at("pass")] = std::stod(row.at("fragments"));
+    }
+    images[level] = img;
+    unlink(log.c_str());
+  }
+  REQUIRE(fragments["0"].size() == 4);
+  REQUIRE(fragments["2"].size() == 4);
+  int scaled = 0, kept = 0;
+  for (const auto& [pass, full] : fragments["0"]) {
+    const double ratio = fragments["2"].at(pass) / full;
+    INFO("pass " << pass << ": " << full << " fragments at 100 %, ratio " << ratio << " at 60 %");
+    if (full <= 32 * 32 * 1.25) {  // the quarter-sized pass: 32 x 32 at 128 x 128
+      CHECK(ratio == 1.0);
+      ++kept;
+    } else {
+      CHECK(ratio > 0.3);
+      CHECK(ratio < 0.65);  // 0.36 of the area; small quads shade proportionally more helper pixels
+      ++scaled;
+    }
+  }
+  CHECK(kept == 1);
+  CHECK(scaled == 3);
+  const Ppm plain = read_ppm(plain_img), full = read_ppm(images["0"]), small = read_ppm(images["2"]);
+  REQUIRE(!plain.rgb.empty());
+  CHECK(full.rgb == plain.rgb);  // at 100 % nothing the app draws changes
+  REQUIRE(small.width == plain.width);
+  REQUIRE(small.height == plain.height);
+  CHECK(small.rgb != plain.rgb);
+  CHECK(ssim_of(plain, small) >= 0.95);
+  for (const std::string& path : {plain_img, images["0"], images["2"]}) unlink(path.c_str());
+}

@@ -49,7 +49,7 @@ std::vector<std::string> derived_scales(const ParsedPass& pass, const std::vecto
     for (const Target& target : level.level.targets) {
       if (target.kind == Target::Kind::self) scaled.insert(pass.pass.name);
       if (target.kind == Target::Kind::pass) scaled.insert(target.name);
-      if (target.kind == Target::Kind::default_framebuffer) {
+      if (target.kind == Target::Kind::default_framebuffer || target.kind == Target::Kind::window_sized) {
         for (const PassName& other : order) {
           if (other.has_match) scaled.insert(other.name);
         }

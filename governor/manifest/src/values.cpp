@@ -69,6 +69,7 @@ Target make_target(Target::Kind kind, std::string name, uint32_t id) {
 std::optional<Target> parse_target(std::string_view text) {
   if (text == "self") return make_target(Target::Kind::self);
   if (text == "default") return make_target(Target::Kind::default_framebuffer);
+  if (text == "window-sized") return make_target(Target::Kind::window_sized);
   if (text.starts_with("pass:")) {
     if (text.size() == 5) return std::nullopt;
     return make_target(Target::Kind::pass, std::string(text.substr(5)));
@@ -93,6 +94,8 @@ std::string target_text(const Target& target) {
       return "pass:" + target.name;
     case Target::Kind::default_framebuffer:
       return "default";
+    case Target::Kind::window_sized:
+      return "window-sized";
     case Target::Kind::texture:
       return "texture:" + std::to_string(target.id);
     case Target::Kind::framebuffer:

@@ -22,7 +22,7 @@ std::optional<std::string> define_text(const toml::node& node);
 std::optional<UniformValue> uniform_value(const toml::node& node);
 
 Target make_target(Target::Kind kind, std::string name = {}, uint32_t id = 0);
-// "self", "default", "pass:NAME", "texture:N", "framebuffer:N" with 1 <= N < 2^32.
+// "self", "default", "window-sized", "pass:NAME", "texture:N", "framebuffer:N" with 1 <= N < 2^32.
 std::optional<Target> parse_target(std::string_view text);
 std::string target_text(const Target& target);
 

@@ -15,7 +15,7 @@
 //   uniforms = { u_samples = 16 }                  # held at this value
 //   draws = false                                  # the pass's draws are skipped
 //   scale = 0.5                                    # render targets at half width and height
-//   targets = ["self", "pass:metals", "default", "texture:12", "framebuffer:3"]
+//   targets = ["self", "pass:metals", "default", "window-sized", "texture:12", "framebuffer:3"]
 //
 // Schema. Top level: `pass`, an array of tables, in the order of GLBUDGET_FORCE.
 //   pass.name     string, required, unique.
@@ -24,8 +24,8 @@
 //                 substring of a shader source). Absent: the pass owns no programs.
 //   pass.level    array of tables, best first. Absent or empty: one identity level.
 //   pass.scales   array of pass names. Absent: derived from the levels' targets ("self": this
-//                 pass, "pass:X": X, "default": every pass with a match; texture/framebuffer
-//                 targets name no pass).
+//                 pass, "pass:X": X, "default" and "window-sized": every pass with a match;
+//                 texture/framebuffer targets name no pass).
 // Level keys:
 //   name            string.
 //   defines         table NAME -> string | integer | float | bool (finite), in manifest order;
@@ -36,11 +36,12 @@
 //                   arrays are flattened).
 //   draws           bool (default true).
 //   scale           number in (0, 1] (default 1).
-//   targets         array of "self", "default", "pass:NAME", "texture:N", "framebuffer:N"
-//                   (N >= 1). Only with scale < 1 (ignored with a warning at scale 1); absent:
-//                   "self" when the pass has a match, else "default"; "self" needs a match.
-//                   A "pass:NAME" naming no pass is dropped with a warning, and a level left
-//                   with no target is dropped.
+//   targets         array of "self", "default", "window-sized", "pass:NAME", "texture:N",
+//                   "framebuffer:N" (N >= 1); "window-sized": every app framebuffer whose
+//                   images all have the window's size, whichever pass draws into it. Only with scale < 1 (ignored with
+//                   a warning at scale 1); absent: "self" when the pass has a match, else "default"; "self" needs a
+//                   match. A "pass:NAME" naming no pass is dropped with a warning, and a level left with no target is
+//                   dropped.
 //   fragment_scale  number > 0 (default scale * scale).
 //   error           number in [0, 1]: the level's error (1 - SSIM against the best configuration)
 //                   with every other pass at its best, measured or guessed; the governor's error
@@ -54,8 +55,8 @@
 // duplicate name or an invalid match is dropped; no usable pass left is fatal.
 //
 // A pass named "resolution" with no match is the paper's render scale. When the manifest has
-// no pass named "resolution", the shim puts its own first: the default framebuffer at
-// 100 / 80 / 60 / 50 % (builtin_resolution_pass()).
+// no pass named "resolution", the shim puts its own first: the default framebuffer and every
+// window-sized framebuffer at 100 / 80 / 60 / 50 % (builtin_resolution_pass()).
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -75,6 +76,7 @@ struct Target {
     self,                 // the framebuffers this pass's draws go to
     pass,                 // the framebuffers another pass's draws go to (`name`)
     default_framebuffer,  // the window ("default")
+    window_sized,         // every app framebuffer whose images are the window's size ("window-sized")
     texture,              // an app texture by GL name (`id`)
     framebuffer,          // an app framebuffer object by GL name (`id`): all its attachments
   };

@@ -1,0 +1,129 @@
+// Draws the way most games do: the known scene into a window-sized framebuffer (colour texture
+// and depth renderbuffer), a quarter-sized copy of it (a bloom-like chain, never the window's
+// size), then both composed into the window by a full-screen pass that samples them with
+// normalised coordinates. The window is read back at the last frame.
+//   pass A, B: the known scene, into the window-sized framebuffer
+//   pass "quarter": W/4 x H/4 fragments;  pass "compose": W x H fragments, into the window
+#define GL_GLEXT_PROTOTYPES 1
+#include <cstdio>
+
+#include "common/egl_setup.hpp"
+#include "common/probe_main.hpp"
+
+namespace {
+
+const char* kVertex =
+    "#version 330 core\nlayout(location=0) in vec2 pos;\nout vec2 uv;\n"
+    "void main(){ uv = pos * 0.5 + 0.5; gl_Position = vec4(pos, 0.0, 1.0); }\n";
+const char* kQuarter =
+    "#version 330 core\nin vec2 uv;\nuniform sampler2D scene;\nout vec4 frag;\n"
+    "void main(){ frag = texture(scene, uv) * 0.5; /* quarter */ }\n";
+const char* kCompose =
+    "#version 330 core\nin vec2 uv;\nuniform sampler2D scene;\nuniform sampler2D quarter;\nout vec4 frag;\n"
+    "void main(){ frag = texture(scene, uv) * 0.75 + texture(quarter, uv) * 0.5; /* compose */ }\n";
+
+GLuint program(const char* vs, const char* fs) {
+  GLuint p = glCreateProgram();
+  for (auto [stage, src] : {std::pair{GL_VERTEX_SHADER, vs}, std::pair{GL_FRAGMENT_SHADER, fs}}) {
+    GLuint s = glCreateShader(stage);
+    glShaderSource(s, 1, &src, nullptr);
+    glCompileShader(s);
+    glAttachShader(p, s);
+  }
+  glLinkProgram(p);
+  GLint ok = 0;
+  glGetProgramiv(p, GL_LINK_STATUS, &ok);
+  return ok ? p : 0;
+}
+
+GLuint color_texture(int w, int h) {
+  GLuint t = 0;
+  glGenTextures(1, &t);
+  glBindTexture(GL_TEXTURE_2D, t);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  return t;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ProbeArgs args = parse_probe_args(argc, argv);
+  const int w = args.width, h = args.height;
+  EglFns egl;
+  EglWindow win;
+  if (!open_current_window("probe_offscreen", egl, ContextKind::kCore45, w, h, &win)) return 2;
+  GlFns gl;
+#define DIRECT(type, name) gl.name = &::gl##name;
+  PROBE_GL_FUNCTIONS(DIRECT)
+#undef DIRECT
+  KnownScene scene(gl, ShaderDialect::kGlsl330Core, w, h);
+  const GLuint quarter_program = program(kVertex, kQuarter), compose_program = program(kVertex, kCompose);
+  if (!scene.ok() || !quarter_program || !compose_program) {
+    fprintf(stderr, "probe_offscreen: %s\n", scene.ok() ? "a program does not link" : scene.error().c_str());
+    return 2;
+  }
+  GLint scene_vao = 0;  // the known scene's vertex array, bound by it
+  glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &scene_vao);
+  const float full[] = {-1, -1, 1, -1, 1, 1, -1, -1, 1, 1, -1, 1};
+  GLuint full_vao = 0, full_vbo = 0;
+  glGenVertexArrays(1, &full_vao);
+  glBindVertexArray(full_vao);
+  glGenBuffers(1, &full_vbo);
+  glBindBuffer(GL_ARRAY_BUFFER, full_vbo);
+  glBufferData(GL_ARRAY_BUFFER, sizeof full, full, GL_STATIC_DRAW);
+  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glEnableVertexAttribArray(0);
+
+  const GLuint scene_color = color_texture(w, h), quarter_color = color_texture(w / 4, h / 4);
+  GLuint depth = 0, fbo[2] = {0, 0};
+  glGenRenderbuffers(1, &depth);
+  glBindRenderbuffer(GL_RENDERBUFFER, depth);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, w, h);
+  glGenFramebuffers(2, fbo);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo[0]);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, scene_color, 0);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, depth);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo[1]);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, quarter_color, 0);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    fprintf(stderr, "probe_offscreen: framebuffer incomplete\n");
+    return 2;
+  }
+  glUseProgram(compose_program);
+  glUniform1i(glGetUniformLocation(compose_program, "scene"), 0);
+  glUniform1i(glGetUniformLocation(compose_program, "quarter"), 1);
+
+  std::vector<uint8_t> image;
+  for (int f = 0; f < args.frames; ++f) {
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo[0]);
+    glViewport(0, 0, w, h);
+    glBindVertexArray(static_cast<GLuint>(scene_vao));
+    scene.draw_frame(f);
+
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo[1]);
+    glViewport(0, 0, w / 4, h / 4);
+    glBindVertexArray(full_vao);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, scene_color);
+    glUseProgram(quarter_program);
+    glDrawArrays(GL_TRIANGLES, 0, 6);
+
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, w, h);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, quarter_color);
+    glUseProgram(compose_program);
+    glDrawArrays(GL_TRIANGLES, 0, 6);
+    if (f + 1 == args.frames) image = scene.read_rgba();
+    eglSwapBuffers(win.display, win.surface);
+  }
+  const int rc = write_ppm(args.out, image, w, h) ? 0 : 3;
+  eglMakeCurrent(win.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  eglDestroyContext(win.display, win.context);
+  eglTerminate(win.display);
+  return rc;
+}
