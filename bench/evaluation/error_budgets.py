@@ -36,7 +36,7 @@ class ErrorBudgets(Evaluation):
             shown = os.path.join(self.tmp, f"{scene}_e{budget}_shown")
             frames = frames_of(self.run(scene, f"e{budget}", ["--error", budget, "--profile", PROFILE, "--config",
                                                              MANIFEST], governed=True, dump=shown))
-            selected = [f for f, r in frames.items() if r.get("decision") == "select"]
+            selected = [f for f, r in frames.items() if r.get("decision") in ("select", "explore")]
             start = (selected[0] if selected else a.frames) + int(a.fps) + 1
             settled = [f for f in frames if f >= start]
             power = mean([number(frames[f]["power_w"]) for f in settled])

@@ -229,7 +229,7 @@ class Evaluation:
 
     def governed(self, scene, budget, log, truth, shown, result):
         a, frames = self.a, frames_of(log)
-        selected = [f for f, r in frames.items() if r.get("decision") == "select"]
+        selected = [f for f, r in frames.items() if r.get("decision") in ("select", "explore")]
         start = (selected[0] if selected else a.frames) + int(a.fps) + 1
         true_budget = result["cheapest_w"] + float(budget) / 100.0 * (result["best_w"] - result["cheapest_w"])
         windows = within = within_true = within_window = 0

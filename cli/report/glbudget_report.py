@@ -337,7 +337,7 @@ def power_figure(frames, xlim):
         ax.plot(t, predicted, color="tab:green", lw=1.2, label="predicted")
     if any(finite(v) for v in budget):
         ax.step(t, budget, where="post", color="tab:red", lw=1.5, ls="--", label="budget")
-    selections = [f.time_s for f in frames if f.decision == "select"]
+    selections = [f.time_s for f in frames if f.decision in ("select", "explore")]
     if selections:  # one collection: a long run has thousands; the power's range stays the y axis
         watts = ax.get_ylim()
         ax.vlines(selections, 0, 1, transform=ax.get_xaxis_transform(), color="0.4", lw=0.8, ls=":",
@@ -524,7 +524,7 @@ def summary(frames):
 def budget_windows(frames):
     """One bool per whole 1-s window from the first selection: its mean measured power is at
     or under its mean budget (windows without either are left out)."""
-    selected = [f.time_s for f in frames if f.decision == "select"]
+    selected = [f.time_s for f in frames if f.decision in ("select", "explore")]
     if not selected:
         return []
     times = [f.time_s for f in frames]

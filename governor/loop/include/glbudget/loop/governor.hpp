@@ -64,14 +64,16 @@ struct FrameRecord {
   std::vector<model::PassFrame> passes;
 };
 
-// What happened at a frame; when several did, the first in this order: hold, select, refit,
-// fit, check, transition.
+// What happened at a frame; when several did, the first in this order: hold, select or explore,
+// refit, fit, check, transition.
 enum class Event {
   none,
   fit,         // the model's first fit
   check,       // an accuracy check ended (passed or failed)
   refit,       // a later fit (a failed check, or a new configuration's window)
   select,      // a selection ran
+  explore,     // a selection ran and, the model unable to tell the configurations apart, chose
+               // to measure the cheapest once (Governor::explore_cheapest)
   transition,  // the temporal filter moved towards the selected configuration
   hold,        // power has been missing too long: the configuration is held
 };
@@ -139,12 +141,15 @@ class Governor {
   void start(const FrameRecord& record);
   model::OnlineFitter::Event see(const FrameRecord& record, Decision& decision);
   bool selection_due(const FrameRecord& record) const;
-  void select(const FrameRecord& record);
+  // Returns true when it chose to explore instead (explore_cheapest).
+  bool select(const FrameRecord& record);
+  bool explore_cheapest(double budget_w) const;
   void hold(const FrameRecord& record);
   void feed_back(const FrameRecord& record, Decision& decision);
   double initial_budget_w() const;
   double calibrated_scale(double best_now_w) const;
   double share_of_range_w() const;
+  model::Configuration cheapest_levels() const;  // every pass at its last level
   void set_calibrated_prior();
 
   model::ConfigurationSpace space_;
@@ -175,6 +180,8 @@ class Governor {
   ProbeOverhead probe_overhead_;
   FrameRecord after_probe_record_;  // reused: the frame after a probe, its power left out
   bool reselect_now_ = false;       // a window was measured over the budget
+  bool exploring_ = false;          // drawing the cheapest configuration until a window measures it
+  bool explored_ = false;           // once per run
 
   std::size_t missing_power_ = 0;
   bool holding_ = false;
