@@ -9,6 +9,7 @@
 
 #include "apply_gl.hpp"
 #include "context_state.hpp"
+#include "gl_errors.hpp"
 #include "governing.hpp"
 #include "hook_table.hpp"
 #include "messages.hpp"
@@ -56,7 +57,6 @@ struct ProbeGl {
   void(APIENTRYP DeleteSync)(GLsync) = nullptr;
   void(APIENTRYP PixelStorei)(GLenum, GLint) = nullptr;
   void(APIENTRYP GetIntegeri_v)(GLenum, GLuint, GLint*) = nullptr;
-  void(APIENTRYP GetTextureParameteriv)(GLuint, GLenum, GLint*) = nullptr;  // GL 4.5
   bool complete = false;
 };
 
@@ -86,7 +86,6 @@ const ProbeGl& pgl() {
     load(p.DeleteSync, "glDeleteSync");
     load(p.PixelStorei, "glPixelStorei");
     load(p.GetIntegeri_v, "glGetIntegeri_v");
-    load(p.GetTextureParameteriv, "glGetTextureParameteriv");
     p.complete = p.ActiveTexture && p.GetTexLevelParameteriv && p.GetTexParameteriv && p.TexParameteri &&
                  p.TexStorage2D && p.GetRenderbufferParameteriv && p.DrawBuffers && p.GenBuffers && p.DeleteBuffers &&
                  p.BindBuffer && p.BufferData && p.ReadPixels && p.MapBufferRange && p.UnmapBuffer && p.FenceSync &&
@@ -139,6 +138,32 @@ struct Readback {
 };
 
 }  // namespace
+
+// The shadow of an app texture gets immutable storage, which takes sized formats only; an app
+// texture specified with an unsized one (GL_RGBA, as GLES 2-era code does) is given the sized
+// format the driver stores such a texture in by default.
+static GLint sized_format(GLint format) {
+  switch (format) {
+    case GL_RGBA:
+      return GL_RGBA8;
+    case GL_RGB:
+      return GL_RGB8;
+    case GL_RG:
+      return GL_RG8;
+    case GL_RED:
+      return GL_R8;
+    case GL_DEPTH_COMPONENT:
+      return GL_DEPTH_COMPONENT24;
+    case GL_DEPTH_STENCIL:
+      return GL_DEPTH24_STENCIL8;
+    case GL_SRGB:
+      return GL_SRGB8;
+    case GL_SRGB_ALPHA:
+      return GL_SRGB8_ALPHA8;
+    default:
+      return format;
+  }
+}
 
 struct ProbeFrames::Impl {
   ContextState& c;
@@ -233,8 +258,7 @@ struct ProbeFrames::Impl {
           p.GetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_SAMPLES, &im.samples);
           g.BindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(bound));
         } else {
-          // Only 2D textures, level 0. Nothing here may raise a GL error: the app would read
-          // it from glGetError.
+          // Only 2D textures, level 0.
           GLint level = 0, layered = GL_FALSE, face = 0, layer = 0;
           g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL,
                                                 &level);
@@ -246,14 +270,18 @@ struct ProbeFrames::Impl {
             g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_LAYERED,
                                                   &layered);
           if (level != 0 || layered || face != 0 || layer != 0) return false;
-          if (p.GetTextureParameteriv && at_least(4, 5, 99, 0)) {
-            GLint target = 0;
-            p.GetTextureParameteriv(im.app, GL_TEXTURE_TARGET, &target);
-            if (target != GL_TEXTURE_2D) return false;
-          }
+          // A texture of another target cannot be bound to GL_TEXTURE_2D: the error says so
+          // (GL_TEXTURE_TARGET, the direct question, is not answered in compatibility
+          // profiles). Called within the shim's own GL work (prepare): errors here are its own.
           const GLint bound = get(GL_TEXTURE_BINDING_2D);
+          drain_gl_errors();
           g.BindTexture(GL_TEXTURE_2D, im.app);
+          if (!drain_gl_errors().empty()) {  // a texture of another target: GL_INVALID_OPERATION
+            g.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(bound));
+            return false;
+          }
           p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &im.format);
+          im.format = sized_format(im.format);
           p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &w);
           p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &h);
           g.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(bound));
@@ -420,6 +448,7 @@ struct ProbeFrames::Impl {
   // Before the app's draw, clear or blit into its bound framebuffer: every stream's shadow of
   // it holds the app's content from before the call.
   void prepare() {
+    const OwnGlWork own(c);  // errors the shadows' making raises are the shim's
     const GLuint app = app_draw_fbo();
     const GLint draw = get(GL_DRAW_FRAMEBUFFER_BINDING), read = get(GL_READ_FRAMEBUFFER_BINDING);
     bool touched = false;
@@ -511,7 +540,11 @@ struct ProbeFrames::Impl {
   }
 
   bool begin_duplicate() {
-    if (!frame || !duplicate_allowed()) return false;
+    if (!frame) return false;
+    // The app's errors, its draw's among them, are kept for it; what the duplicates raise is
+    // read away in end_duplicate().
+    keep_app_errors(c);
+    if (!duplicate_allowed()) return false;
     saved_draw_fbo = get(GL_DRAW_FRAMEBUFFER_BINDING);
     agl().GetIntegerv(GL_VIEWPORT, saved_viewport);
     agl().GetIntegerv(GL_SCISSOR_BOX, saved_scissor);
@@ -550,6 +583,7 @@ struct ProbeFrames::Impl {
     g.Viewport(saved_viewport[0], saved_viewport[1], saved_viewport[2], saved_viewport[3]);
     g.Scissor(saved_scissor[0], saved_scissor[1], saved_scissor[2], saved_scissor[3]);
     stream = -1;
+    drain_gl_errors();
   }
 
   // --- The swap ---------------------------------------------------------------------------
@@ -590,6 +624,7 @@ struct ProbeFrames::Impl {
 
   void before_present() {
     if (!frame) return;
+    const OwnGlWork own(c);
     TargetScaler& t = *targets();
     const int w = t.window_width(), h = t.window_height();
     if (w <= 0 || h <= 0) return;
@@ -613,6 +648,7 @@ struct ProbeFrames::Impl {
 
   void after_present() {
     if (!frame) return;
+    const OwnGlWork own(c);
     const ProbeGl& p = pgl();
     const ApplyGl& g = agl();
     const int w = capture_width, h = capture_height;
@@ -832,6 +868,7 @@ void ProbeFrames::end() { impl_->end_duplicate(); }
 void ProbeFrames::blit(const GLint* src, const GLint* dst, GLbitfield mask, GLenum filter) {
   Impl& p = *impl_;
   if (!p.frame) return;
+  const OwnGlWork own(p.c);
   const ApplyGl& g = agl();
   TargetScaler& t = *p.targets();
   const GLuint app_read = t.app_read_framebuffer(), app_draw = t.app_draw_framebuffer();

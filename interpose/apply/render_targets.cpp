@@ -143,18 +143,20 @@ void TargetScaler::update_window() {
   if (!window_.checked) {
     // What the window is made of, asked of the real default framebuffer.
     window_.checked = true;
-    GLint draw = 0, samples = 0, depth = 0, stencil = 0, encoding = GL_LINEAR;
+    GLint draw = 0, samples = 0, depth = GL_NONE, stencil = GL_NONE, encoding = GL_LINEAR;
     g.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
     g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
     g.GetIntegerv(GL_SAMPLES, &samples);
-    g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE, &depth);
-    g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_STENCIL, GL_FRAMEBUFFER_ATTACHMENT_STENCIL_SIZE,
+    // The object type is the one parameter an absent buffer may be asked (any other is a
+    // GL_INVALID_OPERATION the app would read from glGetError).
+    g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &depth);
+    g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_STENCIL, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE,
                                           &stencil);
     g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, gles_ ? GL_BACK : GL_BACK_LEFT,
                                           GL_FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING, &encoding);
     g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
     window_.multisampled = samples > 0;
-    window_.has_depth = depth > 0 || stencil > 0;
+    window_.has_depth = depth != GL_NONE || stencil != GL_NONE;
     window_.color_format = encoding == GL_SRGB ? GL_SRGB8_ALPHA8 : GL_RGBA8;
     if (window_.multisampled)
       say_once("multisampled-window", "the window is multisampled: its resolution is not scaled");

@@ -47,10 +47,12 @@ std::string gl_error_name(GLenum error) {
   }
 }
 
-OwnGlWork::OwnGlWork(ContextState& c) : c_(c) {
+void keep_app_errors(ContextState& c) {
   for (GLenum e : drain_gl_errors())
-    if (std::find(c_.app_errors.begin(), c_.app_errors.end(), e) == c_.app_errors.end()) c_.app_errors.push_back(e);
+    if (std::find(c.app_errors.begin(), c.app_errors.end(), e) == c.app_errors.end()) c.app_errors.push_back(e);
 }
+
+OwnGlWork::OwnGlWork(ContextState& c) : c_(c) { keep_app_errors(c_); }
 
 OwnGlWork::~OwnGlWork() { drain_gl_errors(); }
 

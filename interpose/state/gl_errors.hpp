@@ -23,6 +23,9 @@ std::vector<GLenum> drain_gl_errors();
 // "GL_OUT_OF_MEMORY", or the code in hex.
 std::string gl_error_name(GLenum error);
 
+// The app's pending errors in `c` (current on this thread) moved aside for its glGetError.
+void keep_app_errors(ContextState& c);
+
 // A stretch of the shim's own GL work in `c`, current on this thread: the app's pending errors
 // are kept for its glGetError; at the end, errors the work raised and nobody took are read
 // and dropped.

@@ -2,10 +2,14 @@
 // and depth renderbuffer), a quarter-sized copy of it (a bloom-like chain, never the window's
 // size), then both composed into the window by a full-screen pass that samples them with
 // normalised coordinates. The window is read back at the last frame.
+//   --profile compat     a compatibility-profile context (as GLX apps and glmark2 get)
+//   --format unsized     colour textures specified as GL_RGBA (GLES 2-era code), not GL_RGBA8
+// Exits 4 when glGetError reports an error at any frame: none of the app's calls raises one.
 //   pass A, B: the known scene, into the window-sized framebuffer
 //   pass "quarter": W/4 x H/4 fragments;  pass "compose": W x H fragments, into the window
 #define GL_GLEXT_PROTOTYPES 1
 #include <cstdio>
+#include <cstring>
 
 #include "common/egl_setup.hpp"
 #include "common/probe_main.hpp"
@@ -36,11 +40,11 @@ GLuint program(const char* vs, const char* fs) {
   return ok ? p : 0;
 }
 
-GLuint color_texture(int w, int h) {
+GLuint color_texture(int w, int h, bool unsized) {
   GLuint t = 0;
   glGenTextures(1, &t);
   glBindTexture(GL_TEXTURE_2D, t);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+  glTexImage2D(GL_TEXTURE_2D, 0, unsized ? GL_RGBA : GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -52,10 +56,16 @@ GLuint color_texture(int w, int h) {
 
 int main(int argc, char** argv) {
   ProbeArgs args = parse_probe_args(argc, argv);
+  bool compat = false, unsized = false;
+  for (int i = 1; i + 1 < argc; ++i) {
+    if (!strcmp(argv[i], "--profile")) compat = !strcmp(argv[i + 1], "compat");
+    if (!strcmp(argv[i], "--format")) unsized = !strcmp(argv[i + 1], "unsized");
+  }
   const int w = args.width, h = args.height;
   EglFns egl;
   EglWindow win;
-  if (!open_current_window("probe_offscreen", egl, ContextKind::kCore45, w, h, &win)) return 2;
+  if (!open_current_window("probe_offscreen", egl, compat ? ContextKind::kCompat : ContextKind::kCore45, w, h, &win))
+    return 2;
   GlFns gl;
 #define DIRECT(type, name) gl.name = &::gl##name;
   PROBE_GL_FUNCTIONS(DIRECT)
@@ -78,7 +88,7 @@ int main(int argc, char** argv) {
   glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
   glEnableVertexAttribArray(0);
 
-  const GLuint scene_color = color_texture(w, h), quarter_color = color_texture(w / 4, h / 4);
+  const GLuint scene_color = color_texture(w, h, unsized), quarter_color = color_texture(w / 4, h / 4, unsized);
   GLuint depth = 0, fbo[2] = {0, 0};
   glGenRenderbuffers(1, &depth);
   glBindRenderbuffer(GL_RENDERBUFFER, depth);
@@ -98,7 +108,9 @@ int main(int argc, char** argv) {
   glUniform1i(glGetUniformLocation(compose_program, "quarter"), 1);
 
   std::vector<uint8_t> image;
-  for (int f = 0; f < args.frames; ++f) {
+  GLenum error = glGetError();
+  if (error != GL_NO_ERROR) fprintf(stderr, "probe_offscreen: GL error 0x%04x before the first frame\n", error);
+  for (int f = 0; f < args.frames && error == GL_NO_ERROR; ++f) {
     glBindFramebuffer(GL_FRAMEBUFFER, fbo[0]);
     glViewport(0, 0, w, h);
     glBindVertexArray(static_cast<GLuint>(scene_vao));
@@ -120,8 +132,10 @@ int main(int argc, char** argv) {
     glDrawArrays(GL_TRIANGLES, 0, 6);
     if (f + 1 == args.frames) image = scene.read_rgba();
     eglSwapBuffers(win.display, win.surface);
+    error = glGetError();
+    if (error != GL_NO_ERROR) fprintf(stderr, "probe_offscreen: GL error 0x%04x at frame %d\n", error, f);
   }
-  const int rc = write_ppm(args.out, image, w, h) ? 0 : 3;
+  const int rc = error != GL_NO_ERROR ? 4 : write_ppm(args.out, image, w, h) ? 0 : 3;
   eglMakeCurrent(win.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   eglDestroyContext(win.display, win.context);
   eglTerminate(win.display);

@@ -222,3 +222,39 @@ TEST_CASE("bad probe settings are said once and the app runs on") {
   CHECK(count_lines_with(r.err, "GLBUDGET_PROBE_SCALE='3'") == 1);
   fs::remove_all(dir);
 }
+
+TEST_CASE("probes shadow an app's scaled framebuffers in any profile and format, and leave it no GL error") {
+  // probe_offscreen at 60 % (its window-sized scene framebuffer and the window scaled), probed
+  // every other frame, in a core context with a GL_RGBA8 scene texture and in a compatibility
+  // one with an unsized GL_RGBA texture (as glmark2 has): the best stream must draw the scene at
+  // its full size in both, so its error is the same and not 0 (a stream that reads the app's
+  // scaled texture draws what the app showed). The probe exits 4 if glGetError ever reports an
+  // error to it: none of the shim's own GL work may leave one.
+  std::vector<std::map<long, double>> errors;
+  for (const std::vector<std::string>& variant :
+       {std::vector<std::string>{}, std::vector<std::string>{"--profile", "compat", "--format", "unsized"}}) {
+    const std::string log = temp_path("probes_offscreen.csv");
+    unlink(log.c_str());
+    std::vector<std::string> argv = {probe_path("probe_offscreen"), "--size", "128", "--frames", "8"};
+    argv.insert(argv.end(), variant.begin(), variant.end());
+    const ProcessResult r = run_process(argv, {{"LD_PRELOAD", shim_path()},
+                                               {"GLBUDGET_LOG", log},
+                                               {"GLBUDGET_SENSOR", "cpu"},
+                                               {"GLBUDGET_FORCE", "2"},
+                                               {"GLBUDGET_PROBE_PERIOD", "2"}});
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.err.find("glbudget:") == std::string::npos);
+    std::map<long, double> by_frame;
+    for (const auto& row : read_csv_rows_by_name(log))
+      if (!row.at("probe_error").empty()) by_frame[std::stol(row.at("frame"))] = std::stod(row.at("probe_error"));
+    unlink(log.c_str());
+    REQUIRE(by_frame.size() >= 3);
+    for (const auto& [frame, e] : by_frame) {
+      INFO("frame " << frame);
+      CHECK(e > 0.005);
+    }
+    errors.push_back(by_frame);
+  }
+  for (const auto& [frame, e] : errors[0]) CHECK(errors[1][frame] == Approx(e).margin(1e-6));
+}
