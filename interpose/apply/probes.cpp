@@ -142,6 +142,22 @@ struct Readback {
 // The shadow of an app texture gets immutable storage, which takes sized formats only; an app
 // texture specified with an unsized one (GL_RGBA, as GLES 2-era code does) is given the sized
 // format the driver stores such a texture in by default.
+// The sized depth format of that many bits (0: none fits).
+static GLint sized_depth_format(GLint depth_bits, GLint stencil_bits, bool floating) {
+  if (stencil_bits > 0) return floating ? GL_DEPTH32F_STENCIL8 : GL_DEPTH24_STENCIL8;
+  if (floating) return GL_DEPTH_COMPONENT32F;
+  switch (depth_bits) {
+    case 16:
+      return GL_DEPTH_COMPONENT16;
+    case 24:
+      return GL_DEPTH_COMPONENT24;
+    case 32:
+      return GL_DEPTH_COMPONENT32;
+    default:
+      return 0;
+  }
+}
+
 static GLint sized_format(GLint format) {
   switch (format) {
     case GL_RGBA:
@@ -152,10 +168,6 @@ static GLint sized_format(GLint format) {
       return GL_RG8;
     case GL_RED:
       return GL_R8;
-    case GL_DEPTH_COMPONENT:
-      return GL_DEPTH_COMPONENT24;
-    case GL_DEPTH_STENCIL:
-      return GL_DEPTH24_STENCIL8;
     case GL_SRGB:
       return GL_SRGB8;
     case GL_SRGB_ALPHA:
@@ -281,7 +293,16 @@ struct ProbeFrames::Impl {
             return false;
           }
           p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &im.format);
-          im.format = sized_format(im.format);
+          if (im.format == GL_DEPTH_COMPONENT || im.format == GL_DEPTH_STENCIL) {
+            // A depth blit needs the same format on both sides: the one the driver chose.
+            GLint depth_bits = 0, stencil_bits = 0, depth_type = GL_NONE;
+            p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_DEPTH_SIZE, &depth_bits);
+            p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_STENCIL_SIZE, &stencil_bits);
+            p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_DEPTH_TYPE, &depth_type);
+            im.format = sized_depth_format(depth_bits, stencil_bits, depth_type == GL_FLOAT);
+          } else {
+            im.format = sized_format(im.format);
+          }
           p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &w);
           p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &h);
           g.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(bound));
