@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "common/direct_gl.hpp"
 #include "common/egl_setup.hpp"
 #include "common/probe_main.hpp"
 
@@ -29,9 +30,8 @@ const char* kCompose =
 GLuint program(const char* vs, const char* fs) {
   GLuint p = glCreateProgram();
   for (auto [stage, src] : {std::pair{GL_VERTEX_SHADER, vs}, std::pair{GL_FRAGMENT_SHADER, fs}}) {
-    GLuint s = glCreateShader(stage);
-    glShaderSource(s, 1, &src, nullptr);
-    glCompileShader(s);
+    const GLuint s = compile_shader(stage, src);
+    if (!s) return 0;
     glAttachShader(p, s);
   }
   glLinkProgram(p);
@@ -78,15 +78,9 @@ int main(int argc, char** argv) {
   }
   GLint scene_vao = 0;  // the known scene's vertex array, bound by it
   glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &scene_vao);
-  const float full[] = {-1, -1, 1, -1, 1, 1, -1, -1, 1, 1, -1, 1};
-  GLuint full_vao = 0, full_vbo = 0;
-  glGenVertexArrays(1, &full_vao);
-  glBindVertexArray(full_vao);
-  glGenBuffers(1, &full_vbo);
-  glBindBuffer(GL_ARRAY_BUFFER, full_vbo);
-  glBufferData(GL_ARRAY_BUFFER, sizeof full, full, GL_STATIC_DRAW);
-  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
-  glEnableVertexAttribArray(0);
+  bind_fullscreen_quad(w, h);
+  GLint full_vao = 0;
+  glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &full_vao);
 
   const GLuint scene_color = color_texture(w, h, unsized), quarter_color = color_texture(w / 4, h / 4, unsized);
   GLuint depth = 0, fbo[2] = {0, 0};
@@ -118,7 +112,7 @@ int main(int argc, char** argv) {
 
     glBindFramebuffer(GL_FRAMEBUFFER, fbo[1]);
     glViewport(0, 0, w / 4, h / 4);
-    glBindVertexArray(full_vao);
+    glBindVertexArray(static_cast<GLuint>(full_vao));
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, scene_color);
     glUseProgram(quarter_program);
