@@ -139,10 +139,10 @@ struct Readback {
 
 }  // namespace
 
-// The shadow of an app texture gets immutable storage, which takes sized formats only; an app
-// texture specified with an unsized one (GL_RGBA, as GLES 2-era code does) is given the sized
-// format the driver stores such a texture in by default.
-// The sized depth format of that many bits (0: none fits).
+// The shadow of an app texture gets immutable storage, which takes sized formats only: an app
+// texture specified with an unsized one (GL_RGBA, as GLES 2-era code does) gets the sized one
+// below; a depth texture the format of the bits the driver gave it (a depth blit between the
+// two needs the same format on both sides), 0 where none fits.
 static GLint sized_depth_format(GLint depth_bits, GLint stencil_bits, bool floating) {
   if (stencil_bits > 0) return floating ? GL_DEPTH32F_STENCIL8 : GL_DEPTH24_STENCIL8;
   if (floating) return GL_DEPTH_COMPONENT32F;
@@ -294,7 +294,6 @@ struct ProbeFrames::Impl {
           }
           p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &im.format);
           if (im.format == GL_DEPTH_COMPONENT || im.format == GL_DEPTH_STENCIL) {
-            // A depth blit needs the same format on both sides: the one the driver chose.
             GLint depth_bits = 0, stencil_bits = 0, depth_type = GL_NONE;
             p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_DEPTH_SIZE, &depth_bits);
             p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_STENCIL_SIZE, &stencil_bits);
