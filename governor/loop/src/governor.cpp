@@ -218,7 +218,7 @@ bool Governor::select(const FrameRecord& record) {
   model::Configuration chosen = space_.decode(selection.index);
   const bool explore = aim_ == Aim::power && explore_cheapest(budget_w);
   if (explore) {
-    chosen = cheapest_levels();
+    chosen = space_.cheapest();
     chosen_index_ = space_.index_of(chosen);
     exploring_ = explored_ = true;
   }
@@ -230,13 +230,6 @@ bool Governor::select(const FrameRecord& record) {
   target_ = std::move(chosen);
   transition_start_ns_ = record.time_ns;
   return explore;
-}
-
-model::Configuration Governor::cheapest_levels() const {
-  model::Configuration last_levels;
-  for (const model::PassVariants& pass : space_.passes())
-    last_levels.push_back(static_cast<int>(pass.levels.size()) - 1);
-  return last_levels;
 }
 
 // Beyond the paper. A model fitted on the frames of one configuration whose counts barely
@@ -252,7 +245,7 @@ model::Configuration Governor::cheapest_levels() const {
 bool Governor::explore_cheapest(double budget_w) const {
   constexpr double kUnseenSaving = 0.05;
   if (explored_ || !feedback_.settings().enabled || space_.size() < 2) return false;
-  const model::Configuration cheapest = cheapest_levels();
+  const model::Configuration cheapest = space_.cheapest();
   if (feedback_.measured(cheapest)) return false;
   const model::Configuration best(space_.pass_count(), 0);
   const std::size_t b = space_.index_of(best), c = space_.index_of(cheapest);
@@ -288,9 +281,7 @@ double Governor::share_of_range_w() const {
   const double shift = high - model_power_[top];
   double low = std::numeric_limits<double>::infinity();
   const auto& range = settings_.calibrated_range;
-  model::Configuration last_levels;
-  for (const model::PassVariants& pass : space_.passes())
-    last_levels.push_back(static_cast<int>(pass.levels.size()) - 1);
+  const model::Configuration last_levels = space_.cheapest();
   if (feedback_.measured(last_levels)) {
     low = power_[space_.index_of(last_levels)];
   } else if (const double k = calibrated_scale(high); std::isfinite(k)) {

@@ -28,6 +28,12 @@ Configuration ConfigurationSpace::decode(std::size_t index) const {
   return configuration;
 }
 
+Configuration ConfigurationSpace::cheapest() const {
+  Configuration last_levels;
+  for (const PassVariants& pass : passes_) last_levels.push_back(static_cast<int>(pass.levels.size()) - 1);
+  return last_levels;
+}
+
 bool ConfigurationSpace::contains(const Configuration& configuration) const {
   if (configuration.size() != passes_.size()) return false;
   for (std::size_t i = 0; i < passes_.size(); ++i) {

@@ -72,8 +72,7 @@ std::vector<std::pair<Configuration, double>> measured_powers(const json& docume
 // Best (every pass at level 0) and cheapest (every pass at its last level), when both were measured.
 std::optional<VariantTable::MeasuredRange> measured_range(std::span<const std::pair<Configuration, double>> powers,
                                                           const ConfigurationSpace& space) {
-  Configuration best(space.pass_count(), 0), cheapest;
-  for (const PassVariants& pass : space.passes()) cheapest.push_back(static_cast<int>(pass.levels.size()) - 1);
+  const Configuration best(space.pass_count(), 0), cheapest = space.cheapest();
   std::optional<double> best_w, cheapest_w;
   for (const auto& [c, w] : powers) {
     if (c == best) best_w = w;

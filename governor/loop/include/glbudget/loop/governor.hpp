@@ -149,7 +149,6 @@ class Governor {
   double initial_budget_w() const;
   double calibrated_scale(double best_now_w) const;
   double share_of_range_w() const;
-  model::Configuration cheapest_levels() const;  // every pass at its last level
   void set_calibrated_prior();
 
   model::ConfigurationSpace space_;

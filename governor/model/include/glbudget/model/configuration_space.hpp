@@ -46,6 +46,8 @@ class ConfigurationSpace {
   std::size_t index_of(const Configuration& configuration) const;
   Configuration decode(std::size_t index) const;
   bool contains(const Configuration& configuration) const;
+  // Every pass at its last level.
+  Configuration cheapest() const;
 
  private:
   std::vector<PassVariants> passes_;
