@@ -4,7 +4,9 @@
 // change how much is drawn. One run of the app under the shim with instrumentation on and a
 // GLBUDGET_FORCE list that draws every pass at level 0, then 1, then 2 ... for N frames each;
 // the shim's dump says which program drew each level (variants.json) and what each program
-// executed. Writes the variant table (governor/model/variant_table.hpp) the shim reads.
+// executed. Then, with a profile, each level's power (measure_power), and each level's error
+// against the best, as the ratio k of the paper's §6.2 (measure_error_ratios). Writes the
+// variant table (governor/model/variant_table.hpp) the shim reads.
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -30,6 +32,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "calibrate_errors.hpp"
 #include "glbudget/manifest/manifest.hpp"
 #include "glbudget/model/configured_sample.hpp"
 #include "glbudget/model/frame_log.hpp"
@@ -48,8 +51,9 @@ using nlohmann::json;
 using nlohmann::ordered_json;
 
 constexpr const char* kUsage =
-    "usage: glbudget calibrate --app [--config MANIFEST] [--frames N] [--power-frames N] [--fps R] [--sensor S]\n"
-    "                                [--profile P] [--timeout S] [--output PATH] -- APP [ARGS...]\n";
+    "usage: glbudget calibrate --app [--config MANIFEST] [--frames N] [--power-frames N] [--error-probes N]\n"
+    "                                [--fps R] [--sensor S] [--profile P] [--timeout S] [--output PATH]\n"
+    "                                -- APP [ARGS...]\n";
 
 void print_help() {
   std::printf("%s\n", kUsage);
@@ -71,13 +75,19 @@ void print_help() {
       "--power-frames frames each (default 20; 0 skips this run), paced at --fps R if given (as the\n"
       "app will run under a budget). From those frames' power the costs of a batch, vertex,\n"
       "fragment, instruction and texel access in this app's frames are fitted (as `glbudget costs`\n"
-      "does) and kept in the table; the model starts from them.\n");
+      "does) and kept in the table; the model starts from them.\n\n"
+      "Last, the app runs at its best with quality probes every other frame, each level below the\n"
+      "best of each pass in turn, --error-probes times each (default 4; 0 skips this run): each\n"
+      "level's error (1 - SSIM against the best) over its pass's cheapest level's is the ratio k the\n"
+      "governor scales the cheapest level's error by while it runs (\"error_ratio\" in the table;\n"
+      "without it, the manifest's `error` values or l / lmax).\n");
 }
 
 struct Options {
   std::string manifest, output, sensor, profile, fps;
   unsigned frames = 30;
   unsigned power_frames = 20;
+  unsigned error_probes = 4;
   double timeout_s = 600.0;
   std::vector<char*> app;  // argv, null-terminated
 };
@@ -102,8 +112,9 @@ std::optional<Options> parse(std::span<char* const> args, int& status) {
       return std::nullopt;
     }
     if (arg == "--app") continue;
-    static const std::vector<std::string> kValued = {"--config", "--frames", "--power-frames", "--timeout",
-                                                     "--output", "--fps",    "--sensor",       "--profile"};
+    static const std::vector<std::string> kValued = {"--config",  "--frames", "--power-frames",
+                                                     "--timeout", "--output", "--error-probes",
+                                                     "--fps",     "--sensor", "--profile"};
     if (i + 1 >= args.size() || std::find(kValued.begin(), kValued.end(), arg) == kValued.end()) {
       std::fprintf(stderr, "glbudget: calibrate --app: %s %s\n%s", arg.c_str(),
                    i + 1 >= args.size() ? "needs a value" : "is not an option", kUsage);
@@ -121,8 +132,8 @@ std::optional<Options> parse(std::span<char* const> args, int& status) {
     else {
       char* end = nullptr;
       const double v = std::strtod(value.c_str(), &end);
-      const bool frames = arg == "--frames" || arg == "--power-frames";
-      const double least = arg == "--power-frames" ? 0 : 1;
+      const bool frames = arg == "--frames" || arg == "--power-frames" || arg == "--error-probes";
+      const double least = arg == "--frames" ? 1 : 0;
       const bool bad =
           end == value.c_str() || *end || !std::isfinite(v) ||
           (frames ? (v < least || v > 100000 || v != std::floor(v)) : (v <= 0 || (arg == "--fps" && v > 10000)));
@@ -136,6 +147,8 @@ std::optional<Options> parse(std::span<char* const> args, int& status) {
         o.frames = static_cast<unsigned>(v);
       else if (arg == "--power-frames")
         o.power_frames = static_cast<unsigned>(v);
+      else if (arg == "--error-probes")
+        o.error_probes = static_cast<unsigned>(v);
       else if (arg == "--fps")
         o.fps = value;
       else
@@ -202,8 +215,8 @@ RunResult run_app(const Options& o, const std::vector<std::pair<std::string, std
     return r;
   }
   if (child == 0) {
-    for (const char* name : {"GLBUDGET_POWER", "GLBUDGET_ERROR", "GLBUDGET_PROBE_PERIOD", "GLBUDGET_INSTRUMENT",
-                             "GLBUDGET_DUMP_PROBES", "GLBUDGET_FPS"})
+    for (const char* name : {"GLBUDGET_POWER", "GLBUDGET_ERROR", "GLBUDGET_PROBE_PERIOD", "GLBUDGET_PROBE_LEVELS",
+                             "GLBUDGET_INSTRUMENT", "GLBUDGET_DUMP_PROBES", "GLBUDGET_FPS"})
       unsetenv(name);
     for (const auto& [name, value] : env) setenv(name.c_str(), value.c_str(), 1);
     execvp(o.app[0], o.app.data());
@@ -400,6 +413,54 @@ bool measure_power(const Options& o, const manifest::Manifest& m,
   return true;
 }
 
+// Runs the app at its best with probes of every level (calibrate_errors.hpp) and adds each
+// level's "error_ratio" to `table`'s passes and an "errors" section; false after saying why.
+bool measure_error_ratios(const Options& o, const manifest::Manifest& m,
+                          const std::vector<std::pair<std::string, std::string>>& base_env, const std::string& scratch,
+                          ordered_json& table) {
+  const std::string log = (fs::path(scratch) / "errors.csv").string();
+  std::vector<std::pair<std::string, std::string>> env;
+  for (const auto& [name, value] : base_env)
+    if (name == "LD_PRELOAD" || name == "GLBUDGET_CONFIG") env.emplace_back(name, value);
+  env.emplace_back("GLBUDGET_LOG", log);
+  env.emplace_back("GLBUDGET_FORCE", best_configuration(m));
+  env.emplace_back("GLBUDGET_PROBE_PERIOD", "2");
+  env.emplace_back("GLBUDGET_PROBE_LEVELS", "all");
+  std::printf("measuring each level's error against the best, %u probe frames per level...\n", o.error_probes);
+  std::fflush(stdout);
+  const RunResult run = run_app(o, env, log, error_run_frames(m, o.error_probes));
+  if (!run.started) return false;
+  std::string why;
+  const std::optional<ErrorRatios> errors = error_ratios_from_log(log, m, &why);
+  if (!errors) {
+    std::fprintf(stderr, "glbudget: calibrate --app: the levels' errors are not measured: %s\n", why.c_str());
+    return false;
+  }
+  if (errors->measured.empty()) {
+    std::fprintf(stderr,
+                 "glbudget: calibrate --app: no probe frame measured a level's error (the shim probes GL 4.2 / "
+                 "GLES 3.1 contexts whose passes draw); the governor keeps l / lmax\n");
+    return false;
+  }
+  std::printf("%-16s %5s %10s %7s %7s\n", "pass", "level", "error", "probes", "k");
+  ordered_json measured = ordered_json::array();
+  for (ordered_json& pass : table["passes"]) {
+    const std::string name = pass.value("name", "");
+    for (std::size_t l = 1; l < pass["levels"].size(); ++l) {
+      const auto level = errors->measured.find({name, static_cast<int>(l)});
+      if (level == errors->measured.end()) continue;
+      const auto k = errors->ratios.find({name, static_cast<int>(l)});
+      if (k != errors->ratios.end()) pass["levels"][l]["error_ratio"] = k->second;
+      std::printf("%-16s %5zu %10.5f %7d %7s\n", name.c_str(), l, level->second.mean_error, level->second.probes,
+                  k == errors->ratios.end() ? "-" : std::to_string(k->second).substr(0, 5).c_str());
+      measured.push_back(
+          {{"pass", name}, {"level", l}, {"error", level->second.mean_error}, {"probes", level->second.probes}});
+    }
+  }
+  table["errors"] = {{"probes_per_level", o.error_probes}, {"levels", std::move(measured)}};
+  return true;
+}
+
 }  // namespace
 
 int calibrate_app_main(std::span<char* const> args) {
@@ -539,6 +600,7 @@ int calibrate_app_main(std::span<char* const> args) {
     return cleanup(), 1;
   }
   if (o->power_frames > 0) measure_power(*o, m, env, scratch, table);
+  if (o->error_probes > 0) measure_error_ratios(*o, m, env, scratch, table);
   cleanup();
   if (unmeasured)
     std::fprintf(stderr,

@@ -9,7 +9,10 @@ probe frame against the median of the others). Runs are interleaved (rounds) so 
 machine's load hits every case alike.
 "default" in --periods leaves GLBUDGET_PROBE_PERIOD unset with a budget in force (probes every
 10 frames until every pass has been probed, then every 60), the configuration still forced.
+--ssim cpu,gpu measures each period with each place of the probe frames' comparison
+(GLBUDGET_PROBE_SSIM: the governor thread beside the app, or the app's compute shaders).
 Usage: probe_overhead.py BUILD_DIR [--rounds N] [--scene S] [--size WxH] [--periods 10,30,default]
+                         [--ssim auto|cpu|gpu,...]
 """
 import csv
 import os
@@ -35,7 +38,9 @@ def main():
     ap = parser(__doc__, rounds=3, frames=60)
     ap.add_argument("--periods", default="10,30")
     ap.add_argument("--config", default="1,0,0,1,0,0")
+    ap.add_argument("--ssim", default="auto")
     a = ap.parse_args()
+    modes = a.ssim.split(",")
     build = Build(a)
     shimmed = dict(clean_environment(), LD_PRELOAD=build.shim, GLBUDGET_SENSOR="cpu", GLBUDGET_CONFIG=MANIFEST,
                    GLBUDGET_FORCE=a.config)
@@ -46,9 +51,12 @@ def main():
             # configuration (one probe stream), so its baseline is the same run without probes.
             governed = dict(shimmed, GLBUDGET_POWER="100%", GLBUDGET_PROFILE=PROFILE)
             cases["governed, none"] = dict(governed, GLBUDGET_PROBE_PERIOD="0")
-            cases["governed, default"] = governed
-        else:
-            cases[f"probes every {p}"] = dict(shimmed, GLBUDGET_PROBE_PERIOD=p)
+        for mode in modes:
+            suffix = f", {mode}" if len(modes) > 1 else ""
+            if p == "default":
+                cases[f"governed, default{suffix}"] = dict(governed, GLBUDGET_PROBE_SSIM=mode)
+            else:
+                cases[f"probes every {p}{suffix}"] = dict(shimmed, GLBUDGET_PROBE_PERIOD=p, GLBUDGET_PROBE_SSIM=mode)
     args = build.demo_cmd()
     per_frame = {name: [] for name in cases}
     probe_ratio = {name: [] for name in cases}
@@ -67,11 +75,11 @@ def main():
     def baseline_of(name):
         return statistics.median(per_frame["governed, none" if name.startswith("governed") else "no probes"])
     print(f"demo {a.scene} {a.size}, detail 0.2, forced {a.config}, {a.frames} frames unpaced, {a.rounds} rounds")
-    print(f"{'case':<18}{'ms/frame':>10}{'vs none':>9}{'probe frame / other':>21}")
+    print(f"{'case':<26}{'ms/frame':>10}{'vs none':>9}{'probe frame / other':>21}")
     for name in cases:
         ms = statistics.median(per_frame[name]) * 1e3
         ratio = statistics.median(probe_ratio[name]) if probe_ratio[name] else float("nan")
-        print(f"{name:<18}{ms:>10.1f}{ms / (baseline_of(name) * 1e3):>9.2f}{ratio:>21.2f}")
+        print(f"{name:<26}{ms:>10.1f}{ms / (baseline_of(name) * 1e3):>9.2f}{ratio:>21.2f}")
 
 
 if __name__ == "__main__":

@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <deque>
 #include <filesystem>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -69,10 +70,11 @@ struct MeasuredSpace {
   std::optional<model::PlatformCosts> costs;                    // this app's, when calibrate --app measured its power
   std::optional<model::VariantTable::MeasuredRange> range;      // and its best and cheapest configurations'
   std::vector<std::pair<model::Configuration, double>> powers;  // every configuration it measured
+  std::map<std::pair<std::string, int>, double> error_ratios;   // k by pass name and level, where it probed them
 };
 MeasuredSpace measured_space(const manifest::Manifest& m, bool budget) {
   const std::string& named = options().costs_path;
-  if (named == "off") return {loop::space_from_manifest(m), std::nullopt, std::nullopt, {}};
+  if (named == "off") return {loop::space_from_manifest(m), std::nullopt, std::nullopt, {}, {}};
   std::string path = named.empty() ? sensors::default_variant_table_path(executable_name()) : named;
   std::error_code ec;
   if (named.empty() && (path.empty() || !std::filesystem::is_regular_file(path, ec))) {
@@ -85,10 +87,10 @@ MeasuredSpace measured_space(const manifest::Manifest& m, bool budget) {
           (path.empty() ? std::string("no cache directory") : path) +
           "): the model predicts savings from render scales and skipped passes only; "
           "`glbudget calibrate --app -- APP` measures them");
-    return {loop::space_from_manifest(m), std::nullopt, std::nullopt, {}};
+    return {loop::space_from_manifest(m), std::nullopt, std::nullopt, {}, {}};
   }
   const std::optional<model::VariantTable> table = model::load_variant_table(path);  // says why when it fails
-  if (!table) return {loop::space_from_manifest(m), std::nullopt, std::nullopt, {}};
+  if (!table) return {loop::space_from_manifest(m), std::nullopt, std::nullopt, {}, {}};
   std::vector<std::string> problems;
   model::ConfigurationSpace space = loop::space_from_manifest(m, *table, problems);
   for (const std::string& p : problems) say(path + ": " + p);
@@ -99,8 +101,8 @@ MeasuredSpace measured_space(const manifest::Manifest& m, bool budget) {
     same_ends = i < table->space.pass_count()
                     ? space.passes()[i].levels.size() == table->space.passes()[i].levels.size()
                     : space.passes()[i].levels.size() == 1;
-  if (!same_ends) return {std::move(space), table->platform_costs, std::nullopt, {}};
-  return {std::move(space), table->platform_costs, table->measured_range, table->measured_power_w};
+  if (!same_ends) return {std::move(space), table->platform_costs, std::nullopt, {}, table->error_ratios};
+  return {std::move(space), table->platform_costs, table->measured_range, table->measured_power_w, table->error_ratios};
 }
 
 std::string default_profile_path() {
@@ -115,8 +117,14 @@ struct Frame {
 
 class GovernorThread {
  public:
-  GovernorThread(loop::Governor governor, manifest::Manifest manifest, int probe_scale)
-      : governor_(std::move(governor)), manifest_(std::move(manifest)), fixed_scale_(probe_scale) {}
+  GovernorThread(loop::Governor governor, manifest::Manifest manifest, int probe_scale,
+                 const std::map<std::pair<std::string, int>, double>& error_ratios)
+      : governor_(std::move(governor)), manifest_(std::move(manifest)), fixed_scale_(probe_scale) {
+    for (size_t i = 0; i < manifest_.passes.size(); ++i)
+      for (int l = 1; l < static_cast<int>(manifest_.passes[i].levels.size()); ++l)
+        if (const auto k = error_ratios.find({manifest_.passes[i].name, l}); k != error_ratios.end())
+          measured_ratios_[{static_cast<int>(i), l}] = k->second;
+  }
 
   void start() { pthread_create(&thread_, nullptr, &GovernorThread::main, this); }
 
@@ -206,45 +214,64 @@ class GovernorThread {
   // against s0. e_i(lmax) is measured; the levels between take the manifest's ratio to it
   // where both have an `error`, else l / lmax of it. Repeated probes of a pass average.
   void measure(const ProbeCapture& p) {
-    if (p.images.size() != p.streams.size() + 1 || p.width <= 0 || p.height <= 0) return;
+    if (p.width <= 0 || p.height <= 0) return;
+    // Compared on the GPU in the app's context, or here from the images read back.
+    const bool compared = !p.errors.empty();
     std::vector<quality::LumaImage> luma;
-    for (const std::vector<uint8_t>& image : p.images) {
-      if (image.size() != static_cast<size_t>(p.width) * p.height * 4) return;
-      luma.push_back(quality::luma_from_8bit(image.data(), p.width, p.height, 4));
+    if (!compared) {
+      if (p.images.size() != p.streams.size() + 1) return;
+      for (const std::vector<uint8_t>& image : p.images) {
+        if (image.size() != static_cast<size_t>(p.width) * p.height * 4) return;
+        luma.push_back(quality::luma_from_8bit(image.data(), p.width, p.height, 4));
+      }
     }
     quality::SsimOptions options;
     options.scale = fixed_scale_ ? fixed_scale_ : quality::wang_rule_scale(p.width, p.height);
     options.threads = 1;  // beside the app's render threads
-    auto error = [&](size_t a, size_t b) { return 1.0 - quality::ssim(luma[a].view(), luma[b].view(), options); };
-    size_t best = 0;  // the image of s0: the shown one unless a stream drew it
-    for (size_t s = 0; s < p.streams.size(); ++s) {
-      bool all_best = true;
-      for (int i = 0; i < p.streams[s].count; ++i) all_best = all_best && p.streams[s].level[i] == 0;
-      if (all_best) best = s + 1;
-    }
-    shown_error_[p.frame] = best == 0 ? 0.0 : error(0, best);
+    auto error = [&](size_t a, size_t b) -> std::optional<double> {
+      if (!compared) return 1.0 - quality::ssim(luma[a].view(), luma[b].view(), options);
+      for (const ProbeCapture::Compared& k : p.errors)
+        if ((k.a == a && k.b == b) || (k.a == b && k.b == a)) return k.error;
+      return std::nullopt;
+    };
+    const size_t best = best_image(p);
+    if (best == 0)
+      shown_error_[p.frame] = 0.0;
+    else if (const std::optional<double> e = error(0, best))
+      shown_error_[p.frame] = *e;
     for (size_t s = 0; s < p.streams.size(); ++s) {
       if (s + 1 == best) continue;
       int pass = -1;
       for (int i = 0; i < p.streams[s].count; ++i)
         if (p.streams[s].level[i] != 0) pass = pass < 0 ? i : -2;
       if (pass < 0 || static_cast<size_t>(pass) >= manifest_.passes.size()) continue;
-      const manifest::Pass& mp = manifest_.passes[static_cast<size_t>(pass)];
-      const int lmax = static_cast<int>(mp.levels.size()) - 1;
-      if (p.streams[s].level[pass] != lmax) continue;
-      double e = error(best, s + 1);
+      const std::optional<double> measured = error(best, s + 1);
+      if (!measured) continue;
+      std::string& streams = stream_errors_[p.frame];
+      char text[32];
+      std::snprintf(text, sizeof text, "=%.6f", *measured);
+      streams += (streams.empty() ? "" : ";") + format_levels(p.streams[s]) + text;
+      const int lmax = static_cast<int>(manifest_.passes[static_cast<size_t>(pass)].levels.size()) - 1;
+      if (p.streams[s].level[pass] != lmax) continue;  // GLBUDGET_PROBE_LEVELS=all: logged only
+      double e = *measured;
       auto [it, first] = measured_.try_emplace(pass, e);
       if (!first) it->second = e = 0.5 * (it->second + e);
       loop::ErrorTable& table = governor_.errors();
       table.set(static_cast<size_t>(pass), lmax, e);
-      const std::optional<double> top = mp.levels[static_cast<size_t>(lmax)].error;
-      for (int l = 1; l < lmax; ++l) {
-        const std::optional<double> own = mp.levels[static_cast<size_t>(l)].error;
-        const double k = own && top && *top > 0.0 ? std::clamp(*own / *top, 0.0, 1.0) : static_cast<double>(l) / lmax;
-        table.set(static_cast<size_t>(pass), l, k * e);
-      }
+      for (int l = 1; l < lmax; ++l) table.set(static_cast<size_t>(pass), l, level_ratio(pass, l) * e);
     }
     flush_held(0);
+  }
+
+  // k = e_i(l) / e_i(lmax) (paper §6.2): the ratio `glbudget calibrate --app` measured for the
+  // level, else the manifest's `error` values' ratio where both levels have one, else l / lmax.
+  double level_ratio(int pass, int l) const {
+    const auto measured = measured_ratios_.find({pass, l});
+    if (measured != measured_ratios_.end()) return measured->second;
+    const manifest::Pass& mp = manifest_.passes[static_cast<size_t>(pass)];
+    const int lmax = static_cast<int>(mp.levels.size()) - 1;
+    const std::optional<double> own = mp.levels[static_cast<size_t>(l)].error, top = mp.levels.back().error;
+    return own && top && *top > 0.0 ? std::clamp(*own / *top, 0.0, 1.0) : static_cast<double>(l) / lmax;
   }
 
   // Rows of probe frames wait (a few frames at most) for their measured error.
@@ -256,11 +283,14 @@ class GovernorThread {
         ++it;
         continue;
       }
+      const auto streams = stream_errors_.find(it->frame);
       for (FrameRow& row : it->rows) {
         if (known) row.probe_error = found->second;
+        if (streams != stream_errors_.end()) row.probe_streams = streams->second;
         FrameLog::get().push(row);
       }
       if (known) shown_error_.erase(found);
+      if (streams != stream_errors_.end()) stream_errors_.erase(streams);
       it = held_.erase(it);
     }
   }
@@ -379,9 +409,11 @@ class GovernorThread {
   };
   static constexpr uint64_t kHoldFrames = 8;
   std::vector<Held> held_;
-  std::unordered_map<uint64_t, double> shown_error_;  // by probe frame
-  std::unordered_map<int, double> measured_;          // e_i(lmax) by pass
-  int fixed_scale_ = 0;                               // GLBUDGET_PROBE_SCALE; 0: Wang's rule for each capture's size
+  std::unordered_map<uint64_t, double> shown_error_;         // by probe frame
+  std::unordered_map<int, double> measured_;                 // e_i(lmax) by pass
+  std::unordered_map<uint64_t, std::string> stream_errors_;  // by probe frame: FrameRow::probe_streams
+  std::map<std::pair<int, int>, double> measured_ratios_;    // k by pass and level: calibrate --app's
+  int fixed_scale_ = 0;  // GLBUDGET_PROBE_SCALE; 0: Wang's rule for each capture's size
   std::FILE* selections_ = nullptr;
   bool selections_failed_ = false;
 };
@@ -438,7 +470,7 @@ bool governor_start() {
     settings.calibrated_powers = std::move(measured.powers);
     loop::Governor governor(*profile, std::move(measured.space), loop::errors_from_manifest(m), settings);
     const bool steering = governor.governing();
-    g_thread = new GovernorThread(std::move(governor), std::move(m), o.probe_scale);
+    g_thread = new GovernorThread(std::move(governor), std::move(m), o.probe_scale, measured.error_ratios);
     g_thread->start();
     g_governing = true;
     g_steering = steering;

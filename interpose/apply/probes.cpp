@@ -5,6 +5,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
+#include <optional>
+#include <stdexcept>
+#include <string>
 #include <unordered_map>
 
 #include "apply_gl.hpp"
@@ -13,7 +16,9 @@
 #include "governing.hpp"
 #include "hook_table.hpp"
 #include "messages.hpp"
+#include "glbudget/quality/ssim.hpp"
 #include "options.hpp"
+#include "probe_ssim.hpp"
 #include "render_targets.hpp"
 
 namespace glbudget {
@@ -131,8 +136,17 @@ struct Stream {
   bool complete = true;
 };
 
+// A probe frame's comparison queued in the context's compute shaders.
+struct GpuComparison {
+  size_t a = 0, b = 0;  // images
+  uint64_t ticket = 0;
+};
+
+// A probe frame on its way to the governor: its comparisons on the GPU, its images read back
+// (where they are compared on the CPU or dumped), or both.
 struct Readback {
   ProbeCapture capture;
+  std::vector<GpuComparison> comparisons;
   std::vector<GLuint> buffers;
   GLsync fence = nullptr;
 };
@@ -185,7 +199,7 @@ struct ProbeFrames::Impl {
   Stream streams[kMaxStreams];
   uint64_t passes_drawn = ~uint64_t{0};  // in the last probe frame (all before the first)
   uint64_t passes_now = 0;
-  size_t next_pass = 0;  // round robin over passes for s_i^lmax
+  size_t next_pass = 0;  // round robin over the (pass, level) pairs probed
   bool disabled = false;
 
   // The duplicate in progress.
@@ -197,11 +211,16 @@ struct ProbeFrames::Impl {
   int units = 0;
   bool redirected[kMaxUnits] = {};
 
-  // Capture targets: 0 the app's image, then one per stream, window-sized.
-  GLuint capture_fbo[kMaxStreams + 1] = {}, capture_color[kMaxStreams + 1] = {};
+  // Capture targets: 0 the app's image, then one per stream, window-sized textures (the GPU
+  // SSIM samples them).
+  GLuint capture_fbo[kMaxStreams + 1] = {}, capture_texture[kMaxStreams + 1] = {};
   int capture_width = 0, capture_height = 0;
   bool captured[kMaxStreams + 1] = {};
   std::vector<Readback> pending;
+  // The context's GPU SSIM (apply/probe_ssim.hpp), made at the first probe frame; null: the
+  // governor thread compares read-back images.
+  std::unique_ptr<GpuSsim> gpu;
+  bool gpu_made = false;
 
   explicit Impl(ContextState& ctx) : c(ctx) {}
 
@@ -613,18 +632,21 @@ struct ProbeFrames::Impl {
     if (capture_width == width && capture_height == height && capture_fbo[0]) return;
     for (int i = 0; i <= kMaxStreams; ++i) {
       if (capture_fbo[i]) g.DeleteFramebuffers(1, &capture_fbo[i]);
-      if (capture_color[i]) g.DeleteRenderbuffers(1, &capture_color[i]);
+      if (capture_texture[i]) g.DeleteTextures(1, &capture_texture[i]);
     }
-    const GLint renderbuffer = get(GL_RENDERBUFFER_BINDING);
+    const GLint active = get(GL_ACTIVE_TEXTURE);
+    pgl().ActiveTexture(GL_TEXTURE0);
+    const GLint texture = get(GL_TEXTURE_BINDING_2D);
     for (int i = 0; i <= kMaxStreams; ++i) {
       g.GenFramebuffers(1, &capture_fbo[i]);
-      g.GenRenderbuffers(1, &capture_color[i]);
-      g.BindRenderbuffer(GL_RENDERBUFFER, capture_color[i]);
-      g.RenderbufferStorageMultisample(GL_RENDERBUFFER, 0, GL_RGBA8, width, height);
+      g.GenTextures(1, &capture_texture[i]);
+      g.BindTexture(GL_TEXTURE_2D, capture_texture[i]);
+      pgl().TexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, width, height);
       g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, capture_fbo[i]);
-      g.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, capture_color[i]);
+      g.FramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, capture_texture[i], 0);
     }
-    g.BindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(renderbuffer));
+    g.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(texture));
+    pgl().ActiveTexture(static_cast<GLenum>(active));
     capture_width = width;
     capture_height = height;
   }
@@ -669,7 +691,6 @@ struct ProbeFrames::Impl {
   void after_present() {
     if (!frame) return;
     const OwnGlWork own(c);
-    const ProbeGl& p = pgl();
     const ApplyGl& g = agl();
     const int w = capture_width, h = capture_height;
     if (w <= 0 || h <= 0) return end_frame();
@@ -691,29 +712,76 @@ struct ProbeFrames::Impl {
       bool all = true;
       for (int s = 0; s < stream_count; ++s) all = all && captured[s + 1];
       if (all && pending.size() < kMaxPending) {
-        const GLint pack = get(GL_PIXEL_PACK_BUFFER_BINDING), alignment = get(GL_PACK_ALIGNMENT);
-        const GLint row_length = c.caps.gles && c.caps.major < 3 ? 0 : get(GL_PACK_ROW_LENGTH);
-        p.PixelStorei(GL_PACK_ALIGNMENT, 4);
-        if (row_length) p.PixelStorei(GL_PACK_ROW_LENGTH, 0);
-        for (int i = 0; i <= stream_count; ++i) {
-          if (i > 0) r.capture.streams.push_back(streams[i - 1].config);
-          GLuint buffer = 0;
-          p.GenBuffers(1, &buffer);
-          p.BindBuffer(GL_PIXEL_PACK_BUFFER, buffer);
-          p.BufferData(GL_PIXEL_PACK_BUFFER, static_cast<GLsizeiptr>(w) * h * 4, nullptr, GL_STREAM_READ);
-          g.BindFramebuffer(GL_READ_FRAMEBUFFER, capture_fbo[i]);
-          g.ReadBuffer(GL_COLOR_ATTACHMENT0);
-          p.ReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
-          r.buffers.push_back(buffer);
-        }
-        r.fence = p.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-        p.BindBuffer(GL_PIXEL_PACK_BUFFER, static_cast<GLuint>(pack));
-        p.PixelStorei(GL_PACK_ALIGNMENT, alignment);
-        if (row_length) p.PixelStorei(GL_PACK_ROW_LENGTH, row_length);
+        for (int s = 0; s < stream_count; ++s) r.capture.streams.push_back(streams[s].config);
+        if (!compare_on_gpu(r) || !probe_settings().dump_dir.empty()) read_back(r);
         pending.push_back(std::move(r));
       }
     }
     end_frame();
+  }
+
+  // The context's GpuSsim, made the first time (null: compared on the CPU).
+  GpuSsim* gpu_ssim() {
+    if (!gpu_made) {
+      gpu_made = true;
+      gpu = make_probe_ssim();
+    }
+    return gpu.get();
+  }
+
+  // After the GPU SSIM failed (std::exception from GpuSsim): the CPU from now on.
+  void gpu_failed(const char* why) {
+    say_once("probe-ssim-failed",
+             std::string("the GPU SSIM failed (") + why + "); probe frames are compared on the CPU from now on");
+    gpu.reset();
+  }
+
+  // Queues the probe frame's comparisons (the shown image and each stream's against s0's)
+  // in the context's compute shaders; false where they are compared on the CPU.
+  bool compare_on_gpu(Readback& r) {
+    GpuSsim* ssim = gpu_ssim();
+    if (!ssim) return false;
+    const int w = r.capture.width, h = r.capture.height;
+    const int scale = options().probe_scale ? options().probe_scale : quality::wang_rule_scale(w, h);
+    const size_t best = best_image(r.capture);
+    try {
+      for (size_t i = 0; i <= r.capture.streams.size(); ++i) {
+        if (i == best) continue;
+        const uint64_t ticket = ssim->submit(capture_texture[best], capture_texture[i], w, h, scale);
+        r.comparisons.push_back({best, i, ticket});
+      }
+    } catch (const std::exception& e) {
+      gpu_failed(e.what());
+      r.comparisons.clear();
+      return false;
+    }
+    return true;
+  }
+
+  // Starts reading the capture's images back into pixel-pack buffers, behind a fence (the
+  // caller restores the read framebuffer).
+  void read_back(Readback& r) {
+    const ProbeGl& p = pgl();
+    const ApplyGl& g = agl();
+    const int w = r.capture.width, h = r.capture.height;
+    const GLint pack = get(GL_PIXEL_PACK_BUFFER_BINDING), alignment = get(GL_PACK_ALIGNMENT);
+    const GLint row_length = c.caps.gles && c.caps.major < 3 ? 0 : get(GL_PACK_ROW_LENGTH);
+    p.PixelStorei(GL_PACK_ALIGNMENT, 4);
+    if (row_length) p.PixelStorei(GL_PACK_ROW_LENGTH, 0);
+    for (size_t i = 0; i <= r.capture.streams.size(); ++i) {
+      GLuint buffer = 0;
+      p.GenBuffers(1, &buffer);
+      p.BindBuffer(GL_PIXEL_PACK_BUFFER, buffer);
+      p.BufferData(GL_PIXEL_PACK_BUFFER, static_cast<GLsizeiptr>(w) * h * 4, nullptr, GL_STREAM_READ);
+      g.BindFramebuffer(GL_READ_FRAMEBUFFER, capture_fbo[i]);
+      g.ReadBuffer(GL_COLOR_ATTACHMENT0);
+      p.ReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+      r.buffers.push_back(buffer);
+    }
+    r.fence = p.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    p.BindBuffer(GL_PIXEL_PACK_BUFFER, static_cast<GLuint>(pack));
+    p.PixelStorei(GL_PACK_ALIGNMENT, alignment);
+    if (row_length) p.PixelStorei(GL_PACK_ROW_LENGTH, row_length);
   }
 
   Levels saved_config_for_frame;
@@ -725,31 +793,65 @@ struct ProbeFrames::Impl {
   }
 
   // wait: the context goes away (destroyed, or the process exits) and these are its last
-  // read-backs; a bounded wait, so a hung driver cannot hold the app's exit.
+  // probe frames; a bounded wait for read-backs, so a hung driver cannot hold the app's exit.
   void collect(bool wait) {
-    const ProbeGl& p = pgl();
+    if (pending.empty()) return;
+    const OwnGlWork own(c);
     while (!pending.empty()) {
       Readback& r = pending.front();
-      constexpr GLuint64 kLastWaitNs = 2'000'000'000;
-      const GLenum status = p.ClientWaitSync(r.fence, wait ? GL_SYNC_FLUSH_COMMANDS_BIT : 0, wait ? kLastWaitNs : 0);
-      if (status != GL_ALREADY_SIGNALED && status != GL_CONDITION_SATISFIED) return;
-      p.DeleteSync(r.fence);
-      const GLint pack = get(GL_PIXEL_PACK_BUFFER_BINDING);
-      const size_t bytes = static_cast<size_t>(r.capture.width) * r.capture.height * 4;
-      for (GLuint buffer : r.buffers) {
-        p.BindBuffer(GL_PIXEL_PACK_BUFFER, buffer);
-        const void* data = p.MapBufferRange(GL_PIXEL_PACK_BUFFER, 0, static_cast<GLsizeiptr>(bytes), GL_MAP_READ_BIT);
-        std::vector<uint8_t> image(bytes);
-        if (data) std::memcpy(image.data(), data, bytes);
-        p.UnmapBuffer(GL_PIXEL_PACK_BUFFER);
-        r.capture.images.push_back(std::move(image));
-      }
-      p.BindBuffer(GL_PIXEL_PACK_BUFFER, static_cast<GLuint>(pack));
-      p.DeleteBuffers(static_cast<GLsizei>(r.buffers.size()), r.buffers.data());
+      if (!compared(r, wait) || !read(r, wait)) return;
       if (!probe_settings().dump_dir.empty()) dump(r.capture);
-      governor_probe(std::move(r.capture));
+      // Nothing to compare where the GPU SSIM failed on a frame that was not read back.
+      if (!r.capture.errors.empty() || !r.capture.images.empty()) governor_probe(std::move(r.capture));
       pending.erase(pending.begin());
     }
+  }
+
+  // The frame's GPU comparisons are all done (their errors in the capture), or there are none.
+  bool compared(Readback& r, bool wait) {
+    if (r.comparisons.empty()) return true;
+    if (!gpu) {  // failed since
+      r.comparisons.clear();
+      return true;
+    }
+    try {
+      std::vector<ProbeCapture::Compared> errors;
+      for (const GpuComparison& k : r.comparisons) {
+        const std::optional<double> ssim = wait ? gpu->wait(k.ticket) : gpu->poll(k.ticket);
+        if (!ssim) return false;
+        errors.push_back({k.a, k.b, 1.0 - *ssim});
+      }
+      r.capture.errors = std::move(errors);
+    } catch (const std::exception& e) {
+      gpu_failed(e.what());
+    }
+    r.comparisons.clear();
+    return true;
+  }
+
+  // The frame's images are read back into the capture, or it has none to read.
+  bool read(Readback& r, bool wait) {
+    if (!r.fence) return true;
+    const ProbeGl& p = pgl();
+    constexpr GLuint64 kLastWaitNs = 2'000'000'000;
+    const GLenum status = p.ClientWaitSync(r.fence, wait ? GL_SYNC_FLUSH_COMMANDS_BIT : 0, wait ? kLastWaitNs : 0);
+    if (status != GL_ALREADY_SIGNALED && status != GL_CONDITION_SATISFIED) return false;
+    p.DeleteSync(r.fence);
+    r.fence = nullptr;
+    const GLint pack = get(GL_PIXEL_PACK_BUFFER_BINDING);
+    const size_t bytes = static_cast<size_t>(r.capture.width) * r.capture.height * 4;
+    for (GLuint buffer : r.buffers) {
+      p.BindBuffer(GL_PIXEL_PACK_BUFFER, buffer);
+      const void* data = p.MapBufferRange(GL_PIXEL_PACK_BUFFER, 0, static_cast<GLsizeiptr>(bytes), GL_MAP_READ_BIT);
+      std::vector<uint8_t> image(bytes);
+      if (data) std::memcpy(image.data(), data, bytes);
+      p.UnmapBuffer(GL_PIXEL_PACK_BUFFER);
+      r.capture.images.push_back(std::move(image));
+    }
+    p.BindBuffer(GL_PIXEL_PACK_BUFFER, static_cast<GLuint>(pack));
+    p.DeleteBuffers(static_cast<GLsizei>(r.buffers.size()), r.buffers.data());
+    r.buffers.clear();
+    return true;
   }
 
   static void dump(const ProbeCapture& capture) {
@@ -785,20 +887,25 @@ struct ProbeFrames::Impl {
     Levels best;
     best.count = passes;
     if (!(c.config == best)) streams[stream_count++].config = best;
-    for (size_t tries = 0; tries < m.passes.size(); ++tries) {
-      const size_t i = next_pass++ % m.passes.size();
-      if (i >= static_cast<size_t>(kMaxPasses) || static_cast<int>(i) >= passes || m.passes[i].levels.size() < 2)
-        continue;
+    // The (pass, level) pairs in turn: each pass at its cheapest level, or at every level
+    // below the best (GLBUDGET_PROBE_LEVELS=all).
+    std::vector<std::pair<size_t, int>> order;
+    for (size_t i = 0; i < m.passes.size() && static_cast<int>(i) < passes; ++i) {
+      const int lmax = static_cast<int>(m.passes[i].levels.size()) - 1;
+      for (int l = options().probe_every_level ? 1 : lmax; l <= lmax && l >= 1; ++l) order.emplace_back(i, l);
+    }
+    for (size_t tries = 0; tries < order.size(); ++tries) {
+      const auto [i, level] = order[next_pass++ % order.size()];
       const bool scales = [&] {
         for (const manifest::Level& l : m.passes[i].levels)
           if (!l.targets.empty()) return true;
         return false;
       }();
-      if (!scales && i < 64 && !((passes_drawn >> i) & 1)) continue;
-      Levels worst = best;
-      worst.level[i] = static_cast<int8_t>(m.passes[i].levels.size() - 1);
-      if (i < 64) passes_probed |= uint64_t{1} << i;
-      if (!(worst == c.config)) streams[stream_count++].config = worst;
+      if (i >= static_cast<size_t>(kMaxPasses) || (!scales && i < 64 && !((passes_drawn >> i) & 1))) continue;
+      Levels probed = best;
+      probed.level[i] = static_cast<int8_t>(level);
+      if (i < 64 && level + 1 == static_cast<int>(m.passes[i].levels.size())) passes_probed |= uint64_t{1} << i;
+      if (!(probed == c.config)) streams[stream_count++].config = probed;
       break;
     }
     if (stream_count == 0) return;
@@ -831,6 +938,18 @@ struct ProbeFrames::Impl {
 ProbeFrames::ProbeFrames(ContextState& c) : impl_(std::make_unique<Impl>(c)) { impl_->owner = this; }
 ProbeFrames::~ProbeFrames() {
   if (t_probe == this) t_probe = nullptr;
+  // Its GL objects go with the context, which need not be current here.
+  (void)impl_->gpu.release();
+}
+
+size_t best_image(const ProbeCapture& capture) {
+  size_t best = 0;
+  for (size_t s = 0; s < capture.streams.size(); ++s) {
+    bool all_best = true;
+    for (int i = 0; i < capture.streams[s].count; ++i) all_best = all_best && capture.streams[s].level[i] == 0;
+    if (all_best) best = s + 1;
+  }
+  return best;
 }
 
 void ProbeFrames::before_present() { impl_->before_present(); }

@@ -30,16 +30,25 @@ namespace glbudget {
 
 struct ContextState;
 
-// A probe frame's images, read back: RGBA8 rows bottom-up, window-sized. images[0] is what
-// the app showed; then one per stream.
+// A probe frame, window-sized: image 0 is what the app showed, then one per stream. Either its
+// images compared on the GPU (errors), or read back (RGBA8 rows bottom-up) for the governor
+// thread to compare; both where GLBUDGET_DUMP_PROBES wants the images.
 struct ProbeCapture {
+  struct Compared {
+    size_t a = 0, b = 0;  // images
+    double error = 0.0;   // 1 - SSIM
+  };
   uint64_t frame = 0;
   int context = 0;
   int width = 0, height = 0;
   Levels shown;
   std::vector<Levels> streams;
   std::vector<std::vector<uint8_t>> images;
+  std::vector<Compared> errors;
 };
+
+// The image of the best configuration s0: what the app showed, unless a stream drew it.
+size_t best_image(const ProbeCapture& capture);
 
 class ProbeFrames {
  public:

@@ -59,9 +59,9 @@ int format_row(const FrameRow& r, char* out, int size) {
   } else {
     snprintf(probe, sizeof probe, ",");
   }
-  return snprintf(out, size, "%" PRIu64 ",%" PRId64 ",%d,%s,%" PRIu64 ",%s,%s,%s,%s,%s,%" PRIu64 ",%s,%s,%s", r.frame,
-                  r.time_ns, r.context, pass, r.batches, stat[0], stat[1], stat[2], stat[3], power,
-                  r.energy.dropped_samples, r.configuration.c_str(), governed, probe);
+  return snprintf(out, size, "%" PRIu64 ",%" PRId64 ",%d,%s,%" PRIu64 ",%s,%s,%s,%s,%s,%" PRIu64 ",%s,%s,%s,%s",
+                  r.frame, r.time_ns, r.context, pass, r.batches, stat[0], stat[1], stat[2], stat[3], power,
+                  r.energy.dropped_samples, r.configuration.c_str(), governed, probe, r.probe_streams.c_str());
 }
 
 struct FrameLog::Impl {

@@ -12,7 +12,7 @@ namespace glbudget {
 
 constexpr const char* kFrameLogHeader =
     "frame,time_ns,context,pass,batches,vertices,fragments,primitives,gpu_ns,power_w,energy_j,sensor,sensor_dropped,"
-    "configuration,predicted_w,budget_w,est_error,decision,probe,probe_error";
+    "configuration,predicted_w,budget_w,est_error,decision,probe,probe_error,probe_streams";
 
 // Formats one row (no newline) into `out`; returns its length. Empty fields: not measured.
 int format_row(const FrameRow& row, char* out, int size);

@@ -38,6 +38,9 @@ struct FrameRow {
   // best configuration, measured on this frame (NaN: not measured).
   bool probe = false;
   double probe_error = __builtin_nan("");
+  // What the probe streams measured: "levels=error" ("0:0:2=0.031250"), the error of a
+  // stream's image against the best configuration's; ';' between streams (all but s0's).
+  std::string probe_streams;
 };
 
 }  // namespace glbudget

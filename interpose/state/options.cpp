@@ -36,6 +36,8 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_FEEDBACK",
     "GLBUDGET_DUMP_PROBES",
     "GLBUDGET_PROBE_SCALE",
+    "GLBUDGET_PROBE_SSIM",
+    "GLBUDGET_PROBE_LEVELS",
     "GLBUDGET_SHIM",
     "GLBUDGET_COSTS",
     // A test switch, to be documented in README's options table: GL extensions the shim
@@ -127,6 +129,20 @@ Options parse_options(char** env, std::string* warnings) {
         o.probe_scale = value[0] - '0';
       else
         warn(warnings, "GLBUDGET_PROBE_SCALE='" + value + "' is not 1, 2 or 4; Wang's rule");
+    } else if (name == "GLBUDGET_PROBE_SSIM") {
+      if (value == "auto")
+        o.probe_ssim = Options::ProbeSsim::kAuto;
+      else if (value == "gpu")
+        o.probe_ssim = Options::ProbeSsim::kGpu;
+      else if (value == "cpu")
+        o.probe_ssim = Options::ProbeSsim::kCpu;
+      else
+        warn(warnings, "GLBUDGET_PROBE_SSIM='" + value + "' is not auto, gpu or cpu; auto");
+    } else if (name == "GLBUDGET_PROBE_LEVELS") {
+      if (value == "cheapest" || value == "all")
+        o.probe_every_level = value == "all";
+      else
+        warn(warnings, "GLBUDGET_PROBE_LEVELS='" + value + "' is not cheapest or all; cheapest");
     } else if (name == "GLBUDGET_FEEDBACK") {
       if (value == "1" || value == "on")
         o.feedback = true;

@@ -31,7 +31,12 @@ struct Options {
   int64_t probe_period = -1;
   std::string dump_probes;  // GLBUDGET_DUMP_PROBES: probe images as PPM files here
   int probe_scale = 0;      // GLBUDGET_PROBE_SCALE: SSIM at 1, 2 or 4 (0: Wang's rule for the size)
-  bool feedback = true;     // GLBUDGET_FEEDBACK=0: no correction from measured power (the paper's open loop)
+  // GLBUDGET_PROBE_SSIM: where probe frames are compared (apply/probe_ssim.hpp).
+  enum class ProbeSsim { kAuto, kGpu, kCpu } probe_ssim = ProbeSsim::kAuto;
+  // GLBUDGET_PROBE_LEVELS=all: probe frames take every level below the best of each pass in
+  // turn, not only its cheapest (`glbudget calibrate --app` measures the ratios k so).
+  bool probe_every_level = false;
+  bool feedback = true;  // GLBUDGET_FEEDBACK=0: no correction from measured power (the paper's open loop)
   // GLBUDGET_TEST_HIDE_EXTENSIONS=GL_ARB_timer_query,...: a test switch (tests/interpose/
   // faults_test.cpp); the shim's capability probe (detect_caps) takes these extensions, and the
   // features they name even where the core version includes them, as absent.

@@ -9,7 +9,9 @@
    what calibrate measured from the shim's variants, within 3 % per fragment (the camera path
    differs a little: the forced levels draw at other frames).
    With a profile, the app runs again with the cpu sensor, each level alone, and the costs of
-   its frames are fitted into the table.
+   its frames are fitted into the table. Last, the error run: each level's error against the best
+   by probes, and its ratio k to the pass's cheapest level's, which must be near the true ratio
+   (the demo's own images of that level against its best, over five frames).
 3. The shim reads the table: a governed run with GLBUDGET_COSTS names no problem; one with a
    table for another manifest (a pass with one level fewer) says which pass and runs on; and
    without --output the table lands where the shim looks ($XDG_CACHE_HOME/glbudget/demo.variants.json).
@@ -53,8 +55,8 @@ os.makedirs(work)
 
 # 1. The table.
 table_path = os.path.join(work, "demo.variants.json")
-r = calibrate(["--config", manifest, "--frames", "6", "--power-frames", "4", "--sensor", "cpu", "--profile", profile,
-               "--output", table_path, "--", demo] + DEMO_ARGS + ["--frames", "100000"])
+r = calibrate(["--config", manifest, "--frames", "6", "--power-frames", "4", "--error-probes", "3", "--sensor", "cpu",
+               "--profile", profile, "--output", table_path, "--", demo] + DEMO_ARGS + ["--frames", "100000"])
 print(r.stdout, r.stderr)
 check(r.returncode == 0, f"calibrate --app exit status {r.returncode}")
 table = json.load(open(table_path))
@@ -90,6 +92,40 @@ check(len(configurations) == 14 and configurations[0] == "0:0:0:0:0:0" and "0:0:
       configurations[-1] == "2:2:2:2:2:2",
       f"level 0, each of the 12 other levels alone, then the cheapest: {configurations}")
 check(all(c["power_w"] > 0 and c["frames"] >= 2 for c in table["power"]["configurations"]), "each one's power")
+
+# The error run: each level's error against the best, probed, and k = e(l) / e(lmax).
+measured_errors = table.get("errors", {}).get("levels", [])
+check(len(measured_errors) == 12 and all(e["probes"] >= 2 and e["error"] >= 0 for e in measured_errors),
+      f"each of the 12 levels below the best probed: {measured_errors}")
+ratios = {name: [level.get("error_ratio") for level in levels[1:]] for name, levels in passes.items()}
+check(all(k[-1] == 1.0 and k[0] is not None and 0.0 <= k[0] < 1.0 for k in ratios.values()),
+      f"k of each pass's cheapest level 1, the middle one in [0, 1): {ratios}")
+# Ground truth for k: the demo's own images with one pass at a level, against its best, over
+# five frames (1 - SSIM by `glbudget ssim`). The calibrated k must be near it, and nearer than
+# the stand-in l / lmax = 0.5 taken together.
+truth_dir = os.path.join(work, "truth_errors")
+configs = ["0,0,0,0,0,0"] + [",".join(str(l) if j == i else "0" for j in range(6)) for i in range(6) for l in (1, 2)]
+for config in configs:
+    subprocess.run([demo] + DEMO_ARGS + ["--frames", "21", "--config", config, "--dump", truth_dir], check=True,
+                   capture_output=True, env=clean_env())
+truth = {config: 0.0 for config in configs[1:]}
+frames = range(4, 21, 4)
+for f in frames:  # each frame's images of the 12 levels against its best, in one command
+    image = lambda config: os.path.join(truth_dir, f"hall_c{config.replace(',', '')}_f{f:05d}.png")
+    out = subprocess.run([glbudget, "ssim", image(configs[0])] + [image(c) for c in configs[1:]], capture_output=True,
+                         text=True, check=True).stdout.splitlines()
+    for config, line in zip(configs[1:], out):
+        truth[config] += (1 - float(line.split()[0])) / len(frames)
+calibrated_off = stand_in_off = 0.0
+for i, name in enumerate(passes):
+    e = [truth[",".join(str(l) if j == i else "0" for j in range(6))] for l in (1, 2)]
+    k_true = e[0] / e[1]
+    k = ratios[name][0]
+    print(f"{name}: k calibrated {k:.3f}, true {k_true:.3f} (errors {e[0]:.5f} / {e[1]:.5f})")
+    check(k is not None and abs(k - k_true) <= 0.15, f"{name}: k {k} against the true {k_true:.3f}")
+    calibrated_off += abs((k or 0.0) - k_true)
+    stand_in_off += abs(0.5 - k_true)
+check(calibrated_off < stand_in_off / 2, f"calibrated k off by {calibrated_off:.3f} in all, l / lmax by {stand_in_off:.3f}")
 
 # 2. Ground truth: the demo's own programs at each of its levels.
 MARKERS = {"metals": "METAL_SAMPLES", "base": "SHADING_MODEL", "reflections": "u_kernel_taps",

@@ -2,8 +2,10 @@
 // pass, and the variant-table and log forms that carry them.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 #include "glbudget/model/reuse.hpp"
@@ -181,7 +183,7 @@ TEST_CASE("configurations read from the log's column are checked against the spa
     CHECK(!parse_configuration(bad, space));
   }
   // A bad column value falls back to the programs' levels instead of failing the frame.
-  VariantTable table{space, {}, std::nullopt, std::nullopt, {}};
+  VariantTable table{space, {}, std::nullopt, std::nullopt, {}, {}};
   LoggedFrame frame;
   frame.configuration = "9:9";
   CHECK(resolve_frame(frame, table, {1, 1}).configuration == Configuration{1, 1});
@@ -310,4 +312,25 @@ TEST_CASE("a variant table's measured range: the best and the cheapest configura
     REQUIRE(table);
     CHECK_FALSE(table->measured_range);
   }
+}
+
+TEST_CASE("a variant table's error ratios k: numbers in [0, 1] by pass and level, others said",
+          "[model][variants][extremes]") {
+  std::ostringstream captured;
+  auto* old = std::cerr.rdbuf(captured.rdbuf());
+  const auto table = parse_variant_table(R"({"passes": [
+        {"name": "shading", "levels": [{"ins_f": 9}, {"ins_f": 5, "error_ratio": 0.25}, {"ins_f": 1, "error_ratio": 1}]},
+        {"name": "shadows", "levels": [{}, {"error_ratio": 0}, {"error_ratio": 1.5}, {"error_ratio": "half"}, {}]}
+    ]})",
+                                         "inline");
+  std::cerr.rdbuf(old);
+  REQUIRE(table);
+  const std::map<std::pair<std::string, int>, double> expected = {
+      {{"shading", 1}, 0.25}, {{"shading", 2}, 1.0}, {{"shadows", 1}, 0.0}};
+  CHECK(table->error_ratios == expected);
+  CHECK(table->space.passes()[1].levels.size() == 5);  // a bad ratio drops the ratio, not the level
+  const std::string messages = captured.str();
+  CHECK(std::count(messages.begin(), messages.end(), '\n') == 2);
+  CHECK(messages.find("glbudget: inline: pass shadows: \"error_ratio\" must be a number in [0, 1]; ignored") !=
+        std::string::npos);
 }

@@ -52,10 +52,10 @@ TEST_CASE("frame-log rows: empty fields for what was not measured", "[unit]") {
   r.primitives = 20000;
   r.gpu_ns = -1;
   format_row(r, line, sizeof line);
-  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,,,,,,,");
+  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,,,,,,,,");
   r.configuration = "2:0:1";  // the levels that drew the frame, last
   format_row(r, line, sizeof line);
-  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,,,,,,");
+  CHECK(std::string(line) == "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,,,,,,,");
   // The governor's view of the frame: predicted power, budget, estimated error, decision.
   r.predicted_w = 21.5;
   r.budget_w = 24.0;
@@ -63,24 +63,29 @@ TEST_CASE("frame-log rows: empty fields for what was not measured", "[unit]") {
   r.decision = "select";
   format_row(r, line, sizeof line);
   CHECK(std::string(line) ==
-        "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,21.5000,24.0000,0.004000,select,,");
+        "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,21.5000,24.0000,0.004000,select,,,");
   r.predicted_w = NAN;  // before the first fit
   format_row(r, line, sizeof line);
   CHECK(std::string(line) ==
-        "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,,24.0000,0.004000,select,,");
+        "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,,24.0000,0.004000,select,,,");
   // A probe frame: flagged, with the shown frame's measured error once known.
   r.probe = true;
   format_row(r, line, sizeof line);
   CHECK(std::string(line) ==
-        "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,,24.0000,0.004000,select,1,");
+        "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,,24.0000,0.004000,select,1,,");
   r.probe_error = 0.0125;
   format_row(r, line, sizeof line);
   CHECK(std::string(line) ==
-        "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,,24.0000,0.004000,select,1,0.012500");
+        "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,,24.0000,0.004000,select,1,0.012500,");
+  r.probe_streams = "0:0:2=0.031000";  // each stream but the best's, against the best
+  format_row(r, line, sizeof line);
+  CHECK(std::string(line) ==
+        "7,123456789,1,00ab00cd00ef0012,20000,60000,0,20000,,,,,0,2:0:1,,24.0000,0.004000,select,1,0.012500,"
+        "0:0:2=0.031000");
   FrameRow ff;
   ff.pass = kFixedFunctionPass;
   format_row(ff, line, sizeof line);
-  CHECK(std::string(line) == "0,0,0,fixed-function,0,,,,,,,,0,,,,,,,");
+  CHECK(std::string(line) == "0,0,0,fixed-function,0,,,,,,,,0,,,,,,,,");
   // With a sensor: power, energy, the sensor's name (estimates labelled), dropped samples.
   FrameRow powered;
   powered.energy.valid = true;
@@ -125,4 +130,30 @@ TEST_CASE("GLBUDGET_TEST_OUT_OF_MEMORY: pass:level items; others said and ignore
     CHECK(w.find(std::string("GLBUDGET_TEST_OUT_OF_MEMORY item ") + bad + " is not pass:level; ignored") !=
           std::string::npos);
   CHECK(parse_env({"GLBUDGET_TEST_OUT_OF_MEMORY="}, &w).test_out_of_memory.empty());
+}
+
+TEST_CASE("GLBUDGET_PROBE_SSIM: auto, gpu or cpu; anything else said once, auto", "[unit]") {
+  std::string w;
+  CHECK(parse_env({}, &w).probe_ssim == Options::ProbeSsim::kAuto);
+  CHECK(parse_env({"GLBUDGET_PROBE_SSIM=auto"}, &w).probe_ssim == Options::ProbeSsim::kAuto);
+  CHECK(parse_env({"GLBUDGET_PROBE_SSIM=gpu"}, &w).probe_ssim == Options::ProbeSsim::kGpu);
+  CHECK(parse_env({"GLBUDGET_PROBE_SSIM=cpu"}, &w).probe_ssim == Options::ProbeSsim::kCpu);
+  CHECK(w.empty());
+  for (const char* bad : {"GLBUDGET_PROBE_SSIM=", "GLBUDGET_PROBE_SSIM=GPU", "GLBUDGET_PROBE_SSIM=gpu "}) {
+    INFO(bad);
+    w.clear();
+    CHECK(parse_env({bad}, &w).probe_ssim == Options::ProbeSsim::kAuto);
+    CHECK(w.rfind("glbudget: GLBUDGET_PROBE_SSIM=", 0) == 0);
+    CHECK(std::count(w.begin(), w.end(), '\n') == 1);
+  }
+}
+
+TEST_CASE("GLBUDGET_PROBE_LEVELS: cheapest or all; anything else said once, cheapest", "[unit]") {
+  std::string w;
+  CHECK_FALSE(parse_env({}, &w).probe_every_level);
+  CHECK_FALSE(parse_env({"GLBUDGET_PROBE_LEVELS=cheapest"}, &w).probe_every_level);
+  CHECK(parse_env({"GLBUDGET_PROBE_LEVELS=all"}, &w).probe_every_level);
+  CHECK(w.empty());
+  CHECK_FALSE(parse_env({"GLBUDGET_PROBE_LEVELS=every"}, &w).probe_every_level);
+  CHECK(w == "glbudget: GLBUDGET_PROBE_LEVELS='every' is not cheapest or all; cheapest\n");
 }

@@ -17,8 +17,8 @@
 namespace {
 
 // frame,time_ns,context,pass,batches,vertices,fragments,primitives,gpu_ns,power_w,energy_j,sensor,sensor_dropped,
-// configuration,predicted_w,budget_w,est_error,decision,probe,probe_error
-constexpr size_t kLogColumns = 20;
+// configuration,predicted_w,budget_w,est_error,decision,probe,probe_error,probe_streams
+constexpr size_t kLogColumns = 21;
 
 struct AppLog {
   ProcessResult process;

@@ -92,6 +92,7 @@ std::optional<VariantTable> parse_variant_table(const std::string& json_text, co
   }
   std::vector<PassVariants> passes;
   std::map<std::string, VariantRef> by_hash;
+  std::map<std::pair<std::string, int>, double> error_ratios;
   for (const json& pass : document["passes"]) {
     if (!pass.is_object() || !pass.contains("name") || !pass["name"].is_string() || !pass.contains("levels") ||
         !pass["levels"].is_array() || pass["levels"].empty()) {
@@ -129,11 +130,17 @@ std::optional<VariantTable> parse_variant_table(const std::string& json_text, co
         else
           std::cerr << "glbudget: " << where << ": \"draws\" must be true or false; using true\n";
       }
+      if (const auto it = level.find("error_ratio"); it != level.end()) {
+        if (it->is_number() && it->get<double>() >= 0.0 && it->get<double>() <= 1.0)
+          error_ratios[{variants.pass, index}] = it->get<double>();
+        else
+          std::cerr << "glbudget: " << where << ": \"error_ratio\" must be a number in [0, 1]; ignored\n";
+      }
       variants.levels.push_back(cost);
     }
     if (!variants.levels.empty()) passes.push_back(std::move(variants));
   }
-  VariantTable table{ConfigurationSpace(std::move(passes)), std::move(by_hash), std::nullopt, std::nullopt, {}};
+  VariantTable table{ConfigurationSpace(std::move(passes)), std::move(by_hash), std::nullopt, std::nullopt, {}, {}};
   if (const auto it = document.find("platform_costs"); it != document.end()) {
     PlatformCosts costs;
     bool ok = it->is_object();
@@ -156,6 +163,7 @@ std::optional<VariantTable> parse_variant_table(const std::string& json_text, co
   }
   table.measured_power_w = measured_powers(document, table.space);
   table.measured_range = measured_range(table.measured_power_w, table.space);
+  table.error_ratios = std::move(error_ratios);
   return table;
 }
 

@@ -9,6 +9,7 @@
 //                "levels": [{"fragment_scale": 1}, {"fragment_scale": 0.64}, ...]},
 //               {"name": "reflections",
 //                "levels": [{"hashes": ["..."], ...}, ..., {"draws": false}]}, ...]}
+// Levels below the best may carry "error_ratio" (their error over the cheapest level's).
 // A level may name several programs ("hashes"), none (a render scale), or skip the pass.
 #include <cstddef>
 #include <map>
@@ -49,6 +50,9 @@ struct VariantTable {
   // Every configuration of the power run with its measured power (the best, each level alone,
   // the cheapest), in the table's space.
   std::vector<std::pair<Configuration, double>> measured_power_w;
+  // k = e_i(l) / e_i(lmax) (paper §6.2), by pass name and level, where `glbudget calibrate
+  // --app` probed every level of the pass (a level's "error_ratio", in [0, 1]).
+  std::map<std::pair<std::string, int>, double> error_ratios;
 };
 
 // Malformed entries: one `glbudget:` line each, and the entry is left out.
