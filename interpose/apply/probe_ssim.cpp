@@ -23,11 +23,11 @@ std::unique_ptr<GpuSsim> make_probe_ssim() {
   if (mode == Options::ProbeSsim::kCpu) return nullptr;
   const bool asked = mode == Options::ProbeSsim::kGpu;
   auto cannot = [&](const std::string& why) -> std::unique_ptr<GpuSsim> {
-    if (asked)
-      say_once("probe-ssim", "GLBUDGET_PROBE_SSIM=gpu: " + why + "; probe frames are compared on the CPU");
+    if (asked) say_once("probe-ssim", "GLBUDGET_PROBE_SSIM=gpu: " + why + "; probe frames are compared on the CPU");
     return nullptr;
   };
-  if (extension_hidden("GL_ARB_compute_shader")) return cannot("compute shaders hidden (GLBUDGET_TEST_HIDE_EXTENSIONS)");
+  if (extension_hidden("GL_ARB_compute_shader"))
+    return cannot("compute shaders hidden (GLBUDGET_TEST_HIDE_EXTENSIONS)");
   if (!asked) {
     using GetString = const unsigned char*(APIENTRYP)(GLenum);
     auto get_string = reinterpret_cast<GetString>(resolve_gl("glGetString"));
