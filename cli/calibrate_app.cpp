@@ -291,11 +291,10 @@ void add_program(const json& program, LevelSums& s) {
 // share of it is taken over (the governor's calibrated_range); the best measured at both ends
 // of the run averages out a sensor's drift over it.
 std::vector<std::string> power_run_configurations(const manifest::Manifest& m) {
-  std::string best, cheapest;
-  for (std::size_t i = 0; i < m.passes.size(); ++i) {
-    best += i ? ",0" : "0";
+  const std::string best = best_configuration(m);
+  std::string cheapest;
+  for (std::size_t i = 0; i < m.passes.size(); ++i)
     cheapest += (i ? "," : "") + std::to_string(m.passes[i].levels.empty() ? 0 : m.passes[i].levels.size() - 1);
-  }
   std::vector<std::string> configurations{best};
   for (std::size_t i = 0; i < m.passes.size(); ++i)
     for (std::size_t l = 1; l < m.passes[i].levels.size(); ++l) {
@@ -430,16 +429,17 @@ bool measure_error_ratios(const Options& o, const manifest::Manifest& m,
   std::fflush(stdout);
   const RunResult run = run_app(o, env, log, error_run_frames(m, o.error_probes));
   if (!run.started) return false;
-  std::string why;
-  const std::optional<ErrorRatios> errors = error_ratios_from_log(log, m, &why);
+  const std::optional<model::VariantTable> variants = model::parse_variant_table(table.dump(), "the measured table");
+  const std::optional<ErrorRatios> errors = variants ? error_ratios_from_log(log, variants->space) : std::nullopt;
   if (!errors) {
-    std::fprintf(stderr, "glbudget: calibrate --app: the levels' errors are not measured: %s\n", why.c_str());
+    std::fprintf(stderr, "glbudget: calibrate --app: the levels' errors are not measured\n");
     return false;
   }
   if (errors->measured.empty()) {
     std::fprintf(stderr,
                  "glbudget: calibrate --app: no probe frame measured a level's error (the shim probes GL 4.2 / "
-                 "GLES 3.1 contexts whose passes draw); the governor keeps l / lmax\n");
+                 "GLES 3.1 contexts whose passes draw, and logs each stream's error in probe_streams); the "
+                 "governor keeps l / lmax\n");
     return false;
   }
   std::printf("%-16s %5s %10s %7s %7s\n", "pass", "level", "error", "probes", "k");

@@ -3,12 +3,14 @@
 // its best with quality probes every other frame at every level of every pass in turn
 // (GLBUDGET_PROBE_LEVELS=all), and the errors the shim logs per probe stream
 // (probe_streams: "levels=error") are averaged per pass and level.
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
 #include <utility>
 
 #include "glbudget/manifest/manifest.hpp"
+#include "glbudget/model/configuration_space.hpp"
 
 namespace glbudget::cli {
 
@@ -23,11 +25,10 @@ struct ErrorRatios {
 };
 
 // From a frame log's probe_streams column (each probe frame once): every stream that differs
-// from the best in one pass of `m`. k of a pass's levels: their mean error over the cheapest
+// from the best in one pass of `space`. k of a pass's levels: their mean error over the cheapest
 // level's, within [0, 1]; none for a pass whose cheapest level's error is below 1e-6 (nothing
-// to scale) or was not probed. nullopt, and why, when the log cannot be read or has no column.
-std::optional<ErrorRatios> error_ratios_from_log(const std::string& log_path, const manifest::Manifest& m,
-                                                 std::string* why_not);
+// to scale) or was not probed. nullopt when the log cannot be read (the reader says why).
+std::optional<ErrorRatios> error_ratios_from_log(const std::string& log_path, const model::ConfigurationSpace& space);
 
 // GLBUDGET_FORCE's best configuration ("0,0,0") and the probe frames wanted: `per_level` of
 // each level below the best, every other frame, and a few frames for the last read-backs.

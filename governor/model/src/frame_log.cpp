@@ -44,7 +44,7 @@ struct Columns {
   int frame = kAbsent, time_ns = kAbsent, context = kAbsent, pass = kAbsent;
   int batches = kAbsent, vertices = kAbsent, fragments = kAbsent, primitives = kAbsent;
   int gpu_ns = kAbsent, power_w = kAbsent, energy_j = kAbsent, sensor = kAbsent;
-  int configuration = kAbsent;
+  int configuration = kAbsent, probe_streams = kAbsent;
 };
 
 Columns locate_columns(const std::vector<std::string_view>& header) {
@@ -63,6 +63,7 @@ Columns locate_columns(const std::vector<std::string_view>& header) {
       {"energy_j", &c.energy_j},
       {"sensor", &c.sensor},
       {"configuration", &c.configuration},
+      {"probe_streams", &c.probe_streams},
   };
   for (std::size_t i = 0; i < header.size(); ++i) {
     for (const auto& [name, index] : names) {
@@ -148,7 +149,8 @@ std::optional<FrameLog> read_frame_log(std::istream& in, const std::string& sour
                             kNotMeasured,
                             kNotMeasured,
                             std::string(row.text(columns.sensor)),
-                            std::string(row.text(columns.configuration))});
+                            std::string(row.text(columns.configuration)),
+                            std::string(row.text(columns.probe_streams))});
     }
     LoggedFrame& frame = log.frames[it->second];
     // Power is per frame; take the first row that carries it.

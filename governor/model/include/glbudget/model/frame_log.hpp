@@ -33,6 +33,8 @@ struct LoggedFrame {
   std::string sensor;
   // The `configuration` column ("0:2:1:..."), where the writer knew which it drew.
   std::string configuration;
+  // The `probe_streams` column of a quality-probe frame ("0:0:2=0.031250;..."), where measured.
+  std::string probe_streams;
 };
 
 struct FrameLog {
