@@ -117,9 +117,9 @@ struct Frame {
 
 class GovernorThread {
  public:
-  GovernorThread(loop::Governor governor, manifest::Manifest manifest, int probe_scale,
+  GovernorThread(loop::Governor governor, manifest::Manifest manifest,
                  const std::map<std::pair<std::string, int>, double>& error_ratios)
-      : governor_(std::move(governor)), manifest_(std::move(manifest)), fixed_scale_(probe_scale) {
+      : governor_(std::move(governor)), manifest_(std::move(manifest)) {
     for (size_t i = 0; i < manifest_.passes.size(); ++i)
       for (int l = 1; l < static_cast<int>(manifest_.passes[i].levels.size()); ++l)
         if (const auto k = error_ratios.find({manifest_.passes[i].name, l}); k != error_ratios.end())
@@ -211,8 +211,8 @@ class GovernorThread {
   }
 
   // A probe frame's errors (paper §6.2): the shown frame against s0, and each s_i^lmax
-  // against s0. e_i(lmax) is measured; the levels between take the manifest's ratio to it
-  // where both have an `error`, else l / lmax of it. Repeated probes of a pass average.
+  // against s0. e_i(lmax) is measured; the levels between take k times it (level_ratio).
+  // Repeated probes of a pass average. Every stream's error is logged (probe_streams).
   void measure(const ProbeCapture& p) {
     if (p.width <= 0 || p.height <= 0) return;
     // Compared on the GPU in the app's context, or here from the images read back.
@@ -226,7 +226,7 @@ class GovernorThread {
       }
     }
     quality::SsimOptions options;
-    options.scale = fixed_scale_ ? fixed_scale_ : quality::wang_rule_scale(p.width, p.height);
+    options.scale = probe_ssim_scale(p.width, p.height);
     options.threads = 1;  // beside the app's render threads
     auto error = [&](size_t a, size_t b) -> std::optional<double> {
       if (!compared) return 1.0 - quality::ssim(luma[a].view(), luma[b].view(), options);
@@ -413,7 +413,6 @@ class GovernorThread {
   std::unordered_map<int, double> measured_;                 // e_i(lmax) by pass
   std::unordered_map<uint64_t, std::string> stream_errors_;  // by probe frame: FrameRow::probe_streams
   std::map<std::pair<int, int>, double> measured_ratios_;    // k by pass and level: calibrate --app's
-  int fixed_scale_ = 0;  // GLBUDGET_PROBE_SCALE; 0: Wang's rule for each capture's size
   std::FILE* selections_ = nullptr;
   bool selections_failed_ = false;
 };
@@ -470,7 +469,7 @@ bool governor_start() {
     settings.calibrated_powers = std::move(measured.powers);
     loop::Governor governor(*profile, std::move(measured.space), loop::errors_from_manifest(m), settings);
     const bool steering = governor.governing();
-    g_thread = new GovernorThread(std::move(governor), std::move(m), o.probe_scale, measured.error_ratios);
+    g_thread = new GovernorThread(std::move(governor), std::move(m), measured.error_ratios);
     g_thread->start();
     g_governing = true;
     g_steering = steering;

@@ -742,7 +742,7 @@ struct ProbeFrames::Impl {
     GpuSsim* ssim = gpu_ssim();
     if (!ssim) return false;
     const int w = r.capture.width, h = r.capture.height;
-    const int scale = options().probe_scale ? options().probe_scale : quality::wang_rule_scale(w, h);
+    const int scale = probe_ssim_scale(w, h);
     const size_t best = best_image(r.capture);
     try {
       for (size_t i = 0; i <= r.capture.streams.size(); ++i) {
@@ -940,6 +940,10 @@ ProbeFrames::~ProbeFrames() {
   if (t_probe == this) t_probe = nullptr;
   // Its GL objects go with the context, which need not be current here.
   (void)impl_->gpu.release();
+}
+
+int probe_ssim_scale(int width, int height) {
+  return options().probe_scale ? options().probe_scale : quality::wang_rule_scale(width, height);
 }
 
 size_t best_image(const ProbeCapture& capture) {

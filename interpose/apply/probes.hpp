@@ -49,6 +49,8 @@ struct ProbeCapture {
 
 // The image of the best configuration s0: what the app showed, unless a stream drew it.
 size_t best_image(const ProbeCapture& capture);
+// The SSIM's scale for captures of this size: GLBUDGET_PROBE_SCALE, else Wang's rule.
+int probe_ssim_scale(int width, int height);
 
 class ProbeFrames {
  public:
