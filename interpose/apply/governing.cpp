@@ -260,6 +260,16 @@ class GovernorThread {
       table.set(static_cast<size_t>(pass), lmax, e);
       for (int l = 1; l < lmax; ++l) table.set(static_cast<size_t>(pass), l, level_ratio(pass, l) * e);
     }
+    // A pass whose programs drew in neither this probe frame nor the one before is not in the
+    // scene: no level of it changes the image, so its error is 0 rather than the stand-in
+    // (which would rank configurations that differ only there apart). Drawing again, it is
+    // probed afresh.
+    for (size_t i = 0; i < manifest_.passes.size() && i < 64; ++i) {
+      const manifest::Pass& pass = manifest_.passes[i];
+      if (((p.passes_drawn >> i) & 1) || pass.levels.size() < 2 || pass.scales_targets()) continue;
+      measured_.erase(static_cast<int>(i));
+      for (int l = 1; l < static_cast<int>(pass.levels.size()); ++l) governor_.errors().set(i, l, 0.0);
+    }
     flush_held(0);
   }
 

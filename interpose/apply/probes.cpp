@@ -31,6 +31,14 @@ const ProbeSettings& probe_settings() {
     const Options& o = options();
     // Probes measure what the governor chooses by: on by default only when it governs.
     s.period = o.probe_period >= 0 ? static_cast<uint64_t>(o.probe_period) : governor_steering() ? 10 : 0;
+    // The frame after a probe reads it back: its power is the probe's too. Probing every frame
+    // or every other one leaves the governor no frame whose power it can fit.
+    if (governor_steering() && (s.period == 1 || s.period == 2)) {
+      say("GLBUDGET_PROBE_PERIOD=" + std::to_string(s.period) +
+          " leaves no frame whose power the budget can be kept by (each is a probe or reads one back); "
+          "probing every 3 frames");
+      s.period = 3;
+    }
     s.settled_factor = o.probe_period >= 0 ? 1 : 6;
     s.dump_dir = o.dump_probes;
     return s;
@@ -574,7 +582,6 @@ struct ProbeFrames::Impl {
       g.BindTexture(GL_TEXTURE_2D, want ? t->second : static_cast<GLuint>(unit_texture[u]));
       redirected[u] = want;
     }
-    if (c.manifest_pass >= 0 && c.manifest_pass < 64) passes_now |= uint64_t{1} << c.manifest_pass;
     return true;
   }
 
@@ -584,6 +591,9 @@ struct ProbeFrames::Impl {
     // read away in end_duplicate().
     keep_app_errors(c);
     if (!duplicate_allowed()) return false;
+    // The pass draws in the scene, whatever the streams' levels do with this draw (the app's
+    // own level may skip it too).
+    if (c.manifest_pass >= 0 && c.manifest_pass < 64) passes_now |= uint64_t{1} << c.manifest_pass;
     saved_draw_fbo = get(GL_DRAW_FRAMEBUFFER_BINDING);
     agl().GetIntegerv(GL_VIEWPORT, saved_viewport);
     agl().GetIntegerv(GL_SCISSOR_BOX, saved_scissor);
@@ -709,6 +719,7 @@ struct ProbeFrames::Impl {
       r.capture.width = w;
       r.capture.height = h;
       r.capture.shown = saved_config_for_frame;
+      r.capture.passes_drawn = passes_now | passes_drawn;
       bool all = true;
       for (int s = 0; s < stream_count; ++s) all = all && captured[s + 1];
       if (all && pending.size() < kMaxPending) {
@@ -896,11 +907,7 @@ struct ProbeFrames::Impl {
     }
     for (size_t tries = 0; tries < order.size(); ++tries) {
       const auto [i, level] = order[next_pass++ % order.size()];
-      const bool scales = [&] {
-        for (const manifest::Level& l : m.passes[i].levels)
-          if (!l.targets.empty()) return true;
-        return false;
-      }();
+      const bool scales = m.passes[i].scales_targets();
       if (i >= static_cast<size_t>(kMaxPasses) || (!scales && i < 64 && !((passes_drawn >> i) & 1))) continue;
       Levels probed = best;
       probed.level[i] = static_cast<int8_t>(level);

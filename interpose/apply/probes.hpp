@@ -45,6 +45,9 @@ struct ProbeCapture {
   std::vector<Levels> streams;
   std::vector<std::vector<uint8_t>> images;
   std::vector<Compared> errors;
+  // Manifest passes (bit i, i < 64) that drew in this probe frame or the one before it: a pass
+  // that drew in neither changes nothing in the image at any of its levels.
+  uint64_t passes_drawn = ~uint64_t{0};
 };
 
 // The image of the best configuration s0: what the app showed, unless a stream drew it.

@@ -249,6 +249,49 @@ TEST_CASE("probe frames compared in the app's compute shaders give the CPU's err
   }
 }
 
+TEST_CASE("passes not in the scene estimate no error at any level; passes in it do") {
+  // The valley has nothing reflective or metallic: the demo's reflections and metals passes
+  // draw nothing, so no level of theirs changes its image. The governor's estimates must say
+  // so (they once kept a stand-in error for them, ranking configurations that differ only
+  // there apart), and still see the passes that draw.
+  const std::string log = temp_path("valley_estimates.csv");
+  unlink(log.c_str());
+  unlink((log + ".selections.csv").c_str());
+  const ProcessResult r = run_process(
+      {DEMO_PATH, "--scene", "valley", "--detail", "0.2", "--width", "320", "--height", "180", "--frames", "120"},
+      {{"LD_PRELOAD", shim_path()},
+       {"GLBUDGET_CONFIG", manifest_path()},
+       {"GLBUDGET_POWER", "50%"},
+       {"GLBUDGET_PROFILE", std::string(GLBUDGET_SOURCE_DIR) + "/tests/data/logs/demo_cpu.profile.json"},
+       {"GLBUDGET_SENSOR", "cpu"},
+       {"GLBUDGET_FPS", "20"},
+       {"GLBUDGET_SELECT_FRAMES", "30"},
+       {"GLBUDGET_TRANSITION_S", "1"},
+       {"GLBUDGET_PROBE_PERIOD", "2"},  // too often under a budget: said, and every 3 frames
+       {"GLBUDGET_LOG", log}});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(count_lines_with(r.err, "GLBUDGET_PROBE_PERIOD=2 leaves no frame") == 1);
+  std::map<std::string, double> estimate;  // at the last selection
+  long last = -1;
+  for (const auto& row : read_csv_rows_by_name(log + ".selections.csv")) {
+    const long frame = std::stol(row.at("frame"));
+    if (frame > last) estimate.clear(), last = frame;
+    if (frame == last && !row.at("est_error").empty())
+      estimate[row.at("configuration")] = std::stod(row.at("est_error"));
+  }
+  REQUIRE(estimate.size() == 729);
+  // (resolution, base, reflections, shadows, metals, antialiasing)
+  CHECK(estimate.at("0:0:0:0:0:0") == 0.0);
+  CHECK(estimate.at("0:0:2:0:0:0") == 0.0);
+  CHECK(estimate.at("0:0:1:0:2:0") == 0.0);
+  CHECK(estimate.at("2:1:2:2:2:2") == Approx(estimate.at("2:1:0:2:0:2")).margin(1e-12));
+  CHECK(estimate.at("0:0:0:2:0:0") > 0.0);  // shadows draw
+  CHECK(estimate.at("2:0:0:0:0:0") > 0.0);  // the window scales
+  unlink(log.c_str());
+  unlink((log + ".selections.csv").c_str());
+}
+
 TEST_CASE("bad probe settings are said once and the app runs on") {
   const std::string dir = temp_path("probes_bad");
   fs::create_directories(dir + "/app");

@@ -11,6 +11,10 @@ int Manifest::find(const std::string& name) const {
   return -1;
 }
 
+bool Pass::scales_targets() const {
+  return std::any_of(levels.begin(), levels.end(), [](const Level& l) { return !l.targets.empty(); });
+}
+
 bool matches(const Match& match, uint64_t hash, const std::vector<std::string>& sources) {
   if (std::find(match.hashes.begin(), match.hashes.end(), hash) != match.hashes.end()) return true;
   for (const std::string& source : sources) {

@@ -126,6 +126,9 @@ struct Pass {
   std::vector<std::string> scales;  // for the model: passes whose fragments `scale` multiplies
                                     // (names of this manifest's passes, in manifest order
                                     // when derived)
+  // Some level scales render targets: the pass changes the image whether or not its own
+  // programs draw.
+  bool scales_targets() const;
 };
 
 struct Manifest {
