@@ -206,7 +206,8 @@ TEST_CASE("glxgears and es2gears_x11 with their window at 60 %", "[integration]"
 
 TEST_CASE("glmark2 at 60 %, probed: offscreen passes, blur, shadow maps and terrain run to the end, no GL error",
           "[integration]") {
-  // Its window-sized framebuffers scaled with the window, quality probes every 5 frames. Mesa
+  // Its window-sized framebuffers scaled with the window, quality probes every other frame (a
+  // loaded machine draws few frames of a 0.3-s scene; at every 5th one scene went unprobed). Mesa
   // reports every GL error raised in the app's context (MESA_DEBUG=1); glmark2 alone raises
   // none in these scenes, so any is the shim's.
   const std::string log = temp_path("glmark2_60.csv");
@@ -230,7 +231,7 @@ TEST_CASE("glmark2 at 60 %, probed: offscreen passes, blur, shadow maps and terr
                                          {{"GLBUDGET_LOG", log},
                                           {"GLBUDGET_FORCE", "2"},
                                           {"GLBUDGET_SENSOR", "cpu"},
-                                          {"GLBUDGET_PROBE_PERIOD", "5"},
+                                          {"GLBUDGET_PROBE_PERIOD", "2"},
                                           {"MESA_DEBUG", "1"}});
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
