@@ -212,7 +212,10 @@ class GovernorThread {
 
   // A probe frame's errors (paper §6.2): the shown frame against s0, and each s_i^lmax
   // against s0. e_i(lmax) is measured; the levels between take k times it (level_ratio).
-  // Repeated probes of a pass average. Every stream's error is logged (probe_streams).
+  // A pass's latest probe replaces its earlier ones: the same frame drawn twice has no noise to
+  // average away, and in a moving scene an older frame's error is the one further from the
+  // frames to come (averaging with it lowered the rank correlation on subway and valley).
+  // Every stream's error is logged (probe_streams).
   void measure(const ProbeCapture& p) {
     if (p.width <= 0 || p.height <= 0) return;
     // Compared on the GPU in the app's context, or here from the images read back.
@@ -253,21 +256,17 @@ class GovernorThread {
       streams += (streams.empty() ? "" : ";") + format_levels(p.streams[s]) + text;
       const int lmax = static_cast<int>(manifest_.passes[static_cast<size_t>(pass)].levels.size()) - 1;
       if (p.streams[s].level[pass] != lmax) continue;  // GLBUDGET_PROBE_LEVELS=all: logged only
-      double e = *measured;
-      auto [it, first] = measured_.try_emplace(pass, e);
-      if (!first) it->second = e = 0.5 * (it->second + e);
+      const double e = *measured;
       loop::ErrorTable& table = governor_.errors();
       table.set(static_cast<size_t>(pass), lmax, e);
       for (int l = 1; l < lmax; ++l) table.set(static_cast<size_t>(pass), l, level_ratio(pass, l) * e);
     }
     // A pass whose programs drew in neither this probe frame nor the one before is not in the
     // scene: no level of it changes the image, so its error is 0 rather than the stand-in
-    // (which would rank configurations that differ only there apart). Drawing again, it is
-    // probed afresh.
+    // (which would rank configurations that differ only there apart) until it is probed again.
     for (size_t i = 0; i < manifest_.passes.size() && i < 64; ++i) {
       const manifest::Pass& pass = manifest_.passes[i];
       if (((p.passes_drawn >> i) & 1) || pass.levels.size() < 2 || pass.scales_targets()) continue;
-      measured_.erase(static_cast<int>(i));
       for (int l = 1; l < static_cast<int>(pass.levels.size()); ++l) governor_.errors().set(i, l, 0.0);
     }
     flush_held(0);
@@ -420,7 +419,6 @@ class GovernorThread {
   static constexpr uint64_t kHoldFrames = 8;
   std::vector<Held> held_;
   std::unordered_map<uint64_t, double> shown_error_;         // by probe frame
-  std::unordered_map<int, double> measured_;                 // e_i(lmax) by pass
   std::unordered_map<uint64_t, std::string> stream_errors_;  // by probe frame: FrameRow::probe_streams
   std::map<std::pair<int, int>, double> measured_ratios_;    // k by pass and level: calibrate --app's
   std::FILE* selections_ = nullptr;
