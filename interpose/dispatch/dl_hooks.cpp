@@ -2,6 +2,7 @@
 // library and look entry points up by handle, where symbol interposition cannot reach.
 // Also _exit/_Exit, which skip atexit handlers but must still flush the frame log.
 #include <dlfcn.h>
+
 #include <link.h>
 #include <sys/syscall.h>
 #include <unistd.h>
@@ -43,6 +44,10 @@ void* symbol_in(link_map* l, const char* name) {
   return p && object_of(p) == l ? p : nullptr;
 }
 
+// Our own definitions of what is not GL (the process-exit hooks below): what an object just
+// before us (a sanitizer runtime, another interposer) must find as the next definition.
+void* own_definition(const char* name);
+
 // dlsym(RTLD_NEXT) must search after the *caller's* object; called from here, glibc would
 // search after ours. So walk the link map from the caller on, as the dynamic linker does.
 void* next_after(const void* caller, const char* name) {
@@ -55,6 +60,7 @@ void* next_after(const void* caller, const char* name) {
     // its interceptors' real functions while it starts): what follows it is us, then what
     // follows us, which glibc searches itself when asked from here. No dlopen either, which
     // such a runtime intercepts and cannot serve before it has started.
+    if (void* p = own_definition(name)) return p;
     if (void* p = real_dlsym(RTLD_NEXT, name)) return id < 0 ? p : hook_for_proc(name, p);
     if (id < 0) return nullptr;
     void* p = real_entry(id);
@@ -62,6 +68,7 @@ void* next_after(const void* caller, const char* name) {
   }
   for (link_map* l = from->l_next; l; l = l->l_next) {
     if (l == me) {
+      if (void* p = own_definition(name)) return p;
       if (id < 0) continue;  // we define nothing else for others to see
       // The next definition after ours is the real one behind our hook.
       for (link_map* r = me->l_next; r; r = r->l_next)
@@ -97,3 +104,22 @@ GLBUDGET_EXPORT void _Exit(int status) {
   final_flush();
   real_exit_call("_Exit", status);
 }
+
+// Hidden aliases: their addresses are ours, where `&_exit` would be whichever definition comes
+// first in the process (an interceptor preloaded ahead of us).
+extern "C" void glbudget_own_exit(int) __attribute__((copy(_exit), visibility("hidden"), alias("_exit")));
+extern "C" void glbudget_own_Exit(int) __attribute__((copy(_Exit), visibility("hidden"), alias("_Exit")));
+
+namespace {
+// No strcmp: a sanitizer runtime intercepts it and asks us while it starts.
+bool same_name(const char* a, const char* b) {
+  while (*a && *a == *b) ++a, ++b;
+  return *a == *b;
+}
+
+void* own_definition(const char* name) {
+  if (same_name(name, "_exit")) return reinterpret_cast<void*>(&glbudget_own_exit);
+  if (same_name(name, "_Exit")) return reinterpret_cast<void*>(&glbudget_own_Exit);
+  return nullptr;
+}
+}  // namespace

@@ -241,13 +241,24 @@ TEST_CASE("glmark2 at 60 %, probed: offscreen passes, blur, shadow maps and terr
   const auto rows = read_csv_rows_by_name(log);
   REQUIRE(rows.size() > 20);
   std::set<std::string> contexts_probed;
+  std::map<std::string, std::set<std::string>> frames;  // by context (glmark2 makes one per scene)
   for (const auto& row : rows) {
     CHECK(row.at("configuration") == "2");
+    frames[row.at("context")].insert(row.at("frame"));
     // The best stream draws every framebuffer at its full size: an error above 0 (it read 0
     // where the streams sampled the app's scaled textures).
     if (!row.at("probe_error").empty() && std::stod(row.at("probe_error")) > 0.001)
       contexts_probed.insert(row.at("context"));
   }
-  CHECK(contexts_probed.size() >= 5);  // glmark2 makes a context per scene
+  // Every scene that drew a probe frame and the frame after it (the comparison's) was probed.
+  // Under the sanitizers a 0.3-s scene can draw a single frame.
+  size_t long_enough = 0;
+  for (const auto& [context, drawn] : frames) {
+    if (drawn.size() < 3) continue;
+    ++long_enough;
+    INFO("context " << context << ", " << drawn.size() << " frames");
+    CHECK(contexts_probed.count(context) == 1);
+  }
+  CHECK(long_enough >= 3);
   unlink(log.c_str());
 }
