@@ -2,7 +2,6 @@
 // library and look entry points up by handle, where symbol interposition cannot reach.
 // Also _exit/_Exit, which skip atexit handlers but must still flush the frame log.
 #include <dlfcn.h>
-
 #include <link.h>
 #include <sys/syscall.h>
 #include <unistd.h>
