@@ -264,9 +264,9 @@ class GovernorThread {
     // A pass whose programs drew in neither this probe frame nor the one before is not in the
     // scene: no level of it changes the image, so its error is 0 rather than the stand-in
     // (which would rank configurations that differ only there apart) until it is probed again.
-    for (size_t i = 0; i < manifest_.passes.size() && i < 64; ++i) {
+    for (size_t i = 0; i < manifest_.passes.size(); ++i) {
       const manifest::Pass& pass = manifest_.passes[i];
-      if (((p.passes_drawn >> i) & 1) || pass.levels.size() < 2 || pass.scales_targets()) continue;
+      if (pass.levels.size() < 2 || pass_in_scene(pass, i, p.passes_drawn)) continue;
       for (int l = 1; l < static_cast<int>(pass.levels.size()); ++l) governor_.errors().set(i, l, 0.0);
     }
     flush_held(0);

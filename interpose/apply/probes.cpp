@@ -907,8 +907,7 @@ struct ProbeFrames::Impl {
     }
     for (size_t tries = 0; tries < order.size(); ++tries) {
       const auto [i, level] = order[next_pass++ % order.size()];
-      const bool scales = m.passes[i].scales_targets();
-      if (i >= static_cast<size_t>(kMaxPasses) || (!scales && i < 64 && !((passes_drawn >> i) & 1))) continue;
+      if (i >= static_cast<size_t>(kMaxPasses) || !pass_in_scene(m.passes[i], i, passes_drawn)) continue;
       Levels probed = best;
       probed.level[i] = static_cast<int8_t>(level);
       if (i < 64 && level + 1 == static_cast<int>(m.passes[i].levels.size())) passes_probed |= uint64_t{1} << i;
@@ -951,6 +950,10 @@ ProbeFrames::~ProbeFrames() {
 
 int probe_ssim_scale(int width, int height) {
   return options().probe_scale ? options().probe_scale : quality::wang_rule_scale(width, height);
+}
+
+bool pass_in_scene(const manifest::Pass& pass, size_t i, uint64_t passes_drawn) {
+  return pass.scales_targets() || i >= 64 || ((passes_drawn >> i) & 1);
 }
 
 size_t best_image(const ProbeCapture& capture) {

@@ -25,6 +25,7 @@
 
 #include "configuration.hpp"
 #include "gl_types.hpp"
+#include "glbudget/manifest/manifest.hpp"
 
 namespace glbudget {
 
@@ -54,6 +55,10 @@ struct ProbeCapture {
 size_t best_image(const ProbeCapture& capture);
 // The SSIM's scale for captures of this size: GLBUDGET_PROBE_SCALE, else Wang's rule.
 int probe_ssim_scale(int width, int height);
+// Whether manifest pass `i` is in the scene, given the passes that drew (bit i, i < 64; those
+// beyond are taken as drawing): it scales render targets, which changes the image whether or
+// not its own programs draw, or its programs drew.
+bool pass_in_scene(const manifest::Pass& pass, size_t i, uint64_t passes_drawn);
 
 class ProbeFrames {
  public:

@@ -19,6 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string manifest_path() { return std::string(GLBUDGET_SOURCE_DIR) + "/testapps/demo/glbudget.toml"; }
+std::string profile_path() { return std::string(GLBUDGET_SOURCE_DIR) + "/tests/data/logs/demo_cpu.profile.json"; }
 
 struct Image {
   int width = 0, height = 0, channels = 0;
@@ -262,7 +263,7 @@ TEST_CASE("passes not in the scene estimate no error at any level; passes in it 
       {{"LD_PRELOAD", shim_path()},
        {"GLBUDGET_CONFIG", manifest_path()},
        {"GLBUDGET_POWER", "50%"},
-       {"GLBUDGET_PROFILE", std::string(GLBUDGET_SOURCE_DIR) + "/tests/data/logs/demo_cpu.profile.json"},
+       {"GLBUDGET_PROFILE", profile_path()},
        {"GLBUDGET_SENSOR", "cpu"},
        {"GLBUDGET_FPS", "20"},
        {"GLBUDGET_SELECT_FRAMES", "30"},
@@ -307,14 +308,12 @@ TEST_CASE("bad probe settings are said once and the app runs on") {
   CHECK(count_lines_with(r.err, "GLBUDGET_PROBE_SSIM='fpga'") == 1);
   // Under a budget, probing every other frame leaves no frame whose power is the frame's own
   // (the one after a probe reads it back): said, and raised to every third.
-  const ProcessResult often =
-      run_process(demo("hall", dir + "/often"),
-                  {{"LD_PRELOAD", shim_path()},
-                   {"GLBUDGET_CONFIG", manifest_path()},
-                   {"GLBUDGET_POWER", "50%"},
-                   {"GLBUDGET_PROFILE", std::string(GLBUDGET_SOURCE_DIR) + "/tests/data/logs/demo_cpu.profile.json"},
-                   {"GLBUDGET_SENSOR", "cpu"},
-                   {"GLBUDGET_PROBE_PERIOD", "2"}});
+  const ProcessResult often = run_process(demo("hall", dir + "/often"), {{"LD_PRELOAD", shim_path()},
+                                                                         {"GLBUDGET_CONFIG", manifest_path()},
+                                                                         {"GLBUDGET_POWER", "50%"},
+                                                                         {"GLBUDGET_PROFILE", profile_path()},
+                                                                         {"GLBUDGET_SENSOR", "cpu"},
+                                                                         {"GLBUDGET_PROBE_PERIOD", "2"}});
   INFO(often.err);
   CHECK(often.exit_code == 0);
   CHECK(count_lines_with(often.err, "GLBUDGET_PROBE_PERIOD=2 leaves no frame") == 1);
