@@ -199,7 +199,7 @@ class GovernorThread {
         work.swap(queue_);
         probes.swap(probes_);
         if (work.empty() && probes.empty() && stopping_) {
-          flush_held(UINT64_MAX);
+          flush_held(nullptr);
           return;
         }
       }
@@ -237,11 +237,12 @@ class GovernorThread {
         if ((k.a == a && k.b == b) || (k.a == b && k.b == a)) return k.error;
       return std::nullopt;
     };
+    ProbeResult& result = results_[{p.context, p.frame}];
     const size_t best = best_image(p);
     if (best == 0)
-      shown_error_[p.frame] = 0.0;
+      result.shown_error = 0.0;
     else if (const std::optional<double> e = error(0, best))
-      shown_error_[p.frame] = *e;
+      result.shown_error = *e;
     for (size_t s = 0; s < p.streams.size(); ++s) {
       if (s + 1 == best) continue;
       int pass = -1;
@@ -250,7 +251,7 @@ class GovernorThread {
       if (pass < 0 || static_cast<size_t>(pass) >= manifest_.passes.size()) continue;
       const std::optional<double> measured = error(best, s + 1);
       if (!measured) continue;
-      std::string& streams = stream_errors_[p.frame];
+      std::string& streams = result.streams;
       char text[32];
       std::snprintf(text, sizeof text, "=%.6f", *measured);
       streams += (streams.empty() ? "" : ";") + format_levels(p.streams[s]) + text;
@@ -269,7 +270,7 @@ class GovernorThread {
       if (pass.levels.size() < 2 || pass_in_scene(pass, i, p.passes_drawn)) continue;
       for (int l = 1; l < static_cast<int>(pass.levels.size()); ++l) governor_.errors().set(i, l, 0.0);
     }
-    flush_held(0);
+    flush_held(nullptr);
   }
 
   // k = e_i(l) / e_i(lmax) (paper §6.2): the ratio `glbudget calibrate --app` measured for the
@@ -283,25 +284,39 @@ class GovernorThread {
     return own && top && *top > 0.0 ? std::clamp(*own / *top, 0.0, 1.0) : static_cast<double>(l) / lmax;
   }
 
-  // Rows of probe frames wait (a few frames at most) for their measured error.
-  void flush_held(uint64_t up_to_frame) {
+  // Rows of probe frames wait for their measured errors: until the probe's result arrives, or
+  // until `now` (the frame being decided) is kHoldFrames past them in their own context, or
+  // kHoldFrames * 4 frames of any context have been decided since (their context may draw no
+  // more; a probe frame's capture can be dropped). Null `now`: the process stops; every row
+  // goes out. Frame numbers restart in each context, so rows and results are matched by
+  // context and frame. A result can come before its rows: the governor thread measures the
+  // probes it was handed before deciding the frames handed with them.
+  void flush_held(const FrameRow* now) {
     for (auto it = held_.begin(); it != held_.end();) {
-      auto found = shown_error_.find(it->frame);
-      const bool known = found != shown_error_.end();
-      if (!known && it->frame >= up_to_frame) {
+      const auto found = results_.find({it->context, it->frame});
+      const bool known = found != results_.end();
+      const bool waited = !now || decided_ - it->decided_at > kHoldFrames * 4 ||
+                          (now->context == it->context && now->frame >= it->frame + kHoldFrames);
+      if (!known && !waited) {
         ++it;
         continue;
       }
-      const auto streams = stream_errors_.find(it->frame);
       for (FrameRow& row : it->rows) {
-        if (known) row.probe_error = found->second;
-        if (streams != stream_errors_.end()) row.probe_streams = streams->second;
+        if (known) {
+          if (found->second.shown_error) row.probe_error = *found->second.shown_error;
+          row.probe_streams = found->second.streams;
+        }
         FrameLog::get().push(row);
       }
-      if (known) shown_error_.erase(found);
-      if (streams != stream_errors_.end()) stream_errors_.erase(streams);
+      if (known) results_.erase(found);
       it = held_.erase(it);
     }
+    // A result whose rows went out without it (it was measured too late): rows come in frame
+    // order within a context, so once a later frame of its context is decided they have.
+    std::erase_if(results_, [&](const auto& r) {
+      const auto last = last_decided_.find(r.first.first);
+      return last != last_decided_.end() && last->second >= r.first.second;
+    });
   }
 
   std::string pass_name(PassId program) {
@@ -353,14 +368,14 @@ class GovernorThread {
     }
     // `first` lives in f.rows, which a probe frame's rows leave for held_ (and flush_held may
     // free at once).
-    const uint64_t frame = first.frame;
-    if (first.probe) {
-      held_.push_back({frame, std::move(f.rows)});
-      flush_held(0);
-    } else {
+    ++decided_;
+    const FrameRow now = first;
+    last_decided_[now.context] = now.frame;
+    if (now.probe)
+      held_.push_back({now.context, now.frame, decided_, std::move(f.rows)});
+    else
       for (FrameRow& row : f.rows) FrameLog::get().push(row);
-    }
-    if (frame > kHoldFrames) flush_held(frame - kHoldFrames);
+    flush_held(&now);
   }
 
   // Every configuration's corrected prediction and estimated error at a selection, beside the
@@ -413,13 +428,20 @@ class GovernorThread {
   std::vector<Frame> waiting_frames_;
   std::vector<ProbeCapture> waiting_probes_;
   struct Held {
+    int context = 0;
     uint64_t frame = 0;
+    uint64_t decided_at = 0;  // decided_ when held
     std::vector<FrameRow> rows;
   };
+  struct ProbeResult {
+    std::optional<double> shown_error;  // FrameRow::probe_error
+    std::string streams;                // FrameRow::probe_streams
+  };
   static constexpr uint64_t kHoldFrames = 8;
+  uint64_t decided_ = 0;  // frames decided, of every context
   std::vector<Held> held_;
-  std::unordered_map<uint64_t, double> shown_error_;         // by probe frame
-  std::unordered_map<uint64_t, std::string> stream_errors_;  // by probe frame: FrameRow::probe_streams
+  std::map<std::pair<int, uint64_t>, ProbeResult> results_;  // by context and probe frame
+  std::map<int, uint64_t> last_decided_;                     // frame, by context
   std::map<std::pair<int, int>, double> measured_ratios_;    // k by pass and level: calibrate --app's
   std::FILE* selections_ = nullptr;
   bool selections_failed_ = false;

@@ -1,6 +1,7 @@
 // Three contexts on one thread: B shares objects with A, C shares nothing. Each frame every
 // context draws the known scene and swaps, so each has its own frames and query pools, and
-// the same sources give the same pass names everywhere.
+// the same sources give the same pass names everywhere. Context i draws the scene's frame
+// f + i at its frame f: the same frame number shows a different image in each context.
 #include <cstdio>
 
 #include "common/egl_setup.hpp"
@@ -31,7 +32,7 @@ int main(int argc, char** argv) {
   for (int f = 0; f < args.frames; ++f) {
     for (int i = 0; i < 3; ++i) {
       egl.MakeCurrent(a.display, wins[i]->surface, wins[i]->surface, wins[i]->context);
-      scenes[i]->draw_frame(f);
+      scenes[i]->draw_frame(f + i);
       egl.SwapBuffers(a.display, wins[i]->surface);
       gl.Finish();  // complete this context's work before another context touches shared objects
     }

@@ -362,3 +362,54 @@ TEST_CASE("probes shadow an app's scaled framebuffers in any profile and format,
     CHECK(errors[2][frame] == Approx(e).margin(1e-4));
   }
 }
+
+TEST_CASE("each context's probe errors reach its own rows, though frame numbers restart per context") {
+  // probe_contexts: three contexts on one thread, each with frames 1, 2, ... and context i
+  // drawing the scene's frame f + i at its frame f, so the same frame number shows a different
+  // image in each. Every probe frame of every context must carry an error, and two rows that
+  // drew the same image (context 0's frame f + 2 and context 2's frame f) the same error.
+  // At 256 pixels the governor thread's comparisons lag the app, so the three contexts'
+  // results for one frame number often reach it before that frame's rows do.
+  const std::string log = temp_path("probes_contexts.csv");
+  unlink(log.c_str());
+  constexpr int kContextFrames = 24;
+  const ProcessResult r =
+      run_process({probe_path("probe_contexts"), "--size", "256", "--frames", std::to_string(kContextFrames)},
+                  {{"LD_PRELOAD", shim_path()},
+                   {"GLBUDGET_LOG", log},
+                   {"GLBUDGET_SENSOR", "cpu"},
+                   {"GLBUDGET_FORCE", "2"},
+                   {"GLBUDGET_PROBE_PERIOD", "2"}});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.err.find("glbudget:") == std::string::npos);
+  std::map<std::pair<int, long>, std::set<std::string>> errors;  // by context and frame
+  for (const auto& row : read_csv_rows_by_name(log))
+    if (row.at("probe") == "1")
+      errors[{std::stoi(row.at("context")), std::stol(row.at("frame"))}].insert(row.at("probe_error"));
+  unlink(log.c_str());
+  std::map<long, double> by_scene;  // context 0's, by the scene frame it drew
+  int compared = 0;
+  for (int context = 0; context < 3; ++context) {
+    int probed = 0;
+    for (const auto& [key, values] : errors) {
+      if (key.first != context) continue;
+      INFO("context " << context << " frame " << key.second);
+      REQUIRE(values.size() == 1);  // every row of a frame has the same error
+      // The last probe frames may end before their read-back (the context is destroyed).
+      if (key.second + 4 > kContextFrames && values.begin()->empty()) continue;
+      REQUIRE_FALSE(values.begin()->empty());
+      ++probed;
+      const double e = std::stod(*values.begin());
+      CHECK(e > 0.005);
+      const long scene = key.second + context;
+      if (context == 0) by_scene[scene] = e;
+      if (context == 2 && by_scene.count(scene)) {
+        CHECK(e == Approx(by_scene[scene]).margin(1e-6));
+        ++compared;
+      }
+    }
+    CHECK(probed >= kContextFrames / 2 - 4);
+  }
+  CHECK(compared >= kContextFrames / 2 - 4);
+}

@@ -260,20 +260,15 @@ TEST_CASE("glmark2 at 60 %, probed: offscreen passes, blur, shadow maps and terr
   }
   // Every scene that drew a few probe frames and the frames after them (where the comparisons
   // are collected) was probed: terrain's first probe frame in three frames once measured
-  // nothing above 0.001. Under ASan the last three scenes' rows have gone out without a probe
-  // error in a run of this test (not in the same run by hand without MESA_DEBUG; probably the
-  // governor thread keying probe results by frame number alone, which restarts in each of
-  // glmark2's contexts, with the Debug build's slower SSIM): there, one probed scene is asked.
+  // nothing above 0.001. Frame numbers restart in each of glmark2's contexts, so a context's
+  // probe results must reach its own rows, not another scene's of the same frame number.
   size_t long_enough = 0;
   for (const auto& [context, drawn] : frames) {
     if (drawn.size() < 6) continue;
     ++long_enough;
-#ifndef SANITIZER_PRELOAD
     INFO("context " << context << ", " << drawn.size() << " frames");
     CHECK(contexts_probed.count(context) == 1);
-#endif
   }
   CHECK(long_enough >= 3);
-  CHECK(!contexts_probed.empty());
   unlink(log.c_str());
 }
