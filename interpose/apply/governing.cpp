@@ -115,6 +115,8 @@ struct Frame {
   std::vector<FrameRow> rows;
 };
 
+std::atomic<uint64_t> g_drift{0};  // probe_drift_count()
+
 class GovernorThread {
  public:
   GovernorThread(loop::Governor governor, manifest::Manifest manifest,
@@ -259,6 +261,10 @@ class GovernorThread {
       if (p.streams[s].level[pass] != lmax) continue;  // GLBUDGET_PROBE_LEVELS=all: logged only
       const double e = *measured;
       loop::ErrorTable& table = governor_.errors();
+      if (probed_.size() <= static_cast<size_t>(pass)) probed_.resize(static_cast<size_t>(pass) + 1);
+      if (probed_[static_cast<size_t>(pass)] && moved(table.error(static_cast<size_t>(pass), lmax), e))
+        g_drift.fetch_add(1, std::memory_order_relaxed);
+      probed_[static_cast<size_t>(pass)] = true;
       table.set(static_cast<size_t>(pass), lmax, e);
       for (int l = 1; l < lmax; ++l) table.set(static_cast<size_t>(pass), l, level_ratio(pass, l) * e);
     }
@@ -271,6 +277,13 @@ class GovernorThread {
       for (int l = 1; l < static_cast<int>(pass.levels.size()); ++l) governor_.errors().set(i, l, 0.0);
     }
     flush_held(nullptr);
+  }
+
+  // Whether a pass's fresh error is far enough from its last probe's to say the scene changed
+  // beneath the estimates: a quarter of the larger, and more than SSIM's noise between frames
+  // of a still scene.
+  static bool moved(double before, double now) {
+    return std::abs(now - before) > std::max(kDriftAbsolute, kDriftRelative * std::max(before, now));
   }
 
   // k = e_i(l) / e_i(lmax) (paper §6.2): the ratio `glbudget calibrate --app` measured for the
@@ -438,7 +451,9 @@ class GovernorThread {
     std::string streams;                // FrameRow::probe_streams
   };
   static constexpr uint64_t kHoldFrames = 8;
-  uint64_t decided_ = 0;  // frames decided, of every context
+  static constexpr double kDriftAbsolute = 0.003, kDriftRelative = 0.25;
+  std::vector<bool> probed_;  // by pass: its cheapest level has been probed
+  uint64_t decided_ = 0;      // frames decided, of every context
   std::vector<Held> held_;
   std::map<std::pair<int, uint64_t>, ProbeResult> results_;  // by context and probe frame
   std::map<int, uint64_t> last_decided_;                     // frame, by context
@@ -535,6 +550,8 @@ void governor_stop() {
   governor_rows_done();
   g_thread->stop();
 }
+
+uint64_t probe_drift_count() { return g_drift.load(std::memory_order_relaxed); }
 
 void note_program_pass(PassId program, int pass) {
   if (g_thread) g_thread->note_program(program, pass);

@@ -34,5 +34,9 @@ void note_program_pass(PassId program, int pass);
 // measures the errors, updates its estimates and logs the shown frame's error with its rows.
 struct ProbeCapture;
 void governor_probe(ProbeCapture&& capture);
+// Render thread: how many times a probe found a pass's error far from its previous probe (the
+// scene changed, so every pass's error is stale). Settled probes, rare, go back to their first
+// period whenever it grows, until each pass in the scene is probed again.
+uint64_t probe_drift_count();
 
 }  // namespace glbudget

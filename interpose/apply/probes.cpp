@@ -798,6 +798,11 @@ struct ProbeFrames::Impl {
   Levels saved_config_for_frame;
 
   void end_frame() {
+    // A pass that left the scene is probed again when it comes back (its error then is not
+    // the one it had).
+    const manifest::Manifest& m = active_manifest();
+    for (size_t i = 0; i < m.passes.size() && i < 64; ++i)
+      if (!pass_in_scene(m.passes[i], i, passes_now)) passes_probed &= ~(uint64_t{1} << i);
     passes_drawn = passes_now;
     frame = 0;
     t_probe = nullptr;
@@ -929,6 +934,7 @@ struct ProbeFrames::Impl {
 
   // Passes probed at their cheapest level so far; every pass with levels: settled.
   uint64_t passes_probed = 0;
+  uint64_t drift_seen = 0;  // probe_drift_count() when last looked at
   bool settled() const {
     const manifest::Manifest& m = active_manifest();
     for (size_t i = 0; i < m.passes.size() && i < 64; ++i)
@@ -984,6 +990,10 @@ void ProbeFrames::after_swap(uint64_t next) {
   Impl& p = *impl_;
   if (!p.probe_possible()) return;
   p.collect(false);
+  if (const uint64_t drift = probe_drift_count(); drift != p.drift_seen) {
+    p.drift_seen = drift;
+    p.passes_probed = 0;  // the scene moved: every pass's error again, at the first period
+  }
   uint64_t period = probe_settings().period;
   if (p.settled()) period *= probe_settings().settled_factor;
   // Not the first frames: the app may still be setting up what it draws.

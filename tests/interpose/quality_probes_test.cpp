@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include "glbudget/quality/luma_image.hpp"
 #include "glbudget/quality/ssim.hpp"
@@ -290,6 +291,71 @@ TEST_CASE("passes not in the scene estimate no error at any level; passes in it 
   CHECK(estimate.at("2:0:0:0:0:0") > 0.0);  // the window scales
   unlink(log.c_str());
   unlink((log + ".selections.csv").c_str());
+}
+
+TEST_CASE("settled probes come back to their first period when a pass's error moves") {
+  // Under a budget at the default period, probes come every 10 frames until every pass is
+  // probed, then every 60. When a pass's fresh error is far from its previous probe's (the
+  // scene changed beneath every pass's estimate), probes go back to every 10 frames until each
+  // pass is probed again. Subway's camera moves: base shading's error falls from 0.040 to
+  // 0.008 between its probes at frames 20 and 180 at this size (frame numbers decide what is
+  // drawn and what is probed, so the run is the same each time).
+  const std::string log = temp_path("subway_drift.csv");
+  unlink(log.c_str());
+  const ProcessResult r = run_process(
+      {DEMO_PATH, "--scene", "subway", "--detail", "0.05", "--width", "160", "--height", "90", "--frames", "260"},
+      {{"LD_PRELOAD", shim_path()},
+       {"GLBUDGET_CONFIG", manifest_path()},
+       {"GLBUDGET_POWER", "50%"},
+       {"GLBUDGET_PROFILE", profile_path()},
+       {"GLBUDGET_SENSOR", "cpu"},
+       {"GLBUDGET_SELECT_FRAMES", "30"},
+       {"GLBUDGET_LOG", log}});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  std::map<long, std::string> streams;  // probe frames' probe_streams
+  for (const auto& row : read_csv_rows_by_name(log))
+    if (row.at("probe") == "1") streams[std::stol(row.at("frame"))] = row.at("probe_streams");
+  unlink(log.c_str());
+  // Each probe frame's pass at its cheapest level and its error ("0:2:0:0:0:0=0.040227").
+  std::map<long, std::pair<int, double>> probed;
+  for (const auto& [frame, text] : streams) {
+    std::stringstream entries(text);
+    for (std::string entry; std::getline(entries, entry, ';');) {
+      const size_t equals = entry.find('=');
+      int pass = -1;
+      for (size_t i = 0; i < equals; i += 2)
+        if (entry[i] != '0') pass = static_cast<int>(i / 2);
+      if (pass >= 0) probed[frame] = {pass, std::stod(entry.substr(equals + 1))};
+    }
+  }
+  auto moved = [](double before, double now) {  // the shim's test: a quarter, above 0.003
+    return std::abs(now - before) > std::max(0.003, 0.25 * std::max(before, now));
+  };
+  std::map<int, double> last;  // by pass
+  long previous = 0;
+  int settled = 0, drifted = 0;
+  for (auto it = probed.begin(); it != probed.end(); ++it) {
+    const auto [frame, result] = *it;
+    const auto [pass, error] = result;
+    INFO("probe frame " << frame << ", pass " << pass << ", error " << error);
+    const auto next = streams.upper_bound(frame);
+    const bool was_settled = frame - previous == 60;
+    if (was_settled && last.count(pass)) {
+      ++settled;
+      if (moved(last[pass], error)) {
+        ++drifted;
+        REQUIRE(next != streams.end());
+        CHECK(next->first == frame + 10);
+      } else if (next != streams.end()) {
+        CHECK(next->first == frame + 60);
+      }
+    }
+    last[pass] = error;
+    previous = frame;
+  }
+  CHECK(settled >= 2);
+  CHECK(drifted >= 1);
 }
 
 TEST_CASE("bad probe settings are said once and the app runs on") {
