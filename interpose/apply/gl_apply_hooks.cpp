@@ -133,6 +133,32 @@ void handle_glTexImage2D(pfn_glTexImage2D real, GLenum target, GLint level, GLin
   real(target, level, internalformat, width, height, border, format, type, pixels);
 }
 
+void handle_glTexStorage2D(pfn_glTexStorage2D real, GLenum target, GLsizei levels, GLenum internalformat, GLsizei width,
+                           GLsizei height) {
+  TargetScaler* s = scaler();
+  if (s && target == GL_TEXTURE_2D && s->tex_storage_2d(levels, internalformat, width, height)) return;
+  real(target, levels, internalformat, width, height);
+}
+
+void handle_glGetTexParameteriv(pfn_glGetTexParameteriv real, GLenum target, GLenum pname, GLint* params) {
+  TargetScaler* s = scaler();
+  if (s && target == GL_TEXTURE_2D && params && s->storage_parameter(pname, params)) return;
+  real(target, pname, params);
+}
+
+void handle_glTexParameteri(pfn_glTexParameteri real, GLenum target, GLenum pname, GLint param) {
+  TargetScaler* s = scaler();
+  real(target, pname, s && target == GL_TEXTURE_2D ? s->texture_parameter(pname, param) : param);
+}
+
+void handle_glTexParameteriv(pfn_glTexParameteriv real, GLenum target, GLenum pname, const GLint* params) {
+  TargetScaler* s = scaler();
+  if (!s || target != GL_TEXTURE_2D || !params || s->texture_parameter(pname, params[0]) == params[0])
+    return real(target, pname, params);
+  const GLint clamped = s->texture_parameter(pname, params[0]);
+  real(target, pname, &clamped);
+}
+
 void handle_glRenderbufferStorage(pfn_glRenderbufferStorage real, GLenum target, GLenum internalformat, GLsizei width,
                                   GLsizei height) {
   if (TargetScaler* s = scaler(); s && width > 0 && height > 0)

@@ -31,6 +31,60 @@ bool is_integer_format(GLenum format) {
          format == GL_BGRA_INTEGER;
 }
 
+// The format and type glTexImage2D takes with no data for a sized format a framebuffer can
+// hold; false for others (compressed, unsized, luminance), which keep their immutable storage.
+bool null_upload(GLenum internal_format, GLenum* format, GLenum* type) {
+  struct Row {
+    GLenum internal, format, type;
+  };
+  static constexpr Row kRows[] = {
+      {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE},
+      {GL_SRGB8_ALPHA8, GL_RGBA, GL_UNSIGNED_BYTE},
+      {GL_RGB8, GL_RGB, GL_UNSIGNED_BYTE},
+      {GL_RG8, GL_RG, GL_UNSIGNED_BYTE},
+      {GL_R8, GL_RED, GL_UNSIGNED_BYTE},
+      {GL_RGB565, GL_RGB, GL_UNSIGNED_SHORT_5_6_5},
+      {GL_RGBA4, GL_RGBA, GL_UNSIGNED_SHORT_4_4_4_4},
+      {GL_RGB5_A1, GL_RGBA, GL_UNSIGNED_SHORT_5_5_5_1},
+      {GL_RGB10_A2, GL_RGBA, GL_UNSIGNED_INT_2_10_10_10_REV},
+      {GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT},
+      {GL_RGB16F, GL_RGB, GL_HALF_FLOAT},
+      {GL_RG16F, GL_RG, GL_HALF_FLOAT},
+      {GL_R16F, GL_RED, GL_HALF_FLOAT},
+      {GL_RGBA32F, GL_RGBA, GL_FLOAT},
+      {GL_RGB32F, GL_RGB, GL_FLOAT},
+      {GL_RG32F, GL_RG, GL_FLOAT},
+      {GL_R32F, GL_RED, GL_FLOAT},
+      {GL_R11F_G11F_B10F, GL_RGB, GL_UNSIGNED_INT_10F_11F_11F_REV},
+      {GL_RGBA16, GL_RGBA, GL_UNSIGNED_SHORT},
+      {GL_RGBA8UI, GL_RGBA_INTEGER, GL_UNSIGNED_BYTE},
+      {GL_RGBA8I, GL_RGBA_INTEGER, GL_BYTE},
+      {GL_RGBA16UI, GL_RGBA_INTEGER, GL_UNSIGNED_SHORT},
+      {GL_RGBA16I, GL_RGBA_INTEGER, GL_SHORT},
+      {GL_RGBA32UI, GL_RGBA_INTEGER, GL_UNSIGNED_INT},
+      {GL_RGBA32I, GL_RGBA_INTEGER, GL_INT},
+      {GL_RG8UI, GL_RG_INTEGER, GL_UNSIGNED_BYTE},
+      {GL_RG16UI, GL_RG_INTEGER, GL_UNSIGNED_SHORT},
+      {GL_RG32UI, GL_RG_INTEGER, GL_UNSIGNED_INT},
+      {GL_R8UI, GL_RED_INTEGER, GL_UNSIGNED_BYTE},
+      {GL_R16UI, GL_RED_INTEGER, GL_UNSIGNED_SHORT},
+      {GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT},
+      {GL_R32I, GL_RED_INTEGER, GL_INT},
+      {GL_DEPTH_COMPONENT16, GL_DEPTH_COMPONENT, GL_UNSIGNED_SHORT},
+      {GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT},
+      {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT},
+      {GL_DEPTH24_STENCIL8, GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8},
+      {GL_DEPTH32F_STENCIL8, GL_DEPTH_STENCIL, GL_FLOAT_32_UNSIGNED_INT_24_8_REV},
+  };
+  for (const Row& r : kRows)
+    if (r.internal == internal_format) {
+      *format = r.format;
+      *type = r.type;
+      return true;
+    }
+  return false;
+}
+
 // The real bindings a rescale touches, restored when it ends.
 struct SavedBindings {
   GLint draw = 0, read = 0, texture = 0, renderbuffer = 0, unpack = 0;
@@ -432,10 +486,11 @@ void TargetScaler::ensure_scale(GLuint name, Framebuffer& f, bool carry) {
     auto it = images.find(a.name);
     if (it == images.end()) {
       if (s != 1.0)
-        say_once("unknown-image" + std::to_string(a.name),
-                 std::string(a.renderbuffer ? "renderbuffer " : "texture ") + std::to_string(a.name) +
-                     " of framebuffer " + std::to_string(name) +
-                     " was not made by glTexImage2D or glRenderbufferStorage; it is not scaled");
+        say_once("unknown-image" + std::to_string(a.name), std::string(a.renderbuffer ? "renderbuffer " : "texture ") +
+                                                               std::to_string(a.name) + " of framebuffer " +
+                                                               std::to_string(name) +
+                                                               " was not made by glTexImage2D, glRenderbufferStorage "
+                                                               "or a single-level glTexStorage2D; it is not scaled");
       continue;
     }
     if (it->second.scale != s) rescale(a.name, it->second, s, carry);
@@ -626,6 +681,43 @@ void TargetScaler::tex_image_2d(GLint level, GLint internal_format, GLsizei* wid
   }
   *width = scaled(*width, im.scale);
   *height = scaled(*height, im.scale);
+}
+
+bool TargetScaler::tex_storage_2d(GLsizei levels, GLenum internal_format, GLsizei width, GLsizei height) {
+  GLenum format = 0, type = 0;
+  // Other calls (and the app's mistakes, which must raise the driver's errors) go as they are.
+  if (levels != 1 || width <= 0 || height <= 0 || !null_upload(internal_format, &format, &type)) return false;
+  const ApplyGl& g = agl();
+  GLint bound = 0;
+  g.GetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
+  if (!bound) return false;
+  const auto known = textures_.find(static_cast<GLuint>(bound));
+  if (known != textures_.end() && known->second.storage) return false;  // immutable already: the driver's error
+  SavedBindings saved;                                                  // no pixel-unpack buffer: no data
+  tex_image_2d(0, static_cast<GLint>(internal_format), &width, &height, format, type, false);
+  g.TexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internal_format), width, height, 0, format, type, nullptr);
+  g.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
+  g.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+  textures_[static_cast<GLuint>(bound)].storage = true;
+  return true;
+}
+
+bool TargetScaler::storage_parameter(GLenum pname, GLint* value) const {
+  if (pname != GL_TEXTURE_IMMUTABLE_FORMAT && pname != GL_TEXTURE_IMMUTABLE_LEVELS) return false;
+  GLint bound = 0;
+  agl().GetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
+  const auto it = textures_.find(static_cast<GLuint>(bound));
+  if (!bound || it == textures_.end() || !it->second.storage) return false;
+  *value = pname == GL_TEXTURE_IMMUTABLE_FORMAT ? GL_TRUE : 1;
+  return true;
+}
+
+GLint TargetScaler::texture_parameter(GLenum pname, GLint value) const {
+  if (pname != GL_TEXTURE_BASE_LEVEL && pname != GL_TEXTURE_MAX_LEVEL) return value;
+  GLint bound = 0;
+  agl().GetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
+  const auto it = textures_.find(static_cast<GLuint>(bound));
+  return bound && it != textures_.end() && it->second.storage ? 0 : value;
 }
 
 void TargetScaler::renderbuffer_storage(GLsizei samples, GLenum internal_format, GLsizei* width, GLsizei* height) {

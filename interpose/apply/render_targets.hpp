@@ -9,7 +9,8 @@
 // a stand-in framebuffer at the scaled size takes its place whenever the app binds 0, and is
 // drawn into the real back buffer at each swap. Reads of the window (glReadPixels,
 // glCopyTex*) see a window-sized image, binding queries answer 0.
-// Limits: 2D textures and renderbuffers (not immutable textures, arrays, cube maps); textures
+// Limits: 2D textures and renderbuffers (not arrays, cube maps, nor immutable textures of more
+// than one level, of a format no framebuffer holds, or made by glTextureStorage2D); textures
 // are tracked per context; multisampled windows are not scaled.
 #pragma once
 #include <array>
@@ -72,6 +73,17 @@ class TargetScaler {
   // glTexImage2D of the texture bound to GL_TEXTURE_2D: fills the size to give the driver.
   void tex_image_2d(GLint level, GLint internal_format, GLsizei* width, GLsizei* height, GLenum format, GLenum type,
                     bool with_data);
+  // glTexStorage2D of the texture bound to GL_TEXTURE_2D. Immutable storage cannot be
+  // respecified at another size, so a single level of a format a framebuffer can hold is made
+  // as mutable storage of that format instead (its maximum level 0, so it is complete as the
+  // immutable one is) and scales as glTexImage2D's do; true where it was made here.
+  bool tex_storage_2d(GLsizei levels, GLenum internal_format, GLsizei width, GLsizei height);
+  // glGetTexParameter of such a texture bound to GL_TEXTURE_2D: GL_TEXTURE_IMMUTABLE_FORMAT and
+  // GL_TEXTURE_IMMUTABLE_LEVELS as the app made it; false for other textures and names.
+  bool storage_parameter(GLenum pname, GLint* value) const;
+  // glTexParameter of the bound GL_TEXTURE_2D: what the driver gets. Such a texture's base and
+  // maximum levels stay 0 (an immutable texture clamps them to its levels).
+  GLint texture_parameter(GLenum pname, GLint value) const;
   void renderbuffer_storage(GLsizei samples, GLenum internal_format, GLsizei* width, GLsizei* height);
   // x0, y0, x1, y1 each, by the scales of the app's framebuffers `read` and `draw`.
   void blit_rectangles(GLuint read, GLuint draw, GLint* src, GLint* dst) const;
@@ -96,6 +108,7 @@ class TargetScaler {
     GLint internal_format = 0;
     GLenum format = 0, type = 0;
     GLsizei samples = 0;
+    bool storage = false;                          // the app made it with glTexStorage2D (stored mutable)
     std::vector<std::array<GLsizei, 2>> app_size;  // per mip level the app specified
     double scale = 1.0;                            // applied
     GLsizei stored_width() const;

@@ -4,7 +4,10 @@
 // normalised coordinates. The window is read back at the last frame.
 //   --profile compat     a compatibility-profile context (as GLX apps and glmark2 get)
 //   --format unsized     colour textures specified as GL_RGBA (GLES 2-era code), not GL_RGBA8
-// Exits 4 when glGetError reports an error at any frame: none of the app's calls raises one.
+//   --format immutable   colour textures and a depth-stencil texture made by glTexStorage2D
+//                        (GL 4.2+ engines), not glTexImage2D and a renderbuffer
+// Exits 4 when glGetError reports an error at any frame: none of the app's calls raises one;
+// 5 when a texture does not answer as the app made it (size, immutable format and levels).
 //   pass A, B: the known scene, into the window-sized framebuffer
 //   pass "quarter": W/4 x H/4 fragments;  pass "compose": W x H fragments, into the window
 #define GL_GLEXT_PROTOTYPES 1
@@ -40,11 +43,17 @@ GLuint program(const char* vs, const char* fs) {
   return ok ? p : 0;
 }
 
-GLuint color_texture(int w, int h, bool unsized) {
+enum class Format { kSized, kUnsized, kImmutable };
+
+GLuint color_texture(int w, int h, Format format) {
   GLuint t = 0;
   glGenTextures(1, &t);
   glBindTexture(GL_TEXTURE_2D, t);
-  glTexImage2D(GL_TEXTURE_2D, 0, unsized ? GL_RGBA : GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+  if (format == Format::kImmutable)
+    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w, h);
+  else
+    glTexImage2D(GL_TEXTURE_2D, 0, format == Format::kUnsized ? GL_RGBA : GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                 nullptr);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -52,15 +61,36 @@ GLuint color_texture(int w, int h, bool unsized) {
   return t;
 }
 
+// The texture answers as the app made it, whatever the shim stores.
+bool answers_as_made(GLuint texture, int w, int h, bool immutable) {
+  glBindTexture(GL_TEXTURE_2D, texture);
+  GLint width = 0, height = 0, format = GL_FALSE, levels = 0;
+  glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &width);
+  glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &height);
+  glGetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_IMMUTABLE_FORMAT, &format);
+  glGetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_IMMUTABLE_LEVELS, &levels);
+  const bool ok =
+      width == w && height == h && format == (immutable ? GL_TRUE : GL_FALSE) && levels == (immutable ? 1 : 0);
+  if (!ok)
+    fprintf(stderr, "probe_offscreen: texture %u answers %dx%d, immutable %d, %d levels\n", texture, width, height,
+            format, levels);
+  return ok;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   ProbeArgs args = parse_probe_args(argc, argv);
-  bool compat = false, unsized = false;
+  bool compat = false;
+  Format format = Format::kSized;
   for (int i = 1; i + 1 < argc; ++i) {
     if (!strcmp(argv[i], "--profile")) compat = !strcmp(argv[i + 1], "compat");
-    if (!strcmp(argv[i], "--format")) unsized = !strcmp(argv[i + 1], "unsized");
+    if (!strcmp(argv[i], "--format"))
+      format = !strcmp(argv[i + 1], "unsized")     ? Format::kUnsized
+               : !strcmp(argv[i + 1], "immutable") ? Format::kImmutable
+                                                   : Format::kSized;
   }
+  const bool immutable = format == Format::kImmutable;
   const int w = args.width, h = args.height;
   EglFns egl;
   EglWindow win;
@@ -82,15 +112,24 @@ int main(int argc, char** argv) {
   GLint full_vao = 0;
   glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &full_vao);
 
-  const GLuint scene_color = color_texture(w, h, unsized), quarter_color = color_texture(w / 4, h / 4, unsized);
+  const GLuint scene_color = color_texture(w, h, format), quarter_color = color_texture(w / 4, h / 4, format);
   GLuint depth = 0, fbo[2] = {0, 0};
-  glGenRenderbuffers(1, &depth);
-  glBindRenderbuffer(GL_RENDERBUFFER, depth);
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, w, h);
+  if (immutable) {
+    glGenTextures(1, &depth);
+    glBindTexture(GL_TEXTURE_2D, depth);
+    glTexStorage2D(GL_TEXTURE_2D, 1, GL_DEPTH24_STENCIL8, w, h);
+  } else {
+    glGenRenderbuffers(1, &depth);
+    glBindRenderbuffer(GL_RENDERBUFFER, depth);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, w, h);
+  }
   glGenFramebuffers(2, fbo);
   glBindFramebuffer(GL_FRAMEBUFFER, fbo[0]);
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, scene_color, 0);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, depth);
+  if (immutable)
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, depth, 0);
+  else
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, depth);
   glBindFramebuffer(GL_FRAMEBUFFER, fbo[1]);
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, quarter_color, 0);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
@@ -129,7 +168,12 @@ int main(int argc, char** argv) {
     error = glGetError();
     if (error != GL_NO_ERROR) fprintf(stderr, "probe_offscreen: GL error 0x%04x at frame %d\n", error, f);
   }
-  const int rc = error != GL_NO_ERROR ? 4 : write_ppm(args.out, image, w, h) ? 0 : 3;
+  // After the frames (a scaled texture is stored at its scale by now).
+  const bool as_made = answers_as_made(scene_color, w, h, immutable) &&
+                       answers_as_made(quarter_color, w / 4, h / 4, immutable) &&
+                       (!immutable || answers_as_made(depth, w, h, true));
+  if (error == GL_NO_ERROR) error = glGetError();
+  const int rc = error != GL_NO_ERROR ? 4 : !as_made ? 5 : write_ppm(args.out, image, w, h) ? 0 : 3;
   eglMakeCurrent(win.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   eglDestroyContext(win.display, win.context);
   eglTerminate(win.display);

@@ -393,11 +393,13 @@ TEST_CASE("probes shadow an app's scaled framebuffers in any profile and format,
   // its full size in both, so its error is the same and not 0 (a stream that reads the app's
   // scaled texture draws what the app showed). The probe exits 4 if glGetError ever reports an
   // error to it: none of the shim's own GL work may leave one.
-  // The compatibility context's probes are also compared in its compute shaders, once.
+  // The compatibility context's probes are also compared in its compute shaders, once; and the
+  // core context's again with every texture made by glTexStorage2D.
   std::vector<std::map<long, double>> errors;
-  const std::vector<std::string> compat = {"--profile", "compat", "--format", "unsized"};
-  for (const auto& [variant, where] :
-       {std::pair{std::vector<std::string>{}, "cpu"}, std::pair{compat, "cpu"}, std::pair{compat, "gpu"}}) {
+  const std::vector<std::string> compat = {"--profile", "compat", "--format", "unsized"},
+                                 immutable = {"--format", "immutable"};
+  for (const auto& [variant, where] : {std::pair{std::vector<std::string>{}, "cpu"}, std::pair{compat, "cpu"},
+                                       std::pair{compat, "gpu"}, std::pair{immutable, "cpu"}}) {
     INFO(where);
     const std::string log = temp_path("probes_offscreen.csv");
     unlink(log.c_str());
@@ -426,6 +428,7 @@ TEST_CASE("probes shadow an app's scaled framebuffers in any profile and format,
   for (const auto& [frame, e] : errors[0]) {
     CHECK(errors[1][frame] == Approx(e).margin(1e-6));
     CHECK(errors[2][frame] == Approx(e).margin(1e-4));
+    CHECK(errors[3][frame] == Approx(e).margin(1e-6));
   }
 }
 

@@ -42,6 +42,7 @@ CUSTOM = [
     'glFramebufferRenderbuffer', 'glBlitFramebuffer', 'glGetTexLevelParameteriv',
     'glGetTexLevelParameterfv', 'glGetRenderbufferParameteriv', 'glDeleteTextures',
     'glDeleteFramebuffers', 'glDeleteRenderbuffers',
+    'glTexStorage2D', 'glGetTexParameteriv', 'glTexParameteri', 'glTexParameteriv',
     # apply/: the default framebuffer's stand-in
     'glReadPixels', 'glCopyTexImage2D', 'glCopyTexSubImage2D', 'glDrawBuffer', 'glDrawBuffers', 'glReadBuffer',
     'glInvalidateFramebuffer', 'glInvalidateSubFramebuffer', 'glDiscardFramebufferEXT',
@@ -73,6 +74,7 @@ ALIASES_OF_CUSTOM = {
     'glGetFramebufferAttachmentParameterivEXT': 'glGetFramebufferAttachmentParameteriv',
     'glDrawBuffersARB': 'glDrawBuffers', 'glDrawBuffersEXT': 'glDrawBuffers',
     'glBindAttribLocationARB': 'glBindAttribLocation', 'glBindFragDataLocationEXT': 'glBindFragDataLocation',
+    'glTexStorage2DEXT': 'glTexStorage2D',
 }
 
 # Window-system entry points: implemented by hand (they carry frame and context logic), but
