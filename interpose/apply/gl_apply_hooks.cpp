@@ -133,30 +133,72 @@ void handle_glTexImage2D(pfn_glTexImage2D real, GLenum target, GLint level, GLin
   real(target, level, internalformat, width, height, border, format, type, pixels);
 }
 
+// The parameters the shim answers or clamps for the textures it stores as mutable; other
+// pnames go straight through, without asking for the binding.
+static bool storage_pname(GLenum pname) {
+  return pname == GL_TEXTURE_IMMUTABLE_FORMAT || pname == GL_TEXTURE_IMMUTABLE_LEVELS;
+}
+static bool size_pname(GLenum pname) { return pname == GL_TEXTURE_WIDTH || pname == GL_TEXTURE_HEIGHT; }
+static bool level_pname(GLenum pname) { return pname == GL_TEXTURE_BASE_LEVEL || pname == GL_TEXTURE_MAX_LEVEL; }
+
 void handle_glTexStorage2D(pfn_glTexStorage2D real, GLenum target, GLsizei levels, GLenum internalformat, GLsizei width,
                            GLsizei height) {
   TargetScaler* s = scaler();
-  if (s && target == GL_TEXTURE_2D && s->tex_storage_2d(levels, internalformat, width, height)) return;
+  if (s && target == GL_TEXTURE_2D && s->tex_storage_2d(s->bound_texture_2d(), levels, internalformat, width, height))
+    return;
   real(target, levels, internalformat, width, height);
+}
+
+void handle_glTextureStorage2D(pfn_glTextureStorage2D real, GLuint texture, GLsizei levels, GLenum internalformat,
+                               GLsizei width, GLsizei height) {
+  if (TargetScaler* s = scaler()) {
+    // Named, the texture may be of any target that takes 2D storage (arrays of 1D, cube maps).
+    static const auto get = reinterpret_cast<pfn_glGetTextureParameteriv>(resolve_real(kHook_glGetTextureParameteriv));
+    GLint target = 0;
+    if (get && texture) get(texture, GL_TEXTURE_TARGET, &target);
+    if (target == GL_TEXTURE_2D && s->tex_storage_2d(texture, levels, internalformat, width, height)) return;
+  }
+  real(texture, levels, internalformat, width, height);
 }
 
 void handle_glGetTexParameteriv(pfn_glGetTexParameteriv real, GLenum target, GLenum pname, GLint* params) {
   TargetScaler* s = scaler();
-  if (s && target == GL_TEXTURE_2D && params && s->storage_parameter(pname, params)) return;
+  if (s && target == GL_TEXTURE_2D && params && storage_pname(pname) &&
+      s->storage_parameter(s->bound_texture_2d(), pname, params))
+    return;
   real(target, pname, params);
+}
+
+void handle_glGetTextureParameteriv(pfn_glGetTextureParameteriv real, GLuint texture, GLenum pname, GLint* params) {
+  TargetScaler* s = scaler();
+  if (s && params && s->storage_parameter(texture, pname, params)) return;
+  real(texture, pname, params);
 }
 
 void handle_glTexParameteri(pfn_glTexParameteri real, GLenum target, GLenum pname, GLint param) {
   TargetScaler* s = scaler();
-  real(target, pname, s && target == GL_TEXTURE_2D ? s->texture_parameter(pname, param) : param);
+  const bool clamp = s && target == GL_TEXTURE_2D && level_pname(pname);
+  real(target, pname, clamp ? s->texture_parameter(s->bound_texture_2d(), pname, param) : param);
+}
+
+void handle_glTextureParameteri(pfn_glTextureParameteri real, GLuint texture, GLenum pname, GLint param) {
+  TargetScaler* s = scaler();
+  real(texture, pname, s ? s->texture_parameter(texture, pname, param) : param);
 }
 
 void handle_glTexParameteriv(pfn_glTexParameteriv real, GLenum target, GLenum pname, const GLint* params) {
   TargetScaler* s = scaler();
-  if (!s || target != GL_TEXTURE_2D || !params || s->texture_parameter(pname, params[0]) == params[0])
-    return real(target, pname, params);
-  const GLint clamped = s->texture_parameter(pname, params[0]);
+  if (!s || target != GL_TEXTURE_2D || !params || !level_pname(pname)) return real(target, pname, params);
+  const GLint clamped = s->texture_parameter(s->bound_texture_2d(), pname, params[0]);
+  if (clamped == params[0]) return real(target, pname, params);
   real(target, pname, &clamped);
+}
+
+void handle_glTextureParameteriv(pfn_glTextureParameteriv real, GLuint texture, GLenum pname, const GLint* params) {
+  TargetScaler* s = scaler();
+  const GLint clamped = s && params ? s->texture_parameter(texture, pname, params[0]) : 0;
+  if (!s || !params || clamped == params[0]) return real(texture, pname, params);
+  real(texture, pname, &clamped);
 }
 
 void handle_glRenderbufferStorage(pfn_glRenderbufferStorage real, GLenum target, GLenum internalformat, GLsizei width,
@@ -375,14 +417,30 @@ void handle_glClearNamedFramebufferfi(pfn_glClearNamedFramebufferfi real, GLuint
 void handle_glGetTexLevelParameteriv(pfn_glGetTexLevelParameteriv real, GLenum target, GLint level, GLenum pname,
                                      GLint* params) {
   real(target, level, pname, params);
-  if (TargetScaler* s = scaler(); s && target == GL_TEXTURE_2D && params) s->texture_size(level, pname, params);
+  if (TargetScaler* s = scaler(); s && target == GL_TEXTURE_2D && params && size_pname(pname))
+    s->texture_size(s->bound_texture_2d(), level, pname, params);
+}
+
+void handle_glGetTextureLevelParameteriv(pfn_glGetTextureLevelParameteriv real, GLuint texture, GLint level,
+                                         GLenum pname, GLint* params) {
+  real(texture, level, pname, params);
+  if (TargetScaler* s = scaler(); s && params) s->texture_size(texture, level, pname, params);
+}
+
+void handle_glGetTextureLevelParameterfv(pfn_glGetTextureLevelParameterfv real, GLuint texture, GLint level,
+                                         GLenum pname, GLfloat* params) {
+  real(texture, level, pname, params);
+  GLint v = 0;
+  if (TargetScaler* s = scaler(); s && params && s->texture_size(texture, level, pname, &v))
+    *params = static_cast<GLfloat>(v);
 }
 
 void handle_glGetTexLevelParameterfv(pfn_glGetTexLevelParameterfv real, GLenum target, GLint level, GLenum pname,
                                      GLfloat* params) {
   real(target, level, pname, params);
   GLint v = 0;
-  if (TargetScaler* s = scaler(); s && target == GL_TEXTURE_2D && params && s->texture_size(level, pname, &v))
+  if (TargetScaler* s = scaler(); s && target == GL_TEXTURE_2D && params && size_pname(pname) &&
+                                  s->texture_size(s->bound_texture_2d(), level, pname, &v))
     *params = static_cast<GLfloat>(v);
 }
 

@@ -683,41 +683,43 @@ void TargetScaler::tex_image_2d(GLint level, GLint internal_format, GLsizei* wid
   *height = scaled(*height, im.scale);
 }
 
-bool TargetScaler::tex_storage_2d(GLsizei levels, GLenum internal_format, GLsizei width, GLsizei height) {
+GLuint TargetScaler::bound_texture_2d() const {
+  GLint bound = 0;
+  agl().GetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
+  return static_cast<GLuint>(bound);
+}
+
+bool TargetScaler::tex_storage_2d(GLuint texture, GLsizei levels, GLenum internal_format, GLsizei width,
+                                  GLsizei height) {
   GLenum format = 0, type = 0;
   // Other calls (and the app's mistakes, which must raise the driver's errors) go as they are.
-  if (levels != 1 || width <= 0 || height <= 0 || !null_upload(internal_format, &format, &type)) return false;
-  const ApplyGl& g = agl();
-  GLint bound = 0;
-  g.GetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
-  if (!bound) return false;
-  const auto known = textures_.find(static_cast<GLuint>(bound));
+  if (!texture || levels != 1 || width <= 0 || height <= 0 || !null_upload(internal_format, &format, &type))
+    return false;
+  const auto known = textures_.find(texture);
   if (known != textures_.end() && known->second.storage) return false;  // immutable already: the driver's error
-  SavedBindings saved;                                                  // no pixel-unpack buffer: no data
+  const ApplyGl& g = agl();
+  SavedBindings saved;  // the 2D binding, and no pixel-unpack buffer: no data
+  g.BindTexture(GL_TEXTURE_2D, texture);
   tex_image_2d(0, static_cast<GLint>(internal_format), &width, &height, format, type, false);
   g.TexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internal_format), width, height, 0, format, type, nullptr);
   g.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
   g.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
-  textures_[static_cast<GLuint>(bound)].storage = true;
+  textures_[texture].storage = true;
   return true;
 }
 
-bool TargetScaler::storage_parameter(GLenum pname, GLint* value) const {
+bool TargetScaler::storage_parameter(GLuint texture, GLenum pname, GLint* value) const {
   if (pname != GL_TEXTURE_IMMUTABLE_FORMAT && pname != GL_TEXTURE_IMMUTABLE_LEVELS) return false;
-  GLint bound = 0;
-  agl().GetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
-  const auto it = textures_.find(static_cast<GLuint>(bound));
-  if (!bound || it == textures_.end() || !it->second.storage) return false;
+  const auto it = textures_.find(texture);
+  if (!texture || it == textures_.end() || !it->second.storage) return false;
   *value = pname == GL_TEXTURE_IMMUTABLE_FORMAT ? GL_TRUE : 1;
   return true;
 }
 
-GLint TargetScaler::texture_parameter(GLenum pname, GLint value) const {
+GLint TargetScaler::texture_parameter(GLuint texture, GLenum pname, GLint value) const {
   if (pname != GL_TEXTURE_BASE_LEVEL && pname != GL_TEXTURE_MAX_LEVEL) return value;
-  GLint bound = 0;
-  agl().GetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
-  const auto it = textures_.find(static_cast<GLuint>(bound));
-  return bound && it != textures_.end() && it->second.storage ? 0 : value;
+  const auto it = textures_.find(texture);
+  return texture && it != textures_.end() && it->second.storage ? 0 : value;
 }
 
 void TargetScaler::renderbuffer_storage(GLsizei samples, GLenum internal_format, GLsizei* width, GLsizei* height) {
@@ -742,11 +744,9 @@ void TargetScaler::blit_rectangles(GLuint read, GLuint draw, GLint* src, GLint* 
   scale_corners(dst, sx, sy, dst);
 }
 
-bool TargetScaler::texture_size(GLint level, GLenum pname, GLint* value) const {
+bool TargetScaler::texture_size(GLuint texture, GLint level, GLenum pname, GLint* value) const {
   if (pname != GL_TEXTURE_WIDTH && pname != GL_TEXTURE_HEIGHT) return false;
-  GLint bound = 0;
-  agl().GetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
-  auto it = textures_.find(static_cast<GLuint>(bound));
+  auto it = textures_.find(texture);
   if (it == textures_.end() || it->second.scale == 1.0 || level < 0 ||
       static_cast<size_t>(level) >= it->second.app_size.size())
     return false;

@@ -10,8 +10,8 @@
 // drawn into the real back buffer at each swap. Reads of the window (glReadPixels,
 // glCopyTex*) see a window-sized image, binding queries answer 0.
 // Limits: 2D textures and renderbuffers (not arrays, cube maps, nor immutable textures of more
-// than one level, of a format no framebuffer holds, or made by glTextureStorage2D); textures
-// are tracked per context; multisampled windows are not scaled.
+// than one level or of a format no framebuffer holds); textures are tracked per context;
+// multisampled windows are not scaled.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -77,18 +77,22 @@ class TargetScaler {
   // respecified at another size, so a single level of a format a framebuffer can hold is made
   // as mutable storage of that format instead (its maximum level 0, so it is complete as the
   // immutable one is) and scales as glTexImage2D's do; true where it was made here.
-  bool tex_storage_2d(GLsizei levels, GLenum internal_format, GLsizei width, GLsizei height);
-  // glGetTexParameter of such a texture bound to GL_TEXTURE_2D: GL_TEXTURE_IMMUTABLE_FORMAT and
+  // `texture` is the one bound to GL_TEXTURE_2D (bound_texture_2d()), or a GL_TEXTURE_2D texture
+  // named by glTextureStorage2D (bound for the call and restored).
+  bool tex_storage_2d(GLuint texture, GLsizei levels, GLenum internal_format, GLsizei width, GLsizei height);
+  // glGet(Tex|Texture)Parameter of such a texture: GL_TEXTURE_IMMUTABLE_FORMAT and
   // GL_TEXTURE_IMMUTABLE_LEVELS as the app made it; false for other textures and names.
-  bool storage_parameter(GLenum pname, GLint* value) const;
-  // glTexParameter of the bound GL_TEXTURE_2D: what the driver gets. Such a texture's base and
-  // maximum levels stay 0 (an immutable texture clamps them to its levels).
-  GLint texture_parameter(GLenum pname, GLint value) const;
+  bool storage_parameter(GLuint texture, GLenum pname, GLint* value) const;
+  // gl(Tex|Texture)Parameter: what the driver gets. Such a texture's base and maximum levels
+  // stay 0 (an immutable texture clamps them to its levels).
+  GLint texture_parameter(GLuint texture, GLenum pname, GLint value) const;
+  GLuint bound_texture_2d() const;
   void renderbuffer_storage(GLsizei samples, GLenum internal_format, GLsizei* width, GLsizei* height);
   // x0, y0, x1, y1 each, by the scales of the app's framebuffers `read` and `draw`.
   void blit_rectangles(GLuint read, GLuint draw, GLint* src, GLint* dst) const;
-  // The app's size for a scaled image (GL_TEXTURE_WIDTH/HEIGHT, GL_RENDERBUFFER_WIDTH/HEIGHT).
-  bool texture_size(GLint level, GLenum pname, GLint* value) const;
+  // The app's size for a scaled image (GL_TEXTURE_WIDTH/HEIGHT, GL_RENDERBUFFER_WIDTH/HEIGHT):
+  // the texture bound to GL_TEXTURE_2D, or one named (glGetTextureLevelParameter).
+  bool texture_size(GLuint texture, GLint level, GLenum pname, GLint* value) const;
   bool renderbuffer_size(GLenum pname, GLint* value) const;
   // The app's viewport and scissor box (4 values) for glGet*.
   const GLint* app_viewport() const { return viewport_.data(); }

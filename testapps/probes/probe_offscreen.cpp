@@ -6,6 +6,8 @@
 //   --format unsized     colour textures specified as GL_RGBA (GLES 2-era code), not GL_RGBA8
 //   --format immutable   colour textures and a depth-stencil texture made by glTexStorage2D
 //                        (GL 4.2+ engines), not glTexImage2D and a renderbuffer
+//   --format dsa         the same made, attached and asked about by name (GL 4.5 direct state
+//                        access: glCreateTextures, glTextureStorage2D, glNamedFramebufferTexture)
 // Exits 4 when glGetError reports an error at any frame: none of the app's calls raises one;
 // 5 when a texture does not answer as the app made it (size, immutable format and levels).
 //   pass A, B: the known scene, into the window-sized framebuffer
@@ -13,6 +15,7 @@
 #define GL_GLEXT_PROTOTYPES 1
 #include <cstdio>
 #include <cstring>
+#include <utility>
 
 #include "common/direct_gl.hpp"
 #include "common/egl_setup.hpp"
@@ -43,32 +46,57 @@ GLuint program(const char* vs, const char* fs) {
   return ok ? p : 0;
 }
 
-enum class Format { kSized, kUnsized, kImmutable };
+enum class Format { kSized, kUnsized, kImmutable, kDsa };
+
+GLuint storage_texture(int w, int h, GLenum internal_format, Format format) {
+  GLuint t = 0;
+  if (format == Format::kDsa) {
+    glCreateTextures(GL_TEXTURE_2D, 1, &t);
+    glTextureStorage2D(t, 1, internal_format, w, h);
+  } else {
+    glGenTextures(1, &t);
+    glBindTexture(GL_TEXTURE_2D, t);
+    glTexStorage2D(GL_TEXTURE_2D, 1, internal_format, w, h);
+  }
+  return t;
+}
 
 GLuint color_texture(int w, int h, Format format) {
   GLuint t = 0;
-  glGenTextures(1, &t);
-  glBindTexture(GL_TEXTURE_2D, t);
-  if (format == Format::kImmutable)
-    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w, h);
-  else
+  if (format == Format::kImmutable || format == Format::kDsa) {
+    t = storage_texture(w, h, GL_RGBA8, format);  // bound, unless by name
+  } else {
+    glGenTextures(1, &t);
+    glBindTexture(GL_TEXTURE_2D, t);
     glTexImage2D(GL_TEXTURE_2D, 0, format == Format::kUnsized ? GL_RGBA : GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE,
                  nullptr);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  }
+  for (auto [pname, value] :
+       {std::pair{GL_TEXTURE_MIN_FILTER, GL_LINEAR}, std::pair{GL_TEXTURE_MAG_FILTER, GL_LINEAR},
+        std::pair{GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE}, std::pair{GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE}}) {
+    if (format == Format::kDsa)
+      glTextureParameteri(t, pname, value);
+    else
+      glTexParameteri(GL_TEXTURE_2D, pname, value);
+  }
   return t;
 }
 
 // The texture answers as the app made it, whatever the shim stores.
-bool answers_as_made(GLuint texture, int w, int h, bool immutable) {
-  glBindTexture(GL_TEXTURE_2D, texture);
+bool answers_as_made(GLuint texture, int w, int h, bool immutable, bool by_name) {
   GLint width = 0, height = 0, format = GL_FALSE, levels = 0;
-  glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &width);
-  glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &height);
-  glGetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_IMMUTABLE_FORMAT, &format);
-  glGetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_IMMUTABLE_LEVELS, &levels);
+  if (by_name) {
+    glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_WIDTH, &width);
+    glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_HEIGHT, &height);
+    glGetTextureParameteriv(texture, GL_TEXTURE_IMMUTABLE_FORMAT, &format);
+    glGetTextureParameteriv(texture, GL_TEXTURE_IMMUTABLE_LEVELS, &levels);
+  } else {
+    glBindTexture(GL_TEXTURE_2D, texture);
+    glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &width);
+    glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &height);
+    glGetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_IMMUTABLE_FORMAT, &format);
+    glGetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_IMMUTABLE_LEVELS, &levels);
+  }
   const bool ok =
       width == w && height == h && format == (immutable ? GL_TRUE : GL_FALSE) && levels == (immutable ? 1 : 0);
   if (!ok)
@@ -88,9 +116,10 @@ int main(int argc, char** argv) {
     if (!strcmp(argv[i], "--format"))
       format = !strcmp(argv[i + 1], "unsized")     ? Format::kUnsized
                : !strcmp(argv[i + 1], "immutable") ? Format::kImmutable
+               : !strcmp(argv[i + 1], "dsa")       ? Format::kDsa
                                                    : Format::kSized;
   }
-  const bool immutable = format == Format::kImmutable;
+  const bool dsa = format == Format::kDsa, immutable = format == Format::kImmutable || dsa;
   const int w = args.width, h = args.height;
   EglFns egl;
   EglWindow win;
@@ -115,23 +144,29 @@ int main(int argc, char** argv) {
   const GLuint scene_color = color_texture(w, h, format), quarter_color = color_texture(w / 4, h / 4, format);
   GLuint depth = 0, fbo[2] = {0, 0};
   if (immutable) {
-    glGenTextures(1, &depth);
-    glBindTexture(GL_TEXTURE_2D, depth);
-    glTexStorage2D(GL_TEXTURE_2D, 1, GL_DEPTH24_STENCIL8, w, h);
+    depth = storage_texture(w, h, GL_DEPTH24_STENCIL8, format);
   } else {
     glGenRenderbuffers(1, &depth);
     glBindRenderbuffer(GL_RENDERBUFFER, depth);
     glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, w, h);
   }
-  glGenFramebuffers(2, fbo);
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo[0]);
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, scene_color, 0);
-  if (immutable)
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, depth, 0);
-  else
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, depth);
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo[1]);
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, quarter_color, 0);
+  if (dsa) {
+    glCreateFramebuffers(2, fbo);
+    glNamedFramebufferTexture(fbo[0], GL_COLOR_ATTACHMENT0, scene_color, 0);
+    glNamedFramebufferTexture(fbo[0], GL_DEPTH_STENCIL_ATTACHMENT, depth, 0);
+    glNamedFramebufferTexture(fbo[1], GL_COLOR_ATTACHMENT0, quarter_color, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo[1]);
+  } else {
+    glGenFramebuffers(2, fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo[0]);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, scene_color, 0);
+    if (immutable)
+      glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, depth, 0);
+    else
+      glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, depth);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo[1]);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, quarter_color, 0);
+  }
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
     fprintf(stderr, "probe_offscreen: framebuffer incomplete\n");
     return 2;
@@ -169,9 +204,9 @@ int main(int argc, char** argv) {
     if (error != GL_NO_ERROR) fprintf(stderr, "probe_offscreen: GL error 0x%04x at frame %d\n", error, f);
   }
   // After the frames (a scaled texture is stored at its scale by now).
-  const bool as_made = answers_as_made(scene_color, w, h, immutable) &&
-                       answers_as_made(quarter_color, w / 4, h / 4, immutable) &&
-                       (!immutable || answers_as_made(depth, w, h, true));
+  const bool as_made = answers_as_made(scene_color, w, h, immutable, dsa) &&
+                       answers_as_made(quarter_color, w / 4, h / 4, immutable, dsa) &&
+                       (!immutable || answers_as_made(depth, w, h, true, dsa));
   if (error == GL_NO_ERROR) error = glGetError();
   const int rc = error != GL_NO_ERROR ? 4 : !as_made ? 5 : write_ppm(args.out, image, w, h) ? 0 : 3;
   eglMakeCurrent(win.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);

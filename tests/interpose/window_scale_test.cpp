@@ -112,9 +112,10 @@ TEST_CASE("an app's window-sized framebuffers follow the window's scale, smaller
   // copy of it, and composes both into the window: at 60 % the scene and the window are drawn
   // at 60 % (about 0.36 of the fragments), the quarter-sized pass as the app made it. Its
   // textures made by glTexImage2D with a depth-stencil renderbuffer, or all by glTexStorage2D
-  // (immutable storage, as GL 4.2+ engines make theirs), where each must still answer as the
-  // app made it (size, immutable format and levels: the probe exits 5 if not).
-  const std::string format = GENERATE("sized", "immutable");
+  // (immutable storage, as GL 4.2+ engines make theirs), or so by name (GL 4.5 direct state
+  // access: glTextureStorage2D, glNamedFramebufferTexture, the queries by name), where each
+  // must still answer as the app made it (size, immutable format and levels: exit 5 if not).
+  const std::string format = GENERATE("sized", "immutable", "dsa");
   INFO("textures: " << format);
   const std::string plain_img = temp_path("offscreen_plain.ppm");
   REQUIRE(

@@ -43,6 +43,8 @@ CUSTOM = [
     'glGetTexLevelParameterfv', 'glGetRenderbufferParameteriv', 'glDeleteTextures',
     'glDeleteFramebuffers', 'glDeleteRenderbuffers',
     'glTexStorage2D', 'glGetTexParameteriv', 'glTexParameteri', 'glTexParameteriv',
+    'glTextureStorage2D', 'glGetTextureParameteriv', 'glTextureParameteri', 'glTextureParameteriv',
+    'glGetTextureLevelParameteriv', 'glGetTextureLevelParameterfv',
     # apply/: the default framebuffer's stand-in
     'glReadPixels', 'glCopyTexImage2D', 'glCopyTexSubImage2D', 'glDrawBuffer', 'glDrawBuffers', 'glReadBuffer',
     'glInvalidateFramebuffer', 'glInvalidateSubFramebuffer', 'glDiscardFramebufferEXT',
