@@ -695,6 +695,7 @@ bool TargetScaler::tex_storage_2d(GLuint texture, GLsizei levels, GLenum interna
   // Other calls (and the app's mistakes, which must raise the driver's errors) go as they are.
   if (!texture || levels != 1 || width <= 0 || height <= 0 || !null_upload(internal_format, &format, &type))
     return false;
+  if (gles_ && internal_format == GL_RGBA16) return false;  // GLES only with EXT_texture_norm16
   const auto known = textures_.find(texture);
   if (known != textures_.end() && known->second.storage) return false;  // immutable already: the driver's error
   const ApplyGl& g = agl();
