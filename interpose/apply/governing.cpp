@@ -201,7 +201,7 @@ class GovernorThread {
         work.swap(queue_);
         probes.swap(probes_);
         if (work.empty() && probes.empty() && stopping_) {
-          flush_held(nullptr);
+          flush_held(nullptr, true);
           return;
         }
       }
@@ -276,7 +276,7 @@ class GovernorThread {
       if (pass.levels.size() < 2 || pass_in_scene(pass, i, p.passes_drawn)) continue;
       for (int l = 1; l < static_cast<int>(pass.levels.size()); ++l) governor_.errors().set(i, l, 0.0);
     }
-    flush_held(nullptr);
+    flush_held(nullptr, false);
   }
 
   // Whether a pass's fresh error is far enough from its last probe's to say the scene changed
@@ -298,18 +298,18 @@ class GovernorThread {
   }
 
   // Rows of probe frames wait for their measured errors: until the probe's result arrives, or
-  // until `now` (the frame being decided) is kHoldFrames past them in their own context, or
-  // kHoldFrames * 4 frames of any context have been decided since (their context may draw no
-  // more; a probe frame's capture can be dropped). Null `now`: the process stops; every row
-  // goes out. Frame numbers restart in each context, so rows and results are matched by
-  // context and frame. A result can come before its rows: the governor thread measures the
-  // probes it was handed before deciding the frames handed with them.
-  void flush_held(const FrameRow* now) {
+  // until `now` (the frame being decided; null when a probe was measured) is kHoldFrames past
+  // them in their own context, or kHoldFrames * 4 frames of any context have been decided since
+  // (their context may draw no more; a probe frame's capture can be dropped). `stopping`: the
+  // process ends; every row goes out. Frame numbers restart in each context, so rows and
+  // results are matched by context and frame. A result can come before its rows: the governor
+  // thread measures the probes it was handed before deciding the frames handed with them.
+  void flush_held(const FrameRow* now, bool stopping) {
     for (auto it = held_.begin(); it != held_.end();) {
       const auto found = results_.find({it->context, it->frame});
       const bool known = found != results_.end();
-      const bool waited = !now || decided_ - it->decided_at > kHoldFrames * 4 ||
-                          (now->context == it->context && now->frame >= it->frame + kHoldFrames);
+      const bool waited = stopping || decided_ - it->decided_at > kHoldFrames * 4 ||
+                          (now && now->context == it->context && now->frame >= it->frame + kHoldFrames);
       if (!known && !waited) {
         ++it;
         continue;
@@ -388,7 +388,7 @@ class GovernorThread {
       held_.push_back({now.context, now.frame, decided_, std::move(f.rows)});
     else
       for (FrameRow& row : f.rows) FrameLog::get().push(row);
-    flush_held(&now);
+    flush_held(&now, false);
   }
 
   // Every configuration's corrected prediction and estimated error at a selection, beside the

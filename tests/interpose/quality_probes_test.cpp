@@ -333,14 +333,17 @@ TEST_CASE("settled probes come back to their first period when a pass's error mo
     return std::abs(now - before) > std::max(0.003, 0.25 * std::max(before, now));
   };
   std::map<int, double> last;  // by pass
-  long previous = 0;
+  long previous = 0;           // the probe frame before, whatever it measured
   int settled = 0, drifted = 0;
-  for (auto it = probed.begin(); it != probed.end(); ++it) {
-    const auto [frame, result] = *it;
-    const auto [pass, error] = result;
+  for (const auto& [frame, text] : streams) {
+    const bool was_settled = frame - previous == 60;
+    previous = frame;
+    // A probe frame whose pass's cheapest level is what is shown draws no stream for it.
+    const auto it = probed.find(frame);
+    if (it == probed.end()) continue;
+    const auto [pass, error] = it->second;
     INFO("probe frame " << frame << ", pass " << pass << ", error " << error);
     const auto next = streams.upper_bound(frame);
-    const bool was_settled = frame - previous == 60;
     if (was_settled && last.count(pass)) {
       ++settled;
       if (moved(last[pass], error)) {
@@ -352,9 +355,8 @@ TEST_CASE("settled probes come back to their first period when a pass's error mo
       }
     }
     last[pass] = error;
-    previous = frame;
   }
-  CHECK(settled >= 2);
+  CHECK(settled >= 1);
   CHECK(drifted >= 1);
 }
 
