@@ -133,14 +133,6 @@ void handle_glTexImage2D(pfn_glTexImage2D real, GLenum target, GLint level, GLin
   real(target, level, internalformat, width, height, border, format, type, pixels);
 }
 
-// The parameters the shim answers or clamps for the textures it stores as mutable; other
-// pnames go straight through, without asking for the binding.
-static bool storage_pname(GLenum pname) {
-  return pname == GL_TEXTURE_IMMUTABLE_FORMAT || pname == GL_TEXTURE_IMMUTABLE_LEVELS;
-}
-static bool size_pname(GLenum pname) { return pname == GL_TEXTURE_WIDTH || pname == GL_TEXTURE_HEIGHT; }
-static bool level_pname(GLenum pname) { return pname == GL_TEXTURE_BASE_LEVEL || pname == GL_TEXTURE_MAX_LEVEL; }
-
 void handle_glTexStorage2D(pfn_glTexStorage2D real, GLenum target, GLsizei levels, GLenum internalformat, GLsizei width,
                            GLsizei height) {
   TargetScaler* s = scaler();
@@ -163,7 +155,7 @@ void handle_glTextureStorage2D(pfn_glTextureStorage2D real, GLuint texture, GLsi
 
 void handle_glGetTexParameteriv(pfn_glGetTexParameteriv real, GLenum target, GLenum pname, GLint* params) {
   TargetScaler* s = scaler();
-  if (s && target == GL_TEXTURE_2D && params && storage_pname(pname) &&
+  if (s && target == GL_TEXTURE_2D && params && TargetScaler::storage_pname(pname) &&
       s->storage_parameter(s->bound_texture_2d(), pname, params))
     return;
   real(target, pname, params);
@@ -177,7 +169,7 @@ void handle_glGetTextureParameteriv(pfn_glGetTextureParameteriv real, GLuint tex
 
 void handle_glTexParameteri(pfn_glTexParameteri real, GLenum target, GLenum pname, GLint param) {
   TargetScaler* s = scaler();
-  const bool clamp = s && target == GL_TEXTURE_2D && level_pname(pname);
+  const bool clamp = s && target == GL_TEXTURE_2D && TargetScaler::level_pname(pname);
   real(target, pname, clamp ? s->texture_parameter(s->bound_texture_2d(), pname, param) : param);
 }
 
@@ -188,7 +180,7 @@ void handle_glTextureParameteri(pfn_glTextureParameteri real, GLuint texture, GL
 
 void handle_glTexParameteriv(pfn_glTexParameteriv real, GLenum target, GLenum pname, const GLint* params) {
   TargetScaler* s = scaler();
-  if (!s || target != GL_TEXTURE_2D || !params || !level_pname(pname)) return real(target, pname, params);
+  if (!s || target != GL_TEXTURE_2D || !params || !TargetScaler::level_pname(pname)) return real(target, pname, params);
   const GLint clamped = s->texture_parameter(s->bound_texture_2d(), pname, params[0]);
   if (clamped == params[0]) return real(target, pname, params);
   real(target, pname, &clamped);
@@ -417,7 +409,7 @@ void handle_glClearNamedFramebufferfi(pfn_glClearNamedFramebufferfi real, GLuint
 void handle_glGetTexLevelParameteriv(pfn_glGetTexLevelParameteriv real, GLenum target, GLint level, GLenum pname,
                                      GLint* params) {
   real(target, level, pname, params);
-  if (TargetScaler* s = scaler(); s && target == GL_TEXTURE_2D && params && size_pname(pname))
+  if (TargetScaler* s = scaler(); s && target == GL_TEXTURE_2D && params && TargetScaler::size_pname(pname))
     s->texture_size(s->bound_texture_2d(), level, pname, params);
 }
 
@@ -439,7 +431,7 @@ void handle_glGetTexLevelParameterfv(pfn_glGetTexLevelParameterfv real, GLenum t
                                      GLfloat* params) {
   real(target, level, pname, params);
   GLint v = 0;
-  if (TargetScaler* s = scaler(); s && target == GL_TEXTURE_2D && params && size_pname(pname) &&
+  if (TargetScaler* s = scaler(); s && target == GL_TEXTURE_2D && params && TargetScaler::size_pname(pname) &&
                                   s->texture_size(s->bound_texture_2d(), level, pname, &v))
     *params = static_cast<GLfloat>(v);
 }

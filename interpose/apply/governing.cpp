@@ -115,6 +115,9 @@ struct Frame {
   std::vector<FrameRow> rows;
 };
 
+// A frame of one context: frame numbers restart in each.
+using FrameKey = std::pair<int, uint64_t>;
+
 std::atomic<uint64_t> g_drift{0};  // probe_drift_count()
 
 class GovernorThread {
@@ -126,6 +129,7 @@ class GovernorThread {
       for (int l = 1; l < static_cast<int>(manifest_.passes[i].levels.size()); ++l)
         if (const auto k = error_ratios.find({manifest_.passes[i].name, l}); k != error_ratios.end())
           measured_ratios_[{static_cast<int>(i), l}] = k->second;
+    probed_.assign(manifest_.passes.size(), false);
   }
 
   void start() { pthread_create(&thread_, nullptr, &GovernorThread::main, this); }
@@ -261,7 +265,6 @@ class GovernorThread {
       if (p.streams[s].level[pass] != lmax) continue;  // GLBUDGET_PROBE_LEVELS=all: logged only
       const double e = *measured;
       loop::ErrorTable& table = governor_.errors();
-      if (probed_.size() <= static_cast<size_t>(pass)) probed_.resize(static_cast<size_t>(pass) + 1);
       if (probed_[static_cast<size_t>(pass)] && moved(table.error(static_cast<size_t>(pass), lmax), e))
         g_drift.fetch_add(1, std::memory_order_relaxed);
       probed_[static_cast<size_t>(pass)] = true;
@@ -304,12 +307,12 @@ class GovernorThread {
   // process ends; every row goes out. Frame numbers restart in each context, so rows and
   // results are matched by context and frame. A result can come before its rows: the governor
   // thread measures the probes it was handed before deciding the frames handed with them.
-  void flush_held(const FrameRow* now, bool stopping) {
+  void flush_held(const FrameKey* now, bool stopping) {
     for (auto it = held_.begin(); it != held_.end();) {
       const auto found = results_.find({it->context, it->frame});
       const bool known = found != results_.end();
       const bool waited = stopping || decided_ - it->decided_at > kHoldFrames * 4 ||
-                          (now && now->context == it->context && now->frame >= it->frame + kHoldFrames);
+                          (now && now->first == it->context && now->second >= it->frame + kHoldFrames);
       if (!known && !waited) {
         ++it;
         continue;
@@ -382,10 +385,10 @@ class GovernorThread {
     // `first` lives in f.rows, which a probe frame's rows leave for held_ (and flush_held may
     // free at once).
     ++decided_;
-    const FrameRow now = first;
-    last_decided_[now.context] = now.frame;
-    if (now.probe)
-      held_.push_back({now.context, now.frame, decided_, std::move(f.rows)});
+    const FrameKey now{first.context, first.frame};
+    last_decided_[now.first] = now.second;
+    if (first.probe)
+      held_.push_back({now.first, now.second, decided_, std::move(f.rows)});
     else
       for (FrameRow& row : f.rows) FrameLog::get().push(row);
     flush_held(&now, false);
@@ -455,9 +458,9 @@ class GovernorThread {
   std::vector<bool> probed_;  // by pass: its cheapest level has been probed
   uint64_t decided_ = 0;      // frames decided, of every context
   std::vector<Held> held_;
-  std::map<std::pair<int, uint64_t>, ProbeResult> results_;  // by context and probe frame
-  std::map<int, uint64_t> last_decided_;                     // frame, by context
-  std::map<std::pair<int, int>, double> measured_ratios_;    // k by pass and level: calibrate --app's
+  std::map<FrameKey, ProbeResult> results_;                // by context and probe frame
+  std::map<int, uint64_t> last_decided_;                   // frame, by context
+  std::map<std::pair<int, int>, double> measured_ratios_;  // k by pass and level: calibrate --app's
   std::FILE* selections_ = nullptr;
   bool selections_failed_ = false;
 };

@@ -710,7 +710,7 @@ bool TargetScaler::tex_storage_2d(GLuint texture, GLsizei levels, GLenum interna
 }
 
 bool TargetScaler::storage_parameter(GLuint texture, GLenum pname, GLint* value) const {
-  if (pname != GL_TEXTURE_IMMUTABLE_FORMAT && pname != GL_TEXTURE_IMMUTABLE_LEVELS) return false;
+  if (!storage_pname(pname)) return false;
   const auto it = textures_.find(texture);
   if (!texture || it == textures_.end() || !it->second.storage) return false;
   *value = pname == GL_TEXTURE_IMMUTABLE_FORMAT ? GL_TRUE : 1;
@@ -718,7 +718,7 @@ bool TargetScaler::storage_parameter(GLuint texture, GLenum pname, GLint* value)
 }
 
 GLint TargetScaler::texture_parameter(GLuint texture, GLenum pname, GLint value) const {
-  if (pname != GL_TEXTURE_BASE_LEVEL && pname != GL_TEXTURE_MAX_LEVEL) return value;
+  if (!level_pname(pname)) return value;
   const auto it = textures_.find(texture);
   return texture && it != textures_.end() && it->second.storage ? 0 : value;
 }
@@ -746,7 +746,7 @@ void TargetScaler::blit_rectangles(GLuint read, GLuint draw, GLint* src, GLint* 
 }
 
 bool TargetScaler::texture_size(GLuint texture, GLint level, GLenum pname, GLint* value) const {
-  if (pname != GL_TEXTURE_WIDTH && pname != GL_TEXTURE_HEIGHT) return false;
+  if (!size_pname(pname)) return false;
   auto it = textures_.find(texture);
   if (it == textures_.end() || it->second.scale == 1.0 || level < 0 ||
       static_cast<size_t>(level) >= it->second.app_size.size())

@@ -87,6 +87,12 @@ class TargetScaler {
   // stay 0 (an immutable texture clamps them to its levels).
   GLint texture_parameter(GLuint texture, GLenum pname, GLint value) const;
   GLuint bound_texture_2d() const;
+  // The pnames the three above answer or clamp: the hooks ask for the binding only for these.
+  static bool storage_pname(GLenum pname) {
+    return pname == GL_TEXTURE_IMMUTABLE_FORMAT || pname == GL_TEXTURE_IMMUTABLE_LEVELS;
+  }
+  static bool level_pname(GLenum pname) { return pname == GL_TEXTURE_BASE_LEVEL || pname == GL_TEXTURE_MAX_LEVEL; }
+  static bool size_pname(GLenum pname) { return pname == GL_TEXTURE_WIDTH || pname == GL_TEXTURE_HEIGHT; }
   void renderbuffer_storage(GLsizei samples, GLenum internal_format, GLsizei* width, GLsizei* height);
   // x0, y0, x1, y1 each, by the scales of the app's framebuffers `read` and `draw`.
   void blit_rectangles(GLuint read, GLuint draw, GLint* src, GLint* dst) const;
