@@ -107,6 +107,7 @@ ApplyGl load_all() {
   load(g.BindTexture, "glBindTexture");
   load(g.TexImage2D, "glTexImage2D");
   load(g.TexParameteri, "glTexParameteri");
+  load(g.GetTexParameteriv, "glGetTexParameteriv");
   load(g.Viewport, "glViewport");
   load(g.Scissor, "glScissor");
   load(g.Enable, "glEnable");

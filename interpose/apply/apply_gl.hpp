@@ -105,6 +105,7 @@ struct ApplyGl {
   void(APIENTRYP BindTexture)(GLenum, GLuint) = nullptr;
   void(APIENTRYP TexImage2D)(GLenum, GLint, GLint, GLsizei, GLsizei, GLint, GLenum, GLenum, const void*) = nullptr;
   void(APIENTRYP TexParameteri)(GLenum, GLenum, GLint) = nullptr;
+  void(APIENTRYP GetTexParameteriv)(GLenum, GLenum, GLint*) = nullptr;
   void(APIENTRYP Viewport)(GLint, GLint, GLsizei, GLsizei) = nullptr;
   void(APIENTRYP Scissor)(GLint, GLint, GLsizei, GLsizei) = nullptr;
   void(APIENTRYP Enable)(GLenum) = nullptr;

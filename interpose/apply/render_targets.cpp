@@ -129,6 +129,15 @@ void* SavedBindings::bind_buffer() {
 GLsizei TargetScaler::Image::stored_width() const { return app_size.empty() ? 0 : scaled(app_size[0][0], scale); }
 GLsizei TargetScaler::Image::stored_height() const { return app_size.empty() ? 0 : scaled(app_size[0][1], scale); }
 
+std::array<GLsizei, 2> TargetScaler::Image::stored_level_size(size_t level) const {
+  const auto& app = app_size[level];
+  if (level == 0 || scale == 1.0) return {scaled(app[0], scale), scaled(app[1], scale)};
+  const auto& base = app_size[0];
+  const bool chain = level < 31 && app[0] == std::max(1, base[0] >> level) && app[1] == std::max(1, base[1] >> level);
+  if (!chain) return {scaled(app[0], scale), scaled(app[1], scale)};
+  return {std::max(1, stored_width() >> level), std::max(1, stored_height() >> level)};
+}
+
 TargetScaler::TargetScaler(bool gles) : gles_(gles) {
   const ApplyGl& g = agl();
   g.GetIntegerv(GL_VIEWPORT, viewport_.data());
@@ -476,24 +485,26 @@ void TargetScaler::on_draw(int pass) {
 }
 
 void TargetScaler::ensure_scale(GLuint name, Framebuffer& f, bool carry) {
-  const double s = wanted_scale(name, f);
-  if (s == f.scale && f.attachments_known) {
-    // Attachments re-specified by the app since are brought to the framebuffer's scale below.
+  double s = wanted_scale(name, f);
+  // A framebuffer whose images are not all the scaler's keeps its size: scaling the others
+  // would leave the app's full-size viewport drawing into part of the one it cannot scale.
+  for (const Attachment& a : f.attachments) {
+    if (s == 1.0) break;
+    const auto& images = a.renderbuffer ? renderbuffers_ : textures_;
+    const auto it = images.find(a.name);
+    if (it != images.end() && !it->second.app_size.empty()) continue;
+    say_once("unknown-image" + std::to_string(a.name),
+             std::string(a.renderbuffer ? "renderbuffer " : "texture ") + std::to_string(a.name) + " of framebuffer " +
+                 std::to_string(name) +
+                 " was not made by glTexImage2D, glRenderbufferStorage or glTexStorage2D of a framebuffer format; "
+                 "the framebuffer is not scaled");
+    s = 1.0;
   }
   f.scale = s;
   for (const Attachment& a : f.attachments) {
     auto& images = a.renderbuffer ? renderbuffers_ : textures_;
     auto it = images.find(a.name);
-    if (it == images.end()) {
-      if (s != 1.0)
-        say_once("unknown-image" + std::to_string(a.name), std::string(a.renderbuffer ? "renderbuffer " : "texture ") +
-                                                               std::to_string(a.name) + " of framebuffer " +
-                                                               std::to_string(name) +
-                                                               " was not made by glTexImage2D, glRenderbufferStorage "
-                                                               "or a single-level glTexStorage2D; it is not scaled");
-      continue;
-    }
-    if (it->second.scale != s) rescale(a.name, it->second, s, carry);
+    if (it != images.end() && it->second.scale != s) rescale(a.name, it->second, s, carry);
   }
   any_scaled_ = any_scaled_ || s != 1.0;
 }
@@ -551,8 +562,8 @@ void TargetScaler::rescale(GLuint name, Image& image, double scale, bool carry_c
   image.scale = scale;
   for (size_t level = 0; level < image.app_size.size(); ++level) {
     if (image.app_size[level][0] == 0) continue;
-    allocate(name, scaled(image.app_size[level][0], scale), scaled(image.app_size[level][1], scale),
-             static_cast<int>(level));
+    const auto size = image.stored_level_size(level);
+    allocate(name, size[0], size[1], static_cast<int>(level));
   }
   if (carry) {
     attach(GL_READ_FRAMEBUFFER, fbo[0], image.renderbuffer, copy);
@@ -679,8 +690,9 @@ void TargetScaler::tex_image_2d(GLint level, GLint internal_format, GLsizei* wid
         if (!a.renderbuffer && a.name == static_cast<GLuint>(bound)) f.scale = -1.0;  // re-check
     return;
   }
-  *width = scaled(*width, im.scale);
-  *height = scaled(*height, im.scale);
+  const auto size = im.stored_level_size(static_cast<size_t>(level));
+  *width = size[0];
+  *height = size[1];
 }
 
 GLuint TargetScaler::bound_texture_2d() const {
@@ -693,34 +705,63 @@ bool TargetScaler::tex_storage_2d(GLuint texture, GLsizei levels, GLenum interna
                                   GLsizei height) {
   GLenum format = 0, type = 0;
   // Other calls (and the app's mistakes, which must raise the driver's errors) go as they are.
-  if (!texture || levels != 1 || width <= 0 || height <= 0 || !null_upload(internal_format, &format, &type))
+  if (!texture || levels < 1 || width <= 0 || height <= 0 || !null_upload(internal_format, &format, &type))
     return false;
+  if (levels > 1 + static_cast<GLsizei>(std::log2(std::max(width, height)))) return false;
+  if (levels > 1 && !(width == window_width_ && height == window_height_) && !named_by_manifest(texture)) return false;
   if (gles_ && internal_format == GL_RGBA16) return false;  // GLES only with EXT_texture_norm16
   const auto known = textures_.find(texture);
-  if (known != textures_.end() && known->second.storage) return false;  // immutable already: the driver's error
+  if (known != textures_.end() && known->second.storage_levels) return false;  // immutable already: the driver's error
   const ApplyGl& g = agl();
   SavedBindings saved;  // the 2D binding, and no pixel-unpack buffer: no data
   g.BindTexture(GL_TEXTURE_2D, texture);
-  tex_image_2d(0, static_cast<GLint>(internal_format), &width, &height, format, type, false);
-  g.TexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internal_format), width, height, 0, format, type, nullptr);
-  g.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
-  g.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
-  textures_[texture].storage = true;
+  for (GLsizei level = 0; level < levels; ++level) {
+    GLsizei w = std::max(1, width >> level), h = std::max(1, height >> level);
+    tex_image_2d(level, static_cast<GLint>(internal_format), &w, &h, format, type, false);
+    g.TexImage2D(GL_TEXTURE_2D, level, static_cast<GLint>(internal_format), w, h, 0, format, type, nullptr);
+  }
+  // The levels the app may have set before: they went to the driver as they were.
+  GLint base = 0, max = 1000;
+  g.GetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, &base);
+  g.GetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, &max);
+  textures_[texture].storage_levels = levels;
+  g.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, texture_parameter(texture, GL_TEXTURE_BASE_LEVEL, base));
+  g.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, texture_parameter(texture, GL_TEXTURE_MAX_LEVEL, max));
   return true;
+}
+
+bool TargetScaler::named_by_manifest(GLuint texture) const {
+  for (const manifest::Pass& pass : active_manifest().passes)
+    for (const manifest::Level& level : pass.levels)
+      for (const manifest::Target& t : level.targets)
+        if (t.kind == manifest::Target::Kind::texture && t.id == texture) return true;
+  return false;
 }
 
 bool TargetScaler::storage_parameter(GLuint texture, GLenum pname, GLint* value) const {
   if (!storage_pname(pname)) return false;
   const auto it = textures_.find(texture);
-  if (!texture || it == textures_.end() || !it->second.storage) return false;
-  *value = pname == GL_TEXTURE_IMMUTABLE_FORMAT ? GL_TRUE : 1;
+  if (!texture || it == textures_.end() || !it->second.storage_levels) return false;
+  const Image& im = it->second;
+  *value = pname == GL_TEXTURE_IMMUTABLE_FORMAT   ? GL_TRUE
+           : pname == GL_TEXTURE_IMMUTABLE_LEVELS ? im.storage_levels
+           : pname == GL_TEXTURE_BASE_LEVEL       ? im.app_base_level
+                                                  : im.app_max_level;
   return true;
 }
 
-GLint TargetScaler::texture_parameter(GLuint texture, GLenum pname, GLint value) const {
+GLint TargetScaler::texture_parameter(GLuint texture, GLenum pname, GLint value) {
   if (!level_pname(pname)) return value;
   const auto it = textures_.find(texture);
-  return texture && it != textures_.end() && it->second.storage ? 0 : value;
+  if (!texture || it == textures_.end() || !it->second.storage_levels) return value;
+  Image& im = it->second;
+  (pname == GL_TEXTURE_BASE_LEVEL ? im.app_base_level : im.app_max_level) = value;
+  // An immutable texture's base level is clamped to [0, levels - 1], its maximum to
+  // [base, levels - 1]; a negative value is the driver's error, passed on.
+  if (value < 0) return value;
+  const GLint last = im.storage_levels - 1;
+  const GLint base = std::clamp(im.app_base_level, 0, last);
+  return pname == GL_TEXTURE_BASE_LEVEL ? base : std::clamp(value, base, last);
 }
 
 void TargetScaler::renderbuffer_storage(GLsizei samples, GLenum internal_format, GLsizei* width, GLsizei* height) {

@@ -9,8 +9,10 @@
 // a stand-in framebuffer at the scaled size takes its place whenever the app binds 0, and is
 // drawn into the real back buffer at each swap. Reads of the window (glReadPixels,
 // glCopyTex*) see a window-sized image, binding queries answer 0.
-// Limits: 2D textures and renderbuffers (not arrays, cube maps, nor immutable textures of more
-// than one level or of a format no framebuffer holds); textures are tracked per context;
+// Limits: 2D textures and renderbuffers (not arrays, cube maps, nor immutable textures of a
+// format no framebuffer holds, nor mipmapped immutable ones but of the window's size); a
+// framebuffer with an image the scaler cannot scale keeps its size; textures are tracked per
+// context;
 // multisampled windows are not scaled.
 #pragma once
 #include <array>
@@ -74,24 +76,28 @@ class TargetScaler {
   void tex_image_2d(GLint level, GLint internal_format, GLsizei* width, GLsizei* height, GLenum format, GLenum type,
                     bool with_data);
   // glTexStorage2D of the texture bound to GL_TEXTURE_2D. Immutable storage cannot be
-  // respecified at another size, so a single level of a format a framebuffer can hold is made
-  // as mutable storage of that format instead (its maximum level 0, so it is complete as the
-  // immutable one is) and scales as glTexImage2D's do; true where it was made here.
+  // respecified at another size, so storage of a format a framebuffer can hold is made as
+  // mutable storage of that format instead, every level the app asked for, its levels clamped
+  // to those (as an immutable texture clamps them), and scales as glTexImage2D's do; true where
+  // it was made here. Several levels only for a texture of the window's size (a render target's
+  // mip chain) or one a manifest names: other mipmapped textures are the app's assets, left
+  // immutable (glTextureView needs that).
   // `texture` is the one bound to GL_TEXTURE_2D (bound_texture_2d()), or a GL_TEXTURE_2D texture
   // named by glTextureStorage2D (bound for the call and restored).
   bool tex_storage_2d(GLuint texture, GLsizei levels, GLenum internal_format, GLsizei width, GLsizei height);
-  // glGet(Tex|Texture)Parameter of such a texture: GL_TEXTURE_IMMUTABLE_FORMAT and
-  // GL_TEXTURE_IMMUTABLE_LEVELS as the app made it; false for other textures and names.
+  // glGet(Tex|Texture)Parameter of such a texture: GL_TEXTURE_IMMUTABLE_FORMAT,
+  // GL_TEXTURE_IMMUTABLE_LEVELS, GL_TEXTURE_BASE_LEVEL and GL_TEXTURE_MAX_LEVEL as the app made
+  // and set them; false for other textures and names.
   bool storage_parameter(GLuint texture, GLenum pname, GLint* value) const;
   // gl(Tex|Texture)Parameter: what the driver gets. Such a texture's base and maximum levels
-  // stay 0 (an immutable texture clamps them to its levels).
-  GLint texture_parameter(GLuint texture, GLenum pname, GLint value) const;
+  // are kept as the app sets them and given clamped to its levels.
+  GLint texture_parameter(GLuint texture, GLenum pname, GLint value);
   GLuint bound_texture_2d() const;
   // The pnames the three above answer or clamp: the hooks ask for the binding only for these.
-  static bool storage_pname(GLenum pname) {
-    return pname == GL_TEXTURE_IMMUTABLE_FORMAT || pname == GL_TEXTURE_IMMUTABLE_LEVELS;
-  }
   static bool level_pname(GLenum pname) { return pname == GL_TEXTURE_BASE_LEVEL || pname == GL_TEXTURE_MAX_LEVEL; }
+  static bool storage_pname(GLenum pname) {
+    return pname == GL_TEXTURE_IMMUTABLE_FORMAT || pname == GL_TEXTURE_IMMUTABLE_LEVELS || level_pname(pname);
+  }
   static bool size_pname(GLenum pname) { return pname == GL_TEXTURE_WIDTH || pname == GL_TEXTURE_HEIGHT; }
   void renderbuffer_storage(GLsizei samples, GLenum internal_format, GLsizei* width, GLsizei* height);
   // x0, y0, x1, y1 each, by the scales of the app's framebuffers `read` and `draw`.
@@ -118,11 +124,15 @@ class TargetScaler {
     GLint internal_format = 0;
     GLenum format = 0, type = 0;
     GLsizei samples = 0;
-    bool storage = false;                          // the app made it with glTexStorage2D (stored mutable)
-    std::vector<std::array<GLsizei, 2>> app_size;  // per mip level the app specified
-    double scale = 1.0;                            // applied
+    GLsizei storage_levels = 0;                      // made by glTexStorage2D (stored mutable): its levels
+    GLint app_base_level = 0, app_max_level = 1000;  // of such a texture, as the app set them
+    std::vector<std::array<GLsizei, 2>> app_size;    // per mip level the app specified
+    double scale = 1.0;                              // applied
     GLsizei stored_width() const;
     GLsizei stored_height() const;
+    // A level's stored size: a full mip chain's levels halve the stored level 0, so that the
+    // texture stays complete at any scale; other levels scale on their own.
+    std::array<GLsizei, 2> stored_level_size(size_t level) const;
   };
   struct Attachment {
     GLenum point = 0;
@@ -157,6 +167,7 @@ class TargetScaler {
   double wanted_scale(GLuint name, const Framebuffer& f) const { return scale_for(name, f, config_); }
   double scale_for(GLuint name, const Framebuffer& f, const Levels& config) const;
   bool window_sized(const Framebuffer& f) const;
+  bool named_by_manifest(GLuint texture) const;
   void learn_attachments(Framebuffer& f);
   void ensure_scale(GLuint name, Framebuffer& f, bool carry = true);
   void rescale(GLuint name, Image& image, double scale, bool carry);

@@ -8,11 +8,15 @@
 //                        (GL 4.2+ engines), not glTexImage2D and a renderbuffer
 //   --format dsa         the same made, attached and asked about by name (GL 4.5 direct state
 //                        access: glCreateTextures, glTextureStorage2D, glNamedFramebufferTexture)
+//   --format mipmapped   immutable too, the scene's colour a full mip chain (glTexStorage2D of
+//                        every level) whose levels glGenerateMipmap fills each frame; the
+//                        quarter pass reads its level 2 (bloom and auto-exposure chains)
 // Exits 4 when glGetError reports an error at any frame: none of the app's calls raises one;
 // 5 when a texture does not answer as the app made it (size, immutable format and levels).
 //   pass A, B: the known scene, into the window-sized framebuffer
 //   pass "quarter": W/4 x H/4 fragments;  pass "compose": W x H fragments, into the window
 #define GL_GLEXT_PROTOTYPES 1
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <utility>
@@ -46,25 +50,31 @@ GLuint program(const char* vs, const char* fs) {
   return ok ? p : 0;
 }
 
-enum class Format { kSized, kUnsized, kImmutable, kDsa };
+enum class Format { kSized, kUnsized, kImmutable, kDsa, kMipmapped };
 
-GLuint storage_texture(int w, int h, GLenum internal_format, Format format) {
+GLuint storage_texture(int w, int h, GLenum internal_format, Format format, int levels = 1) {
   GLuint t = 0;
   if (format == Format::kDsa) {
     glCreateTextures(GL_TEXTURE_2D, 1, &t);
-    glTextureStorage2D(t, 1, internal_format, w, h);
+    glTextureStorage2D(t, levels, internal_format, w, h);
   } else {
     glGenTextures(1, &t);
     glBindTexture(GL_TEXTURE_2D, t);
-    glTexStorage2D(GL_TEXTURE_2D, 1, internal_format, w, h);
+    glTexStorage2D(GL_TEXTURE_2D, levels, internal_format, w, h);
   }
   return t;
 }
 
-GLuint color_texture(int w, int h, Format format) {
+int full_chain(int w, int h) {
+  int levels = 1;
+  while ((std::max(w, h) >> levels) > 0) ++levels;
+  return levels;
+}
+
+GLuint color_texture(int w, int h, Format format, int levels = 1) {
   GLuint t = 0;
-  if (format == Format::kImmutable || format == Format::kDsa) {
-    t = storage_texture(w, h, GL_RGBA8, format);  // bound, unless by name
+  if (format == Format::kImmutable || format == Format::kDsa || format == Format::kMipmapped) {
+    t = storage_texture(w, h, GL_RGBA8, format, levels);  // bound, unless by name
   } else {
     glGenTextures(1, &t);
     glBindTexture(GL_TEXTURE_2D, t);
@@ -83,7 +93,7 @@ GLuint color_texture(int w, int h, Format format) {
 }
 
 // The texture answers as the app made it, whatever the shim stores.
-bool answers_as_made(GLuint texture, int w, int h, bool immutable, bool by_name) {
+bool answers_as_made(GLuint texture, int w, int h, bool immutable, bool by_name, int made_levels = 1) {
   GLint width = 0, height = 0, format = GL_FALSE, levels = 0;
   if (by_name) {
     glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_WIDTH, &width);
@@ -97,8 +107,18 @@ bool answers_as_made(GLuint texture, int w, int h, bool immutable, bool by_name)
     glGetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_IMMUTABLE_FORMAT, &format);
     glGetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_IMMUTABLE_LEVELS, &levels);
   }
-  const bool ok =
-      width == w && height == h && format == (immutable ? GL_TRUE : GL_FALSE) && levels == (immutable ? 1 : 0);
+  bool ok = width == w && height == h && format == (immutable ? GL_TRUE : GL_FALSE) &&
+            levels == (immutable ? made_levels : 0);
+  if (made_levels > 1 && !by_name) {  // every level's size, and the maximum level the app set
+    for (int l = 1; l < made_levels; ++l) {
+      glGetTexLevelParameteriv(GL_TEXTURE_2D, l, GL_TEXTURE_WIDTH, &width);
+      glGetTexLevelParameteriv(GL_TEXTURE_2D, l, GL_TEXTURE_HEIGHT, &height);
+      ok = ok && width == std::max(1, w >> l) && height == std::max(1, h >> l);
+    }
+    GLint max_level = 0;
+    glGetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, &max_level);
+    ok = ok && max_level == 1000;
+  }
   if (!ok)
     fprintf(stderr, "probe_offscreen: texture %u answers %dx%d, immutable %d, %d levels\n", texture, width, height,
             format, levels);
@@ -117,9 +137,11 @@ int main(int argc, char** argv) {
       format = !strcmp(argv[i + 1], "unsized")     ? Format::kUnsized
                : !strcmp(argv[i + 1], "immutable") ? Format::kImmutable
                : !strcmp(argv[i + 1], "dsa")       ? Format::kDsa
+               : !strcmp(argv[i + 1], "mipmapped") ? Format::kMipmapped
                                                    : Format::kSized;
   }
-  const bool dsa = format == Format::kDsa, immutable = format == Format::kImmutable || dsa;
+  const bool dsa = format == Format::kDsa, mipmapped = format == Format::kMipmapped;
+  const bool immutable = format == Format::kImmutable || dsa || mipmapped;
   const int w = args.width, h = args.height;
   EglFns egl;
   EglWindow win;
@@ -141,7 +163,13 @@ int main(int argc, char** argv) {
   GLint full_vao = 0;
   glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &full_vao);
 
-  const GLuint scene_color = color_texture(w, h, format), quarter_color = color_texture(w / 4, h / 4, format);
+  const int scene_levels = mipmapped ? full_chain(w, h) : 1;
+  const GLuint scene_color = color_texture(w, h, format, scene_levels),
+               quarter_color = color_texture(w / 4, h / 4, format);
+  if (mipmapped) {
+    glBindTexture(GL_TEXTURE_2D, scene_color);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  }
   GLuint depth = 0, fbo[2] = {0, 0};
   if (immutable) {
     depth = storage_texture(w, h, GL_DEPTH24_STENCIL8, format);
@@ -189,6 +217,7 @@ int main(int argc, char** argv) {
     glBindVertexArray(static_cast<GLuint>(full_vao));
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, scene_color);
+    if (mipmapped) glGenerateMipmap(GL_TEXTURE_2D);  // the quarter pass's minification reads level 2
     glUseProgram(quarter_program);
     glDrawArrays(GL_TRIANGLES, 0, 6);
 
@@ -204,7 +233,7 @@ int main(int argc, char** argv) {
     if (error != GL_NO_ERROR) fprintf(stderr, "probe_offscreen: GL error 0x%04x at frame %d\n", error, f);
   }
   // After the frames (a scaled texture is stored at its scale by now).
-  const bool as_made = answers_as_made(scene_color, w, h, immutable, dsa) &&
+  const bool as_made = answers_as_made(scene_color, w, h, immutable, dsa, scene_levels) &&
                        answers_as_made(quarter_color, w / 4, h / 4, immutable, dsa) &&
                        (!immutable || answers_as_made(depth, w, h, true, dsa));
   if (error == GL_NO_ERROR) error = glGetError();

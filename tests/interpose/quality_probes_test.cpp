@@ -396,12 +396,14 @@ TEST_CASE("probes shadow an app's scaled framebuffers in any profile and format,
   // scaled texture draws what the app showed). The probe exits 4 if glGetError ever reports an
   // error to it: none of the shim's own GL work may leave one.
   // The compatibility context's probes are also compared in its compute shaders, once; and the
-  // core context's again with every texture made by glTexStorage2D.
+  // core context's again with every texture made by glTexStorage2D, and with the scene's colour
+  // a mip chain of it (the shim stores it mutable; its shadow must be complete too).
   std::vector<std::map<long, double>> errors;
   const std::vector<std::string> compat = {"--profile", "compat", "--format", "unsized"},
-                                 immutable = {"--format", "immutable"};
-  for (const auto& [variant, where] : {std::pair{std::vector<std::string>{}, "cpu"}, std::pair{compat, "cpu"},
-                                       std::pair{compat, "gpu"}, std::pair{immutable, "cpu"}}) {
+                                 immutable = {"--format", "immutable"}, mipmapped = {"--format", "mipmapped"};
+  for (const auto& [variant, where] :
+       {std::pair{std::vector<std::string>{}, "cpu"}, std::pair{compat, "cpu"}, std::pair{compat, "gpu"},
+        std::pair{immutable, "cpu"}, std::pair{mipmapped, "cpu"}}) {
     INFO(where);
     const std::string log = temp_path("probes_offscreen.csv");
     unlink(log.c_str());

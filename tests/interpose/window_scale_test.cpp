@@ -114,8 +114,9 @@ TEST_CASE("an app's window-sized framebuffers follow the window's scale, smaller
   // textures made by glTexImage2D with a depth-stencil renderbuffer, or all by glTexStorage2D
   // (immutable storage, as GL 4.2+ engines make theirs), or so by name (GL 4.5 direct state
   // access: glTextureStorage2D, glNamedFramebufferTexture, the queries by name), where each
-  // must still answer as the app made it (size, immutable format and levels: exit 5 if not).
-  const std::string format = GENERATE("sized", "immutable", "dsa");
+  // must still answer as the app made it (size, immutable format and levels: exit 5 if not), or
+  // with the scene's colour a full mip chain of immutable storage that glGenerateMipmap fills.
+  const std::string format = GENERATE("sized", "immutable", "dsa", "mipmapped");
   INFO("textures: " << format);
   const std::string plain_img = temp_path("offscreen_plain.ppm");
   REQUIRE(
