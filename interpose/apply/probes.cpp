@@ -259,8 +259,10 @@ struct ProbeFrames::Impl {
       out.app_width = t.window_width();
       out.app_height = t.window_height();
       if (out.app_width <= 0 || out.app_height <= 0) return false;
-      out.images = {{GL_COLOR_ATTACHMENT0, true, 0, 0, GL_RGBA8, 0},
-                    {GL_DEPTH_STENCIL_ATTACHMENT, true, 0, 0, GL_DEPTH24_STENCIL8, 0}};
+      // As many samples as the window: the best stream must antialias as the app's image does.
+      const GLsizei samples = t.window_samples();
+      out.images = {{GL_COLOR_ATTACHMENT0, true, 0, 0, GL_RGBA8, samples},
+                    {GL_DEPTH_STENCIL_ATTACHMENT, true, 0, 0, GL_DEPTH24_STENCIL8, samples}};
     } else {
       double sx = 1.0, sy = 1.0;
       t.stored_scale(app, &sx, &sy);
@@ -411,6 +413,11 @@ struct ProbeFrames::Impl {
     targets()->stored_scale(app, &sx, &sy);
     src_w = static_cast<int>(src_w * sx + 0.5);
     src_h = static_cast<int>(src_h * sy + 0.5);
+    // Multisampled images are blitted only at their own size: a shadow of another scale starts
+    // undefined, as the window's content does after a swap (apps clear it first).
+    bool multisampled = false;
+    for (const ShadowImage& im : s.images) multisampled |= im.samples > 0;
+    if (multisampled && (src_w != s.width || src_h != s.height)) return;
     const GLint read_buffer = get(GL_READ_BUFFER);
     GLbitfield depth_stencil = 0;
     for (const ShadowImage& im : s.images) {
@@ -661,6 +668,26 @@ struct ProbeFrames::Impl {
     capture_height = height;
   }
 
+  // A single-sampled image for a multisampled window shadow's resolve.
+  GLuint resolve_fbo = 0, resolve_color = 0;
+  int resolve_width = 0, resolve_height = 0;
+  void ensure_resolve(int width, int height) {
+    const ApplyGl& g = agl();
+    if (resolve_fbo && resolve_width == width && resolve_height == height) return;
+    if (!resolve_fbo) {
+      g.GenFramebuffers(1, &resolve_fbo);
+      g.GenRenderbuffers(1, &resolve_color);
+    }
+    const GLint renderbuffer = get(GL_RENDERBUFFER_BINDING);
+    g.BindRenderbuffer(GL_RENDERBUFFER, resolve_color);
+    g.RenderbufferStorageMultisample(GL_RENDERBUFFER, 0, GL_RGBA8, width, height);
+    g.BindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(renderbuffer));
+    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo);
+    g.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, resolve_color);
+    resolve_width = width;
+    resolve_height = height;
+  }
+
   struct SavedFramebuffers {
     GLint draw = get(GL_DRAW_FRAMEBUFFER_BINDING), read = get(GL_READ_FRAMEBUFFER_BINDING);
     GLint read_buffer = get(GL_READ_BUFFER);
@@ -690,7 +717,18 @@ struct ProbeFrames::Impl {
       if (!streams[s].complete || it == streams[s].shadows.end() || !it->second.usable ||
           it->second.initialized_frame != frame)
         continue;
-      g.BindFramebuffer(GL_READ_FRAMEBUFFER, it->second.fbo);
+      GLuint from = it->second.fbo;
+      if (it->second.images[0].samples > 0 && (it->second.width != w || it->second.height != h)) {
+        // A multisampled shadow is resolved at its own size before it is stretched.
+        ensure_resolve(it->second.width, it->second.height);
+        g.BindFramebuffer(GL_READ_FRAMEBUFFER, from);
+        g.ReadBuffer(GL_COLOR_ATTACHMENT0);
+        g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo);
+        g.BlitFramebuffer(0, 0, it->second.width, it->second.height, 0, 0, it->second.width, it->second.height,
+                          GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        from = resolve_fbo;
+      }
+      g.BindFramebuffer(GL_READ_FRAMEBUFFER, from);
       g.ReadBuffer(GL_COLOR_ATTACHMENT0);
       g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, capture_fbo[s + 1]);
       g.BlitFramebuffer(0, 0, it->second.width, it->second.height, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_LINEAR);

@@ -196,6 +196,33 @@ void TargetScaler::set_window_size(int width, int height) {
   if (window_.fbo) update_window();
 }
 
+void TargetScaler::check_window() {
+  if (window_.checked) return;
+  // What the window is made of, asked of the real default framebuffer.
+  window_.checked = true;
+  const ApplyGl& g = agl();
+  GLint draw = 0, samples = 0, depth = GL_NONE, stencil = GL_NONE, encoding = GL_LINEAR;
+  g.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+  g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  g.GetIntegerv(GL_SAMPLES, &samples);
+  // The object type is the one parameter an absent buffer may be asked (any other is a
+  // GL_INVALID_OPERATION the app would read from glGetError).
+  g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &depth);
+  g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_STENCIL, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE,
+                                        &stencil);
+  g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, gles_ ? GL_BACK : GL_BACK_LEFT,
+                                        GL_FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING, &encoding);
+  g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
+  window_.samples = std::max(0, samples);
+  window_.has_depth = depth != GL_NONE || stencil != GL_NONE;
+  window_.color_format = encoding == GL_SRGB ? GL_SRGB8_ALPHA8 : GL_RGBA8;
+}
+
+int TargetScaler::window_samples() {
+  check_window();
+  return window_.samples;
+}
+
 void TargetScaler::update_window() {
   const ApplyGl& g = agl();
   const double s = wanted_window_scale();
@@ -203,28 +230,13 @@ void TargetScaler::update_window() {
     release_window();
     return;
   }
-  if (!window_.checked) {
-    // What the window is made of, asked of the real default framebuffer.
-    window_.checked = true;
-    GLint draw = 0, samples = 0, depth = GL_NONE, stencil = GL_NONE, encoding = GL_LINEAR;
-    g.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
-    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-    g.GetIntegerv(GL_SAMPLES, &samples);
-    // The object type is the one parameter an absent buffer may be asked (any other is a
-    // GL_INVALID_OPERATION the app would read from glGetError).
-    g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &depth);
-    g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_STENCIL, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE,
-                                          &stencil);
-    g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, gles_ ? GL_BACK : GL_BACK_LEFT,
-                                          GL_FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING, &encoding);
-    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
-    window_.multisampled = samples > 0;
-    window_.has_depth = depth != GL_NONE || stencil != GL_NONE;
-    window_.color_format = encoding == GL_SRGB ? GL_SRGB8_ALPHA8 : GL_RGBA8;
-    if (window_.multisampled)
-      say_once("multisampled-window", "the window is multisampled: its resolution is not scaled");
+  check_window();
+  // A multisampled stand-in is resolved, then stretched, then written into the window, whose
+  // samples then all take the pixel's value: GLES has no blit into a multisampled window.
+  if (window_.samples > 0 && gles_) {
+    say_once("multisampled-window", "the window is multisampled (GLES): its resolution is not scaled");
+    return;
   }
-  if (window_.multisampled) return;
   const int w = scaled(window_width_, s), h = scaled(window_height_, s);
   if (window_.fbo && w == window_.width && h == window_.height) return;
   GLint renderbuffer = 0, draw = 0, read = 0;
@@ -240,10 +252,10 @@ void TargetScaler::update_window() {
   window_.width = w;
   window_.height = h;
   g.BindRenderbuffer(GL_RENDERBUFFER, window_.color);
-  g.RenderbufferStorageMultisample(GL_RENDERBUFFER, 0, window_.color_format, w, h);
+  g.RenderbufferStorageMultisample(GL_RENDERBUFFER, window_.samples, window_.color_format, w, h);
   if (window_.depth) {
     g.BindRenderbuffer(GL_RENDERBUFFER, window_.depth);
-    g.RenderbufferStorageMultisample(GL_RENDERBUFFER, 0, GL_DEPTH24_STENCIL8, w, h);
+    g.RenderbufferStorageMultisample(GL_RENDERBUFFER, window_.samples, GL_DEPTH24_STENCIL8, w, h);
   }
   g.BindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(renderbuffer));
   if (fresh) {
@@ -256,13 +268,44 @@ void TargetScaler::update_window() {
   // The stand-in takes the window's place in whichever binding the app has at 0.
   if (draw_fbo_ == 0) g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, window_.fbo);
   if (read_fbo_ == 0) g.BindFramebuffer(GL_READ_FRAMEBUFFER, window_.fbo);
-  if (window_.copy_fbo) {  // the read copy follows the window's size
-    g.DeleteFramebuffers(1, &window_.copy_fbo);
-    g.DeleteRenderbuffers(1, &window_.copy_color);
-    if (window_.copy_depth) g.DeleteRenderbuffers(1, &window_.copy_depth);
-    window_.copy_fbo = window_.copy_color = window_.copy_depth = 0;
-  }
+  // The read copy follows the window's size, the resolve the stand-in's.
+  delete_image_set(window_.copy);
+  delete_image_set(window_.resolve);
   apply_viewport();
+}
+
+void TargetScaler::delete_image_set(ImageSet& set) {
+  if (!set.fbo) return;
+  const ApplyGl& g = agl();
+  g.DeleteFramebuffers(1, &set.fbo);
+  g.DeleteRenderbuffers(1, &set.color);
+  if (set.depth) g.DeleteRenderbuffers(1, &set.depth);
+  set = ImageSet{};
+}
+
+void TargetScaler::ensure_image_set(ImageSet& set, int width, int height) {
+  if (set.fbo && set.width == width && set.height == height) return;
+  delete_image_set(set);
+  const ApplyGl& g = agl();
+  GLint renderbuffer = 0, draw = 0;
+  g.GetIntegerv(GL_RENDERBUFFER_BINDING, &renderbuffer);
+  g.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+  set.width = width;
+  set.height = height;
+  g.GenFramebuffers(1, &set.fbo);
+  g.GenRenderbuffers(1, &set.color);
+  g.BindRenderbuffer(GL_RENDERBUFFER, set.color);
+  g.RenderbufferStorageMultisample(GL_RENDERBUFFER, 0, window_.color_format, width, height);
+  g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, set.fbo);
+  g.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, set.color);
+  if (window_.has_depth) {
+    g.GenRenderbuffers(1, &set.depth);
+    g.BindRenderbuffer(GL_RENDERBUFFER, set.depth);
+    g.RenderbufferStorageMultisample(GL_RENDERBUFFER, 0, GL_DEPTH24_STENCIL8, width, height);
+    g.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, set.depth);
+  }
+  g.BindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(renderbuffer));
+  g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
 }
 
 void TargetScaler::release_window() {
@@ -273,18 +316,10 @@ void TargetScaler::release_window() {
   g.DeleteFramebuffers(1, &window_.fbo);
   g.DeleteRenderbuffers(1, &window_.color);
   if (window_.depth) g.DeleteRenderbuffers(1, &window_.depth);
-  if (window_.copy_fbo) {
-    g.DeleteFramebuffers(1, &window_.copy_fbo);
-    g.DeleteRenderbuffers(1, &window_.copy_color);
-    if (window_.copy_depth) g.DeleteRenderbuffers(1, &window_.copy_depth);
-  }
-  const bool checked = window_.checked, multisampled = window_.multisampled, has_depth = window_.has_depth;
-  const GLenum format = window_.color_format;
-  window_ = Window{};
-  window_.checked = checked;
-  window_.multisampled = multisampled;
-  window_.has_depth = has_depth;
-  window_.color_format = format;
+  window_.fbo = window_.color = window_.depth = 0;
+  window_.width = window_.height = 0;
+  delete_image_set(window_.copy);
+  delete_image_set(window_.resolve);
   apply_viewport();
 }
 
@@ -325,39 +360,37 @@ void blit_whole(GLuint from, int fw, int fh, GLuint to, int tw, int th, bool dep
 }
 }  // namespace
 
+GLuint TargetScaler::single_sampled_window(bool depth) {
+  if (window_.samples == 0) return window_.fbo;
+  ensure_image_set(window_.resolve, window_.width, window_.height);
+  blit_whole(window_.fbo, window_.width, window_.height, window_.resolve.fbo, window_.width, window_.height,
+             depth && window_.depth);
+  return window_.resolve.fbo;
+}
+
 void TargetScaler::present() {
   if (!window_.fbo) return;
   BlitState saved;
-  blit_whole(window_.fbo, window_.width, window_.height, 0, window_width_, window_height_, false);
+  const GLuint from = single_sampled_window(false);
+  if (window_.samples == 0) {
+    blit_whole(from, window_.width, window_.height, 0, window_width_, window_height_, false);
+    return;
+  }
+  // A multisampled window takes only a blit of its own size.
+  ensure_image_set(window_.copy, window_width_, window_height_);
+  blit_whole(from, window_.width, window_.height, window_.copy.fbo, window_width_, window_height_, false);
+  blit_whole(window_.copy.fbo, window_width_, window_height_, 0, window_width_, window_height_, false);
 }
 
 void TargetScaler::bind_window_copy() {
-  const ApplyGl& g = agl();
-  if (!window_.copy_fbo) {
-    GLint renderbuffer = 0, draw = 0;
-    g.GetIntegerv(GL_RENDERBUFFER_BINDING, &renderbuffer);
-    g.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
-    g.GenFramebuffers(1, &window_.copy_fbo);
-    g.GenRenderbuffers(1, &window_.copy_color);
-    g.BindRenderbuffer(GL_RENDERBUFFER, window_.copy_color);
-    g.RenderbufferStorageMultisample(GL_RENDERBUFFER, 0, window_.color_format, window_width_, window_height_);
-    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, window_.copy_fbo);
-    g.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, window_.copy_color);
-    if (window_.depth) {
-      g.GenRenderbuffers(1, &window_.copy_depth);
-      g.BindRenderbuffer(GL_RENDERBUFFER, window_.copy_depth);
-      g.RenderbufferStorageMultisample(GL_RENDERBUFFER, 0, GL_DEPTH24_STENCIL8, window_width_, window_height_);
-      g.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, window_.copy_depth);
-    }
-    g.BindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(renderbuffer));
-    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
-  }
+  ensure_image_set(window_.copy, window_width_, window_height_);
   {
     BlitState saved;
-    blit_whole(window_.fbo, window_.width, window_.height, window_.copy_fbo, window_width_, window_height_,
+    const GLuint from = single_sampled_window(true);
+    blit_whole(from, window_.width, window_.height, window_.copy.fbo, window_width_, window_height_,
                window_.depth != 0);
   }
-  g.BindFramebuffer(GL_READ_FRAMEBUFFER, window_.copy_fbo);
+  agl().BindFramebuffer(GL_READ_FRAMEBUFFER, window_.copy.fbo);
 }
 
 void TargetScaler::unbind_window_copy() { agl().BindFramebuffer(GL_READ_FRAMEBUFFER, window_.fbo); }

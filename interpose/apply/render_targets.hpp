@@ -9,11 +9,11 @@
 // a stand-in framebuffer at the scaled size takes its place whenever the app binds 0, and is
 // drawn into the real back buffer at each swap. Reads of the window (glReadPixels,
 // glCopyTex*) see a window-sized image, binding queries answer 0.
+// A multisampled window gets a stand-in of as many samples, resolved and stretched at the swap.
 // Limits: 2D textures and renderbuffers (not arrays, cube maps, nor immutable textures of a
 // format no framebuffer holds, nor mipmapped immutable ones but of the window's size); a
 // framebuffer with an image the scaler cannot scale keeps its size; textures are tracked per
-// context;
-// multisampled windows are not scaled.
+// context; a multisampled GLES window is not scaled.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -49,6 +49,8 @@ class TargetScaler {
   // The name the driver must get for the app's framebuffer name (the stand-in for 0).
   GLuint real_framebuffer(GLuint app) const { return app == 0 && window_.fbo ? window_.fbo : app; }
   bool window_scaled() const { return window_.fbo != 0; }
+  // The window's samples (0: single-sampled), asked of the driver once.
+  int window_samples();
   GLuint app_draw_framebuffer() const { return draw_fbo_; }
   GLuint app_read_framebuffer() const { return read_fbo_; }
   // Runs `read` (a glReadPixels or glCopyTex* of the app) against a window-sized copy of the
@@ -151,13 +153,26 @@ class TargetScaler {
     double scale = 1.0;
   };
 
-  struct Window {
-    GLuint fbo = 0, color = 0, depth = 0;                 // the stand-in (0: the window is not scaled)
-    GLuint copy_fbo = 0, copy_color = 0, copy_depth = 0;  // window-sized, for reads
-    int width = 0, height = 0;                            // the stand-in's
-    GLenum color_format = GL_RGBA8;
-    bool has_depth = false, checked = false, multisampled = false;
+  // A framebuffer of single-sampled renderbuffers in the window's formats.
+  struct ImageSet {
+    GLuint fbo = 0, color = 0, depth = 0;
+    int width = 0, height = 0;
   };
+  struct Window {
+    GLuint fbo = 0, color = 0, depth = 0;  // the stand-in (0: the window is not scaled)
+    int width = 0, height = 0;             // the stand-in's
+    ImageSet copy;                         // window-sized: for reads, and a multisampled window's present
+    ImageSet resolve;                      // a multisampled stand-in resolved, at its size
+    GLenum color_format = GL_RGBA8;
+    int samples = 0;
+    bool has_depth = false, checked = false;
+  };
+  void check_window();
+  void ensure_image_set(ImageSet& set, int width, int height);
+  void delete_image_set(ImageSet& set);
+  // The stand-in, or its single-sampled resolve (with depth and stencil if asked) when the
+  // window is multisampled: what can be blitted at another size.
+  GLuint single_sampled_window(bool depth);
   double wanted_window_scale() const { return window_scale_for(config_); }
   double window_scale_for(const Levels& config) const;
   void update_window();

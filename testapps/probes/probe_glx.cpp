@@ -1,11 +1,67 @@
 // A GLX window under X (run it under Xvfb): glXCreateContextAttribsARB and every GL function
 // from glXGetProcAddressARB, as GLFW and SDL do on X11.
+//   --samples N   a multisampled window (as SDL_GL_MULTISAMPLESAMPLES asks); exits 5 when
+//                 GL_SAMPLES of the default framebuffer does not answer N at the end
+//   --slanted 1   after the known scene, a slanted triangle whose edges antialiasing shows
 #include <GL/glx.h>
 #include <X11/Xlib.h>
 
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <utility>
+#include <vector>
 
 #include "common/probe_main.hpp"
+
+namespace {
+
+// A triangle across the window at a slant, in its own program (its own pass).
+struct SlantedTriangle {
+  unsigned program = 0, vao = 0, vbo = 0;
+  bool make(const GlFns& gl) {
+    const char* vs =
+        "#version 330 core\nlayout(location=0) in vec2 pos;\nvoid main(){ gl_Position = vec4(pos, 0, 1); }\n";
+    const char* fs =
+        "#version 330 core\nout vec4 frag;\nvoid main(){ frag = vec4(0.95, 0.9, 0.2, 1.0); /* slanted */ }\n";
+    program = gl.CreateProgram();
+    for (auto [stage, src] : {std::pair{GL_VERTEX_SHADER, vs}, std::pair{GL_FRAGMENT_SHADER, fs}}) {
+      const unsigned s = gl.CreateShader(stage);
+      gl.ShaderSource(s, 1, &src, nullptr);
+      gl.CompileShader(s);
+      gl.AttachShader(program, s);
+    }
+    gl.LinkProgram(program);
+    int linked = 0;
+    gl.GetProgramiv(program, GL_LINK_STATUS, &linked);
+    static const float kVertices[] = {-0.9f, -0.8f, 0.9f, 0.6f, 0.2f, 0.95f};
+    GLint scene_vao = 0, scene_buffer = 0;
+    glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &scene_vao);
+    glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &scene_buffer);
+    gl.GenVertexArrays(1, &vao);
+    gl.BindVertexArray(vao);
+    gl.GenBuffers(1, &vbo);
+    gl.BindBuffer(GL_ARRAY_BUFFER, vbo);
+    gl.BufferData(GL_ARRAY_BUFFER, sizeof kVertices, kVertices, GL_STATIC_DRAW);
+    gl.VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
+    gl.EnableVertexAttribArray(0);
+    gl.BindVertexArray(static_cast<unsigned>(scene_vao));
+    gl.BindBuffer(GL_ARRAY_BUFFER, static_cast<unsigned>(scene_buffer));
+    return linked != 0;
+  }
+  void draw(const GlFns& gl) const {
+    GLint scene_vao = 0, scene_program = 0;
+    glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &scene_vao);
+    glGetIntegerv(GL_CURRENT_PROGRAM, &scene_program);
+    gl.UseProgram(program);
+    gl.BindVertexArray(vao);
+    gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    gl.BindVertexArray(static_cast<unsigned>(scene_vao));
+    gl.UseProgram(static_cast<unsigned>(scene_program));
+  }
+};
+
+}  // namespace
 
 int main(int argc, char** argv) {
   ProbeArgs args = parse_probe_args(argc, argv);
@@ -14,23 +70,23 @@ int main(int argc, char** argv) {
     fprintf(stderr, "probe_glx: cannot open X display\n");
     return 2;
   }
-  const int fb_attribs[] = {GLX_X_RENDERABLE,
-                            True,
-                            GLX_DRAWABLE_TYPE,
-                            GLX_WINDOW_BIT,
-                            GLX_RENDER_TYPE,
-                            GLX_RGBA_BIT,
-                            GLX_RED_SIZE,
-                            8,
-                            GLX_GREEN_SIZE,
-                            8,
-                            GLX_BLUE_SIZE,
-                            8,
-                            GLX_DOUBLEBUFFER,
-                            True,
-                            None};
+  int samples = 0;
+  bool want_slanted = false;
+  for (int i = 1; i + 1 < argc; ++i) {
+    if (!strcmp(argv[i], "--samples")) samples = atoi(argv[i + 1]);
+    if (!strcmp(argv[i], "--slanted")) want_slanted = atoi(argv[i + 1]) != 0;
+  }
+  std::vector<int> fb_attribs = {GLX_X_RENDERABLE,  True,
+                                 GLX_DRAWABLE_TYPE, GLX_WINDOW_BIT,
+                                 GLX_RENDER_TYPE,   GLX_RGBA_BIT,
+                                 GLX_RED_SIZE,      8,
+                                 GLX_GREEN_SIZE,    8,
+                                 GLX_BLUE_SIZE,     8,
+                                 GLX_DOUBLEBUFFER,  True};
+  if (samples > 0) fb_attribs.insert(fb_attribs.end(), {GLX_SAMPLE_BUFFERS, 1, GLX_SAMPLES, samples});
+  fb_attribs.push_back(None);
   int n = 0;
-  GLXFBConfig* configs = glXChooseFBConfig(dpy, DefaultScreen(dpy), fb_attribs, &n);
+  GLXFBConfig* configs = glXChooseFBConfig(dpy, DefaultScreen(dpy), fb_attribs.data(), &n);
   if (!configs || n < 1) {
     fprintf(stderr, "probe_glx: no GLX config\n");
     return 2;
@@ -57,7 +113,27 @@ int main(int argc, char** argv) {
     fprintf(stderr, "probe_glx: no %s\n", missing);
     return 2;
   }
-  int rc = run_known_scene(gl, ShaderDialect::kGlsl330Core, args, [&] { glXSwapBuffers(dpy, win); });
+  SlantedTriangle triangle;
+  const bool slanted = want_slanted && triangle.make(gl);
+  if (want_slanted && !slanted) {
+    fprintf(stderr, "probe_glx: the triangle's program does not link\n");
+    return 2;
+  }
+  int rc = run_known_scene(
+      gl, ShaderDialect::kGlsl330Core, args, [&] { glXSwapBuffers(dpy, win); },
+      [&] {
+        if (slanted) triangle.draw(gl);
+      });
+  GLint window_samples = -1;
+  glGetIntegerv(GL_SAMPLES, &window_samples);
+  if (const GLenum error = glGetError(); rc == 0 && error != GL_NO_ERROR) {
+    fprintf(stderr, "probe_glx: GL error 0x%04x\n", error);
+    rc = 4;
+  }
+  if (rc == 0 && samples > 0 && window_samples != samples) {
+    fprintf(stderr, "probe_glx: the window answers %d samples, made with %d\n", window_samples, samples);
+    rc = 5;
+  }
   glXMakeCurrent(dpy, None, nullptr);
   glXDestroyContext(dpy, ctx);
   XDestroyWindow(dpy, win);

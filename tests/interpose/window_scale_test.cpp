@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <thread>
 
 #include "glbudget/quality/luma_image.hpp"
@@ -79,6 +80,53 @@ void check_scaled_probe(const std::string& probe, std::vector<std::string> args,
   unlink(log.c_str());
 }
 
+// Quality probes of a multisampled window shown at 60 %: the best stream is drawn with as many
+// samples as the window, so the slanted triangle's edges come out antialiased (pixels blended
+// between the triangle and what is behind it), as the app draws them into its own window.
+void check_probes_of_multisampled_window(const std::string& display) {
+  const std::string dir = temp_path("glx_ms_probes"), log = temp_path("glx_ms_probes.csv"),
+                    plain_img = temp_path("glx_ms_plain.ppm");
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::vector<std::string> args = {
+      probe_path("probe_glx"), "--size", "128", "--samples", "4", "--slanted", "1", "--frames", "4"};
+  auto plain_args = args;
+  plain_args.insert(plain_args.end(), {"--out", plain_img});
+  REQUIRE(run_process(plain_args, {{"DISPLAY", display}}).exit_code == 0);
+  const ProcessResult r = run_process(args, {{"DISPLAY", display},
+                                             {"LD_PRELOAD", shim_path()},
+                                             {"GLBUDGET_LOG", log},
+                                             {"GLBUDGET_SENSOR", "cpu"},
+                                             {"GLBUDGET_FORCE", "2"},
+                                             {"GLBUDGET_PROBE_PERIOD", "2"},
+                                             {"GLBUDGET_DUMP_PROBES", dir}});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);  // 4: a GL error reached the app
+  CHECK(r.err.find("glbudget:") == std::string::npos);
+  int probe_rows = 0;
+  for (const auto& row : read_csv_rows_by_name(log))
+    if (!row.at("probe_error").empty()) {
+      ++probe_rows;
+      CHECK(std::stod(row.at("probe_error")) > 0.005);  // 60 % against the best
+    }
+  CHECK(probe_rows > 0);
+  Ppm best = read_ppm(dir + "/probe_c0_f4_s1_0.ppm"), plain = read_ppm(plain_img);
+  REQUIRE(!best.rgb.empty());
+  REQUIRE(best.width == plain.width);
+  // The scene's flat colours and the triangle's; anything else is a blend at an edge.
+  auto flat = [&](const uint8_t* p) {
+    for (size_t i = 0; i + 2 < plain.rgb.size(); i += 3)
+      if (plain.rgb[i] == p[0] && plain.rgb[i + 1] == p[1] && plain.rgb[i + 2] == p[2]) return true;
+    return false;
+  };
+  int blended = 0;
+  for (size_t i = 0; i + 2 < best.rgb.size(); i += 3) blended += !flat(&best.rgb[i]);
+  INFO("pixels of the best stream's image blended at an edge: " << blended);
+  CHECK(blended > 50);
+  std::filesystem::remove_all(dir);
+  for (const std::string& path : {log, plain_img}) unlink(path.c_str());
+}
+
 }  // namespace
 
 TEST_CASE("the window at 60 %: probes read back a window-sized image that looks the same", "[integration]") {
@@ -102,6 +150,10 @@ TEST_CASE("the window at 60 % through GLX under Xvfb", "[integration]") {
   for (int i = 0; i < 100 && !file_exists(socket); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
   REQUIRE(file_exists(socket));
   check_scaled_probe("probe_glx", {"--size", "128"}, "2", {{"DISPLAY", display}});
+  // A multisampled window (4 samples): its stand-in has as many, the app's GL_SAMPLES query
+  // answers them (the probe exits 5 if not, 4 on any GL error), and the swap resolves it.
+  check_scaled_probe("probe_glx", {"--size", "128", "--samples", "4"}, "2", {{"DISPLAY", display}});
+  check_probes_of_multisampled_window(display);
   kill(xvfb, SIGTERM);
   waitpid(xvfb, nullptr, 0);
 }
