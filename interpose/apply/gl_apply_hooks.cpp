@@ -219,6 +219,16 @@ void handle_glBlitFramebuffer(pfn_glBlitFramebuffer real, GLint srcX0, GLint src
   if (ProbeFrames* p = t_probe) p->blit(app_src, app_dst, mask, filter);
 }
 
+void handle_glGenerateMipmap(pfn_glGenerateMipmap real, GLenum target) {
+  real(target);
+  if (ProbeFrames* p = t_probe; p && target == GL_TEXTURE_2D) p->generate_mipmap(0);
+}
+
+void handle_glGenerateTextureMipmap(pfn_glGenerateTextureMipmap real, GLuint texture) {
+  real(texture);
+  if (ProbeFrames* p = t_probe; p && texture) p->generate_mipmap(texture);
+}
+
 namespace {
 // A clear of the app's, and on probe frames the same clear of each stream's shadow.
 template <typename F>

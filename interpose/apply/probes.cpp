@@ -70,6 +70,7 @@ struct ProbeGl {
   void(APIENTRYP DeleteSync)(GLsync) = nullptr;
   void(APIENTRYP PixelStorei)(GLenum, GLint) = nullptr;
   void(APIENTRYP GetIntegeri_v)(GLenum, GLuint, GLint*) = nullptr;
+  void(APIENTRYP GenerateMipmap)(GLenum) = nullptr;
   bool complete = false;
 };
 
@@ -99,6 +100,7 @@ const ProbeGl& pgl() {
     load(p.DeleteSync, "glDeleteSync");
     load(p.PixelStorei, "glPixelStorei");
     load(p.GetIntegeri_v, "glGetIntegeri_v");
+    load(p.GenerateMipmap, "glGenerateMipmap");
     p.complete = p.ActiveTexture && p.GetTexLevelParameteriv && p.GetTexParameteriv && p.TexParameteri &&
                  p.TexStorage2D && p.GetRenderbufferParameteriv && p.DrawBuffers && p.GenBuffers && p.DeleteBuffers &&
                  p.BindBuffer && p.BufferData && p.ReadPixels && p.MapBufferRange && p.UnmapBuffer && p.FenceSync &&
@@ -126,6 +128,7 @@ struct ShadowImage {
   GLuint shadow = 0;  // ours, same format, at the stream's scale
   GLint format = 0;
   GLsizei samples = 0;
+  GLsizei levels = 1;  // a texture's mip levels, as many as the app's (its glGenerateMipmap is repeated)
 };
 
 struct Shadow {
@@ -333,6 +336,7 @@ struct ProbeFrames::Impl {
           }
           p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &w);
           p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &h);
+          im.levels = texture_levels();
           g.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(bound));
         }
         if (w <= 0 || h <= 0 || im.format == 0) return false;
@@ -346,6 +350,25 @@ struct ProbeFrames::Impl {
     out.width = std::max(1, static_cast<int>(out.app_width * stream_scale + 0.5));
     out.height = std::max(1, static_cast<int>(out.app_height * stream_scale + 0.5));
     return true;
+  }
+
+  // The mip levels of the texture bound to GL_TEXTURE_2D that sampling can reach: its
+  // immutable levels, or those specified from level 0 on, up to its maximum level.
+  GLsizei texture_levels() {
+    const ProbeGl& p = pgl();
+    GLint immutable = GL_FALSE, levels = 0, max_level = 1000;
+    p.GetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_IMMUTABLE_FORMAT, &immutable);
+    if (immutable) {
+      p.GetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_IMMUTABLE_LEVELS, &levels);
+      return std::max(1, levels);
+    }
+    p.GetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, &max_level);
+    for (levels = 1; levels <= std::min(max_level, 15); ++levels) {
+      GLint width = 0;
+      p.GetTexLevelParameteriv(GL_TEXTURE_2D, levels, GL_TEXTURE_WIDTH, &width);
+      if (width <= 0) break;
+    }
+    return levels;
   }
 
   // The context is at least desktop GL major.minor, or GLES es_major.es_minor.
@@ -379,10 +402,13 @@ struct ProbeFrames::Impl {
       } else {
         g.GenTextures(1, &im.shadow);
         g.BindTexture(GL_TEXTURE_2D, im.shadow);
-        p.TexStorage2D(GL_TEXTURE_2D, 1, static_cast<GLenum>(im.format), s.width, s.height);
-        // Sampled as the app's texture is: its filtering, wrapping and depth comparison.
+        int chain = 1;  // the shadow's size may hold fewer levels than the app's
+        while ((std::max(s.width, s.height) >> chain) > 0) ++chain;
+        p.TexStorage2D(GL_TEXTURE_2D, std::min(im.levels, chain), static_cast<GLenum>(im.format), s.width, s.height);
+        // Sampled as the app's texture is: its filtering, wrapping, depth comparison and levels.
         static const GLenum kParams[] = {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER,   GL_TEXTURE_WRAP_S,
-                                         GL_TEXTURE_WRAP_T,     GL_TEXTURE_COMPARE_MODE, GL_TEXTURE_COMPARE_FUNC};
+                                         GL_TEXTURE_WRAP_T,     GL_TEXTURE_COMPARE_MODE, GL_TEXTURE_COMPARE_FUNC,
+                                         GL_TEXTURE_BASE_LEVEL, GL_TEXTURE_MAX_LEVEL};
         for (GLenum param : kParams) {
           GLint v = 0;
           g.BindTexture(GL_TEXTURE_2D, im.app);
@@ -479,7 +505,8 @@ struct ProbeFrames::Impl {
                 wanted.images.size() == s.images.size();
     for (size_t i = 0; same && i < wanted.images.size(); ++i)
       same = wanted.images[i].app == s.images[i].app && wanted.images[i].format == s.images[i].format &&
-             wanted.images[i].point == s.images[i].point;
+             wanted.images[i].point == s.images[i].point && wanted.images[i].levels == s.images[i].levels &&
+             wanted.images[i].samples == s.images[i].samples;
     if (!same) {
       release_shadow(s);
       if (ok) {
@@ -1065,6 +1092,24 @@ bool ProbeFrames::first() {
 
 bool ProbeFrames::next() { return impl_->advance(); }
 void ProbeFrames::end() { impl_->end_duplicate(); }
+
+void ProbeFrames::generate_mipmap(GLuint texture) {
+  Impl& p = *impl_;
+  if (!p.frame || !pgl().GenerateMipmap) return;
+  const OwnGlWork own(p.c);
+  const ApplyGl& g = agl();
+  const GLint bound = get(GL_TEXTURE_BINDING_2D);
+  if (!texture) texture = static_cast<GLuint>(bound);
+  bool rebound = false;
+  for (int s = 0; s < p.stream_count; ++s) {
+    const auto shadow = p.streams[s].textures.find(texture);
+    if (shadow == p.streams[s].textures.end()) continue;
+    g.BindTexture(GL_TEXTURE_2D, shadow->second);
+    pgl().GenerateMipmap(GL_TEXTURE_2D);
+    rebound = true;
+  }
+  if (rebound) g.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(bound));
+}
 
 void ProbeFrames::blit(const GLint* src, const GLint* dst, GLbitfield mask, GLenum filter) {
   Impl& p = *impl_;

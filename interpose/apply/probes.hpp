@@ -14,8 +14,8 @@
 //
 // Left out of the duplicate (the probe still runs; what they draw is the app's): draws with
 // transform feedback active, draws of programs with storage blocks or atomic counters (side
-// effects), draws inside the app's occlusion queries, compute dispatches, glCopyTex*,
-// glGenerateMipmap. Framebuffers with layered, cube-map or array attachments are not
+// effects), draws inside the app's occlusion queries, compute dispatches, glCopyTex*.
+// Framebuffers with layered, cube-map or array attachments are not
 // shadowed; contexts before GL 4.2 / GLES 3.1 are not probed.
 #pragma once
 #include <cstdint>
@@ -99,6 +99,9 @@ class ProbeFrames {
   template <typename F>
   void clear(F&& call);
   void blit(const GLint* src, const GLint* dst, GLbitfield mask, GLenum filter);
+  // After the app's glGenerateMipmap of a 2D texture (0: the one bound to GL_TEXTURE_2D):
+  // each stream's shadow of it, where the frame drew one, gets its levels too.
+  void generate_mipmap(GLuint texture);
 
  private:
   uint64_t frame_now() const;

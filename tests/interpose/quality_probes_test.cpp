@@ -436,6 +436,45 @@ TEST_CASE("probes shadow an app's scaled framebuffers in any profile and format,
   }
 }
 
+TEST_CASE("the best stream draws an app's mip chains as the app does: its glGenerateMipmap reaches the shadows") {
+  // probe_offscreen --format mipmapped at 60 %: the scene's colour is a mip chain that
+  // glGenerateMipmap fills each frame and the quarter pass reads minified. The best stream's
+  // image of a probe frame must be the app's own at its best, bit for bit: its shadow of the
+  // scene's texture has the app's levels and they are generated in the duplicate too (with a
+  // single-level shadow, 1148 values of 30000 differed at 100 x 100, where the chain's texels
+  // straddle the scene's edges).
+  const std::string dir = temp_path("probes_mipmapped"), plain = dir + "/plain.ppm";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::vector<std::string> args = {probe_path("probe_offscreen"), "--size", "100", "--format", "mipmapped"};
+  auto plain_args = args;
+  plain_args.insert(plain_args.end(), {"--frames", "4", "--out", plain});
+  REQUIRE(run_process(plain_args, {}).exit_code == 0);
+  auto shim_args = args;
+  shim_args.insert(shim_args.end(), {"--frames", "6"});
+  const ProcessResult r = run_process(shim_args, {{"LD_PRELOAD", shim_path()},
+                                                  {"GLBUDGET_LOG", dir + "/log.csv"},
+                                                  {"GLBUDGET_SENSOR", "cpu"},
+                                                  {"GLBUDGET_FORCE", "2"},
+                                                  {"GLBUDGET_PROBE_PERIOD", "2"},
+                                                  {"GLBUDGET_DUMP_PROBES", dir}});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.err.find("glbudget:") == std::string::npos);
+  const Image app = read_image(plain), best = read_image(dir + "/probe_c0_f4_s1_0.ppm");
+  REQUIRE(!app.pixels.empty());
+  REQUIRE(best.width == app.width);
+  REQUIRE(best.height == app.height);
+  // The probe wrote its window bottom-up (glReadPixels), the dump is top-down.
+  size_t differ = 0;
+  const size_t row = static_cast<size_t>(app.width) * 3;
+  for (int y = 0; y < app.height; ++y)
+    for (size_t x = 0; x < row; ++x)
+      differ += app.pixels[static_cast<size_t>(app.height - 1 - y) * row + x] != best.pixels[y * row + x];
+  CHECK(differ == 0);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("each context's probe errors reach its own rows, though frame numbers restart per context") {
   // probe_contexts: three contexts on one thread, each with frames 1, 2, ... and context i
   // drawing the scene's frame f + i at its frame f, so the same frame number shows a different

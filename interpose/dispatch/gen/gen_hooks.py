@@ -45,6 +45,7 @@ CUSTOM = [
     'glTexStorage2D', 'glGetTexParameteriv', 'glTexParameteri', 'glTexParameteriv',
     'glTextureStorage2D', 'glGetTextureParameteriv', 'glTextureParameteri', 'glTextureParameteriv',
     'glGetTextureLevelParameteriv', 'glGetTextureLevelParameterfv',
+    'glGenerateMipmap', 'glGenerateTextureMipmap',  # apply/probes.cpp: shadows' levels too
     # apply/: the default framebuffer's stand-in
     'glReadPixels', 'glCopyTexImage2D', 'glCopyTexSubImage2D', 'glDrawBuffer', 'glDrawBuffers', 'glReadBuffer',
     'glInvalidateFramebuffer', 'glInvalidateSubFramebuffer', 'glDiscardFramebufferEXT',
@@ -77,6 +78,7 @@ ALIASES_OF_CUSTOM = {
     'glDrawBuffersARB': 'glDrawBuffers', 'glDrawBuffersEXT': 'glDrawBuffers',
     'glBindAttribLocationARB': 'glBindAttribLocation', 'glBindFragDataLocationEXT': 'glBindFragDataLocation',
     'glTexStorage2DEXT': 'glTexStorage2D',
+    'glGenerateMipmapEXT': 'glGenerateMipmap',
 }
 
 # Window-system entry points: implemented by hand (they carry frame and context logic), but
