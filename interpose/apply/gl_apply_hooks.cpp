@@ -267,21 +267,25 @@ void handle_glReadPixels(pfn_glReadPixels real, GLint x, GLint y, GLsizei width,
                          GLenum type, void* pixels) {
   TargetScaler* s = scaler();
   if (!s) return real(x, y, width, height, format, type, pixels);
-  s->read_window([&] { real(x, y, width, height, format, type, pixels); });
+  const bool depth_stencil = format == GL_DEPTH_COMPONENT || format == GL_DEPTH_STENCIL || format == GL_STENCIL_INDEX;
+  s->read_app(x, y, width, height, depth_stencil, [&] { real(x, y, width, height, format, type, pixels); });
 }
 
 void handle_glCopyTexImage2D(pfn_glCopyTexImage2D real, GLenum target, GLint level, GLenum internalformat, GLint x,
                              GLint y, GLsizei width, GLsizei height, GLint border) {
   TargetScaler* s = scaler();
   if (!s) return real(target, level, internalformat, x, y, width, height, border);
-  s->read_window([&] { real(target, level, internalformat, x, y, width, height, border); });
+  const bool depth = TargetScaler::depth_format(static_cast<GLint>(internalformat));
+  s->read_app(x, y, width, height, depth, [&] { real(target, level, internalformat, x, y, width, height, border); });
 }
 
 void handle_glCopyTexSubImage2D(pfn_glCopyTexSubImage2D real, GLenum target, GLint level, GLint xoffset, GLint yoffset,
                                 GLint x, GLint y, GLsizei width, GLsizei height) {
   TargetScaler* s = scaler();
   if (!s) return real(target, level, xoffset, yoffset, x, y, width, height);
-  s->read_window([&] { real(target, level, xoffset, yoffset, x, y, width, height); });
+  // Depth or colour as the texture copied into is (known where the scaler tracks it).
+  const bool depth = s->active() && target == GL_TEXTURE_2D && s->depth_texture(s->bound_texture_2d());
+  s->read_app(x, y, width, height, depth, [&] { real(target, level, xoffset, yoffset, x, y, width, height); });
 }
 
 namespace {

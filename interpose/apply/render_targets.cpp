@@ -395,6 +395,116 @@ void TargetScaler::bind_window_copy() {
 
 void TargetScaler::unbind_window_copy() { agl().BindFramebuffer(GL_READ_FRAMEBUFFER, window_.fbo); }
 
+void TargetScaler::agl_bind_read_framebuffer(GLuint app) { agl().BindFramebuffer(GL_READ_FRAMEBUFFER, app); }
+
+bool TargetScaler::depth_format(GLint format) {
+  return is_depth(format) || is_depth_stencil(format) || format == GL_STENCIL_INDEX8;
+}
+
+bool TargetScaler::depth_texture(GLuint texture) const {
+  const auto it = textures_.find(texture);
+  return it != textures_.end() && depth_format(it->second.internal_format);
+}
+
+namespace {
+// The sized format a renderbuffer copy of an image of `format` takes (unsized formats as the
+// driver sizes them by default); 0 where none is known.
+GLenum sized_for_copy(GLint format) {
+  switch (format) {
+    case GL_RGBA:
+      return GL_RGBA8;
+    case GL_RGB:
+      return GL_RGB8;
+    case GL_RG:
+      return GL_RG8;
+    case GL_RED:
+      return GL_R8;
+    case GL_SRGB_ALPHA:
+      return GL_SRGB8_ALPHA8;
+    case GL_SRGB:
+      return GL_SRGB8;
+    case GL_DEPTH_COMPONENT:
+    case GL_DEPTH_STENCIL:
+    case GL_LUMINANCE:
+    case GL_LUMINANCE_ALPHA:
+    case GL_ALPHA:
+      return 0;  // the driver picks its depth; a depth blit needs the very same format
+    default:
+      return static_cast<GLenum>(format);
+  }
+}
+}  // namespace
+
+bool TargetScaler::bind_read_copy(GLint x, GLint y, GLsizei w, GLsizei h, bool depth_stencil) {
+  const auto f = framebuffers_.find(read_fbo_);
+  if (f == framebuffers_.end() || f->second.scale == 1.0 || w <= 0 || h <= 0) return false;
+  const ApplyGl& g = agl();
+  GLint read_buffer = GL_NONE;
+  g.GetIntegerv(GL_READ_BUFFER, &read_buffer);
+  const Image* image = nullptr;
+  for (const Attachment& a : f->second.attachments) {
+    const bool wanted = depth_stencil ? a.point == GL_DEPTH_ATTACHMENT || a.point == GL_STENCIL_ATTACHMENT
+                                      : a.point == static_cast<GLenum>(read_buffer);
+    if (!wanted) continue;
+    const auto& images = a.renderbuffer ? renderbuffers_ : textures_;
+    const auto it = images.find(a.name);
+    if (it != images.end() && !it->second.app_size.empty()) image = &it->second;
+    break;
+  }
+  if (!image || image->samples > 0) return false;
+  const GLenum format = sized_for_copy(image->internal_format);
+  if (!format) return false;
+  const int app_w = image->app_size[0][0], app_h = image->app_size[0][1];
+  GLint renderbuffer = 0, draw = 0;
+  g.GetIntegerv(GL_RENDERBUFFER_BINDING, &renderbuffer);
+  g.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+  ReadCopy& c = read_copy_;
+  if (!c.fbo || c.format != format || c.width != app_w || c.height != app_h) {
+    if (!c.fbo) {
+      g.GenFramebuffers(1, &c.fbo);
+      g.GenRenderbuffers(1, &c.image);
+    }
+    g.BindRenderbuffer(GL_RENDERBUFFER, c.image);
+    g.RenderbufferStorageMultisample(GL_RENDERBUFFER, 0, format, app_w, app_h);
+    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, c.fbo);
+    if (c.depth != depth_stencil || c.format != format) {
+      // One attachment point at a time, the one the format belongs to.
+      g.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, 0);
+      g.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, 0);
+      const GLenum point = !depth_stencil                                 ? GL_COLOR_ATTACHMENT0
+                           : is_depth(static_cast<GLint>(format))         ? GL_DEPTH_ATTACHMENT
+                           : is_depth_stencil(static_cast<GLint>(format)) ? GL_DEPTH_STENCIL_ATTACHMENT
+                                                                          : GL_STENCIL_ATTACHMENT;
+      g.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, point, GL_RENDERBUFFER, c.image);
+    }
+    c.format = format;
+    c.depth = depth_stencil;
+    c.width = app_w;
+    c.height = app_h;
+  }
+  // The rectangle and a texel around it, so that a small one maps to whole stored texels.
+  const GLint box[4] = {std::max(0, x - 2), std::max(0, y - 2), std::min(app_w, x + w + 2), std::min(app_h, y + h + 2)};
+  GLint from[4];
+  double sx = 1.0, sy = 1.0;
+  scale_of(read_fbo_, &sx, &sy);
+  scale_corners(box, sx, sy, from);
+  {
+    BlitState saved;
+    g.BindFramebuffer(GL_READ_FRAMEBUFFER, read_fbo_);
+    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, c.fbo);
+    const GLbitfield mask = !depth_stencil                             ? GL_COLOR_BUFFER_BIT
+                            : is_depth(image->internal_format)         ? GL_DEPTH_BUFFER_BIT
+                            : is_depth_stencil(image->internal_format) ? GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT
+                                                                       : GL_STENCIL_BUFFER_BIT;
+    g.BlitFramebuffer(from[0], from[1], from[2], from[3], box[0], box[1], box[2], box[3], mask, GL_NEAREST);
+  }
+  g.BindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(renderbuffer));
+  g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
+  g.BindFramebuffer(GL_READ_FRAMEBUFFER, c.fbo);
+  if (!depth_stencil) g.ReadBuffer(GL_COLOR_ATTACHMENT0);
+  return true;
+}
+
 double TargetScaler::scale_for(GLuint app_fbo, const Levels& config) const {
   if (app_fbo == 0) return window_scale_for(config);
   auto it = framebuffers_.find(app_fbo);

@@ -53,14 +53,23 @@ class TargetScaler {
   int window_samples();
   GLuint app_draw_framebuffer() const { return draw_fbo_; }
   GLuint app_read_framebuffer() const { return read_fbo_; }
-  // Runs `read` (a glReadPixels or glCopyTex* of the app) against a window-sized copy of the
-  // stand-in when the app reads the window, else as it is.
+  // Runs `read` (a glReadPixels or glCopyTex* of the app, of the rectangle x, y, w, h in its
+  // own pixels; `depth_stencil`: of depth or stencil) so that it reads the app's sizes: the
+  // window through a window-sized copy of the stand-in, a scaled app framebuffer through an
+  // app-sized copy of the rectangle (nearest texels, so that an object id read under the
+  // cursor stays an id), else as it is.
   template <typename F>
-  void read_window(F&& read) {
-    if (read_fbo_ != 0 || !window_.fbo) return read();
-    bind_window_copy();
+  void read_app(GLint x, GLint y, GLsizei w, GLsizei h, bool depth_stencil, F&& read) {
+    if (read_fbo_ == 0) {
+      if (!window_.fbo) return read();
+      bind_window_copy();
+      read();
+      unbind_window_copy();
+      return;
+    }
+    if (!any_scaled_ || !bind_read_copy(x, y, w, h, depth_stencil)) return read();
     read();
-    unbind_window_copy();
+    agl_bind_read_framebuffer(read_fbo_);
   }
   // glDrawBuffer(s)/glReadBuffer of the window while the stand-in is bound: GL_BACK and the
   // like become GL_COLOR_ATTACHMENT0.
@@ -101,6 +110,9 @@ class TargetScaler {
     return pname == GL_TEXTURE_IMMUTABLE_FORMAT || pname == GL_TEXTURE_IMMUTABLE_LEVELS || level_pname(pname);
   }
   static bool size_pname(GLenum pname) { return pname == GL_TEXTURE_WIDTH || pname == GL_TEXTURE_HEIGHT; }
+  // A depth, depth-stencil or stencil internal format; a 2D texture the scaler knows made of one.
+  static bool depth_format(GLint format);
+  bool depth_texture(GLuint texture) const;
   void renderbuffer_storage(GLsizei samples, GLenum internal_format, GLsizei* width, GLsizei* height);
   // x0, y0, x1, y1 each, by the scales of the app's framebuffers `read` and `draw`.
   void blit_rectangles(GLuint read, GLuint draw, GLint* src, GLint* dst) const;
@@ -179,6 +191,18 @@ class TargetScaler {
   void release_window();
   void bind_window_copy();
   void unbind_window_copy();
+  // The app-sized copy a read of the scaled app framebuffer bound for reading goes through:
+  // made (or reused), the rectangle blitted into it, bound for reading; false where there is
+  // nothing to copy (not scaled, multisampled, an image the scaler does not know).
+  bool bind_read_copy(GLint x, GLint y, GLsizei w, GLsizei h, bool depth_stencil);
+  void agl_bind_read_framebuffer(GLuint app);
+  struct ReadCopy {
+    GLuint fbo = 0, image = 0;
+    GLenum format = 0;
+    bool depth = false;
+    int width = 0, height = 0;
+  };
+  ReadCopy read_copy_;
   double wanted_scale(GLuint name, const Framebuffer& f) const { return scale_for(name, f, config_); }
   double scale_for(GLuint name, const Framebuffer& f, const Levels& config) const;
   bool window_sized(const Framebuffer& f) const;

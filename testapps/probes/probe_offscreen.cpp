@@ -11,6 +11,12 @@
 //   --format mipmapped   immutable too, the scene's colour a full mip chain (glTexStorage2D of
 //                        every level) whose levels glGenerateMipmap fills each frame; the
 //                        quarter pass reads its level 2 (bloom and auto-exposure chains)
+//   --read-fbo PATH      at the last frame also reads the scene's framebuffer back
+//                        (glReadPixels of it, as screenshot and picking code does) into PATH,
+//                        and prints the pixel under a "cursor" at the centre of the scene's
+//                        small quad ("pick R G B A", one pixel read alone), and the same pixel
+//                        copied by glCopyTexSubImage2D into a 1x1 texture and read from it
+//                        ("copied R G B A")
 // Exits 4 when glGetError reports an error at any frame: none of the app's calls raises one;
 // 5 when a texture does not answer as the app made it (size, immutable format and levels).
 //   pass A, B: the known scene, into the window-sized framebuffer
@@ -19,7 +25,9 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "common/direct_gl.hpp"
 #include "common/egl_setup.hpp"
@@ -125,13 +133,50 @@ bool answers_as_made(GLuint texture, int w, int h, bool immutable, bool by_name,
   return ok;
 }
 
+// The scene's framebuffer read back whole, a pixel of it alone, and the same pixel copied into
+// a texture; the framebuffer bindings are left as they were.
+void read_scene_framebuffer(GLuint fbo, int w, int h, const std::string& path) {
+  GLint read = 0;
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+  glReadBuffer(GL_COLOR_ATTACHMENT0);
+  std::vector<uint8_t> whole(static_cast<size_t>(w) * h * 4);
+  glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, whole.data());
+  write_ppm(path, whole, w, h);
+  const int cx = w * 5 / 8, cy = h * 5 / 8;  // the small quad's centre
+  uint8_t pick[4] = {};
+  glReadPixels(cx, cy, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, pick);
+  printf("pick %d %d %d %d\n", pick[0], pick[1], pick[2], pick[3]);
+  GLuint texture = 0, copy_fbo = 0;
+  GLint bound = 0, draw = 0;
+  glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+  glGenTextures(1, &texture);
+  glBindTexture(GL_TEXTURE_2D, texture);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 1, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+  glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, cx, cy, 1, 1);
+  glGenFramebuffers(1, &copy_fbo);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, copy_fbo);
+  glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture, 0);
+  uint8_t copied[4] = {};
+  glReadPixels(0, 0, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, copied);
+  printf("copied %d %d %d %d\n", copied[0], copied[1], copied[2], copied[3]);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read));
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
+  glDeleteFramebuffers(1, &copy_fbo);
+  glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(bound));
+  glDeleteTextures(1, &texture);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   ProbeArgs args = parse_probe_args(argc, argv);
   bool compat = false;
   Format format = Format::kSized;
+  std::string read_fbo_path;
   for (int i = 1; i + 1 < argc; ++i) {
+    if (!strcmp(argv[i], "--read-fbo")) read_fbo_path = argv[i + 1];
     if (!strcmp(argv[i], "--profile")) compat = !strcmp(argv[i + 1], "compat");
     if (!strcmp(argv[i], "--format"))
       format = !strcmp(argv[i + 1], "unsized")     ? Format::kUnsized
@@ -228,6 +273,7 @@ int main(int argc, char** argv) {
     glUseProgram(compose_program);
     glDrawArrays(GL_TRIANGLES, 0, 6);
     if (f + 1 == args.frames) image = scene.read_rgba();
+    if (f + 1 == args.frames && !read_fbo_path.empty()) read_scene_framebuffer(fbo[0], w, h, read_fbo_path);
     eglSwapBuffers(win.display, win.surface);
     error = glGetError();
     if (error != GL_NO_ERROR) fprintf(stderr, "probe_offscreen: GL error 0x%04x at frame %d\n", error, f);

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <sstream>
 #include <thread>
 
 #include "glbudget/quality/luma_image.hpp"
@@ -219,4 +220,44 @@ TEST_CASE("an app's window-sized framebuffers follow the window's scale, smaller
   CHECK(small.rgb != plain.rgb);
   CHECK(ssim_of(plain, small) >= 0.95);
   for (const std::string& path : {plain_img, images["0"], images["2"]}) unlink(path.c_str());
+}
+
+TEST_CASE("an app reading its scaled framebuffer back reads it at its own size: screenshots and picking",
+          "[integration]") {
+  // probe_offscreen --read-fbo: at the last frame it reads its window-sized scene framebuffer
+  // back whole (glReadPixels), one pixel of it under a "cursor" (picking), and the same pixel
+  // through glCopyTexSubImage2D. At 60 % the framebuffer is stored scaled; what the app reads
+  // must be its own size and place: the whole image like the unscaled one, the picked pixel
+  // exactly the unscaled run's (the centre of a flat quad, read through nearest texels).
+  std::map<std::string, std::string> picks, copies;
+  std::map<std::string, Ppm> images;
+  for (const std::string level : {"plain", "2"}) {
+    const std::string img = temp_path("readback_" + level + ".ppm"),
+                      fbo_img = temp_path("readback_fbo_" + level + ".ppm");
+    std::map<std::string, std::string> env;
+    if (level != "plain") env = {{"LD_PRELOAD", shim_path()}, {"GLBUDGET_SENSOR", "cpu"}, {"GLBUDGET_FORCE", level}};
+    const ProcessResult r = run_process(
+        {probe_path("probe_offscreen"), "--frames", "3", "--size", "128", "--out", img, "--read-fbo", fbo_img}, env);
+    INFO(level << "\n" << r.err);
+    REQUIRE(r.exit_code == 0);  // 4: a GL error reached the app
+    CHECK(r.err.find("glbudget:") == std::string::npos);
+    std::istringstream out(r.out);
+    for (std::string line; std::getline(out, line);) {
+      if (line.rfind("pick ", 0) == 0) picks[level] = line.substr(5);
+      if (line.rfind("copied ", 0) == 0) copies[level] = line.substr(7);
+    }
+    images[level] = read_ppm(fbo_img);
+    unlink(img.c_str());
+    unlink(fbo_img.c_str());
+  }
+  REQUIRE(!picks["plain"].empty());
+  CHECK(picks["2"] == picks["plain"]);
+  CHECK(copies["2"] == picks["plain"]);
+  CHECK(copies["plain"] == picks["plain"]);
+  const Ppm &plain = images["plain"], &scaled = images["2"];
+  REQUIRE(!plain.rgb.empty());
+  REQUIRE(scaled.width == plain.width);
+  REQUIRE(scaled.height == plain.height);
+  CHECK(scaled.rgb != plain.rgb);  // drawn at 60 %: not the same pixels
+  CHECK(ssim_of(plain, scaled) >= 0.95);
 }
