@@ -495,6 +495,71 @@ TEST_CASE("probe overhead: the probes' excess times their share, never negative"
   CHECK(unmeasured.share() > 0.09);
 }
 
+TEST_CASE("probe overhead in windows: a probe's whole excess where more windows hold one than a budget may leave over",
+          "[loop][extremes]") {
+  constexpr std::int64_t kTenthS = 100'000'000;  // 10 frames a second: windows of 10 frames
+  auto feed = [](ProbeOverhead& o, int period, bool timed) {
+    for (int k = 0; k < 4000; ++k)
+      o.add(k % period == period / 2, k % period == period / 2 ? 30.0 : 20.0, timed ? k * kTenthS : -1);
+  };
+  ProbeOverhead sixtieth;  // one window in six holds a probe: each must fit its 10 W over 10 frames
+  feed(sixtieth, 60, true);
+  CHECK(sixtieth.frames_per_window(1.0) == Approx(10.0));
+  CHECK(sixtieth.watts() == Approx(10.0 / 60).epsilon(0.02));
+  CHECK(sixtieth.window_margin_w(1.0, 0.95) == Approx(1.0));
+  CHECK(sixtieth.window_margin_w(1.0, 0.80) == Approx(sixtieth.watts()));  // a sixth may be over
+  ProbeOverhead rare;                                                      // one window in forty: the mean
+  feed(rare, 400, true);
+  CHECK(rare.window_margin_w(1.0, 0.95) == Approx(rare.watts()));
+  ProbeOverhead dense;  // two probes in every window: every window holds the mean
+  feed(dense, 5, true);
+  CHECK(dense.window_margin_w(1.0, 0.95) == Approx(dense.watts()));
+  CHECK(dense.watts() == Approx(2.0).epsilon(0.02));
+  ProbeOverhead untimed;  // no frame rate: the mean
+  feed(untimed, 60, false);
+  CHECK(untimed.frames_per_window(1.0) == 0.0);
+  CHECK(untimed.window_margin_w(1.0, 0.95) == Approx(untimed.watts()));
+  ProbeOverhead none;
+  CHECK(none.window_margin_w(1.0, 0.95) == 0.0);
+}
+
+TEST_CASE("a probe in one window of ten: the windows that hold one are held to the budget too", "[loop]") {
+  // A probe every 600 frames at 60 frames a second, drawing three times a frame's power: one
+  // window in ten holds one, about 1.6 W over the others (at 10 frames a second a probe every
+  // 60 frames does this to one window in six). The selection keeps that whole excess under the
+  // budget, not a tenth of it (the mean over all frames): the windows with a probe sit at the
+  // budget, the others that much under it. With the mean alone the windows with a probe were
+  // about 1.4 W over the budget, every one of them.
+  App app(power_budget("50%"), Configuration(6, 0), 7, 1 << 20);  // a still camera
+  std::vector<Step> steps;
+  for (int k = 0; k < 90 * kFps; ++k) steps.push_back(app.step(std::nullopt, k % 600 == 300, 3.0));
+  const ProbeOverhead& overhead = app.governor().probe_overhead();
+  const double margin = app.governor().last_selection().margin_w, hit = overhead.excess_w() / kFps;
+  int probed = 0, others = 0;
+  double probed_excess = 0.0, others_excess = 0.0;  // mean measured power over the budget
+  for (std::size_t start = 30 * kFps; start + kFps <= steps.size(); start += kFps) {
+    double power = 0.0, limit = 0.0;
+    bool probe = false;
+    for (std::size_t k = start; k < start + kFps; ++k) {
+      power += steps[k].record.power_w / kFps;
+      limit += steps[k].decision.budget_w / kFps;
+      probe |= steps[k].record.probe;
+    }
+    (probe ? probed_excess : others_excess) += power - limit;
+    ++(probe ? probed : others);
+  }
+  REQUIRE(probed >= 5);
+  probed_excess /= probed;
+  others_excess /= others;
+  INFO("a probe's excess " << overhead.excess_w() << " W, " << hit << " W a window; mean " << overhead.watts()
+                           << " W; margin " << margin << " W; windows with a probe " << probed_excess
+                           << " W over the budget, the others " << others_excess << " W");
+  CHECK(overhead.window_margin_w(1.0, 0.95) == Approx(hit).epsilon(0.05));
+  CHECK(margin >= hit);
+  CHECK(probed_excess <= 0.25 * hit);
+  CHECK(others_excess <= -0.75 * hit);
+}
+
 TEST_CASE("power missing for hold_after_missing_power frames holds the configuration", "[loop]") {
   App app(power_budget("40%"));
   Step previous = app.run(15 * kFps).back();

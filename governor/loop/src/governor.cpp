@@ -201,8 +201,11 @@ bool Governor::select(const FrameRecord& record) {
     // 100 % of the range admits the best configuration by definition: no margin below it.
     const bool whole_range = settings_.power.kind == model::Budget::Kind::ShareOfRange && settings_.power.value >= 1.0;
     // Besides the spread's margin and the windows' overshoot, what the quality probes add to
-    // the power of all frames: the model's predictions leave them out, the user's meter not.
-    margin_w_ = whole_range ? 0.0 : feedback_.margin_w() + overshoot_w_ + probe_overhead_.watts();
+    // the windows: the model's predictions leave them out, the user's meter not.
+    margin_w_ = whole_range
+                    ? 0.0
+                    : feedback_.margin_w() + overshoot_w_ +
+                          probe_overhead_.window_margin_w(settings_.feedback.window_s, settings_.feedback.keep_share);
   }
   const model::Selection selection = aim_ == Aim::power
                                          ? model::select_configuration(power_, error_, budget_w, margin_w_)
@@ -377,7 +380,7 @@ void Governor::feed_back(const FrameRecord& record, Decision& decision) {
 
 Decision Governor::on_frame(const FrameRecord& frame) {
   if (!started_) start(frame);
-  probe_overhead_.add(frame.probe, frame.power_w);
+  probe_overhead_.add(frame.probe, frame.power_w, frame.time_ns);
   // The frame after a probe reads the probe's images back and compares them: part of its power
   // is the probe's (counted by probe_overhead_), so neither the model nor the feedback takes
   // it for its configuration's; it is seen as a frame without power.

@@ -9,6 +9,7 @@ constexpr double kRecentWeight = 1.0 / 8.0;
 constexpr double kExcessWeight = 1.0 / 4.0;
 constexpr double kShareDecay = 1.0 - 1.0 / 200.0;
 constexpr int kSpanFrames = 2;  // the probe frame and the one that reads its comparison back
+constexpr double kIntervalWeight = 1.0 / 32.0;
 }  // namespace
 
 void ProbeOverhead::close_span() {
@@ -21,11 +22,22 @@ void ProbeOverhead::close_span() {
   span_measured_ = false;
 }
 
-void ProbeOverhead::add(bool probe, double power_w) {
+void ProbeOverhead::add(bool probe, double power_w, std::int64_t time_ns) {
+  if (time_ns >= 0 && last_time_ns_ >= 0 && time_ns > last_time_ns_) {
+    const double interval = static_cast<double>(time_ns - last_time_ns_) * 1e-9;
+    interval_s_ = interval_s_ > 0.0 ? interval_s_ + kIntervalWeight * (interval - interval_s_) : interval;
+  }
+  if (time_ns >= 0) last_time_ns_ = time_ns;
   // Decaying counts rather than a running mean, so that the share is right from the first
   // frames and follows a probe period changed mid-run.
   probes_ = probes_ * kShareDecay + (probe ? 1.0 : 0.0);
   frames_ = frames_ * kShareDecay + 1.0;
+  if (since_probe_ >= 0.0) since_probe_ += 1.0;
+  if (probe) {
+    if (since_probe_ > 0.0)
+      gap_frames_ = gap_frames_ > 0.0 ? gap_frames_ + kExcessWeight * (since_probe_ - gap_frames_) : since_probe_;
+    since_probe_ = 0.0;
+  }
   if (probe) {
     close_span();
     span_left_ = kSpanFrames;
@@ -48,5 +60,25 @@ void ProbeOverhead::add(bool probe, double power_w) {
 }
 
 double ProbeOverhead::watts() const { return measured_ == 0 ? 0.0 : std::max(0.0, excess_w_) * share(); }
+
+double ProbeOverhead::share() const {
+  // Once probes have come twice, one in their mean gap, or in the frames since the last where
+  // that is longer (they slowed down or stopped).
+  if (gap_frames_ > 0.0) return 1.0 / std::max(gap_frames_, since_probe_);
+  return frames_ > 0.0 ? probes_ / frames_ : 0.0;
+}
+
+double ProbeOverhead::frames_per_window(double window_s) const {
+  return interval_s_ > 0.0 && window_s > 0.0 ? std::max(1.0, window_s / interval_s_) : 0.0;
+}
+
+double ProbeOverhead::window_margin_w(double window_s, double keep_share) const {
+  const double frames = frames_per_window(window_s);
+  if (measured_ == 0 || frames <= 0.0) return watts();
+  // Probes per window: under one, that share of windows holds one (and the rest none).
+  const double per_window = share() * frames;
+  if (per_window <= 1.0 - keep_share) return watts();
+  return std::max(watts(), std::max(0.0, excess_w_) / frames);
+}
 
 }  // namespace glbudget::loop

@@ -7,14 +7,20 @@
 // compared one frame late, behind a fence), times the share of frames that are probes. A
 // selection keeps it under the budget besides the spread's margin, and windows are held to
 // the budget with it.
+// The mean is what a long meter reading sees; a window of a second sees all of a probe or
+// none of it. Where more windows hold a probe than the share a budget may leave over it
+// (a probe every 60 frames at 10 frames a second: one window in six), each such window must
+// fit its probe's whole excess, and the selection keeps that instead (window_margin_w).
 #include <cstddef>
+#include <cstdint>
 
 namespace glbudget::loop {
 
 class ProbeOverhead {
  public:
-  // Every frame, in order; power NaN when not measured.
-  void add(bool probe, double power_w);
+  // Every frame, in order; power NaN when not measured; time_ns (when the frame ended, any
+  // origin) gives the frame rate, negative when not known.
+  void add(bool probe, double power_w, std::int64_t time_ns = -1);
   // The frame last added is a probe's or the one after it: its power is not its
   // configuration's own.
   bool in_span() const { return last_in_span_; }
@@ -24,7 +30,14 @@ class ProbeOverhead {
   // The mean excess of a probe (its frame and the next) over the frames before it (may be
   // negative), and the share of recent frames that were probes.
   double excess_w() const { return excess_w_; }
-  double share() const { return frames_ > 0.0 ? probes_ / frames_ : 0.0; }
+  double share() const;
+  // What a selection keeps under the budget for the probes so that about `keep_share` of the
+  // windows of window_s seconds, probes included, stay within it: watts() where at most
+  // 1 - keep_share of the windows hold a probe (or the frame rate is not known), else a
+  // probe's whole excess spread over one window's frames.
+  double window_margin_w(double window_s, double keep_share) const;
+  // Frames in a window of window_s seconds at the recent frame rate (0: not known).
+  double frames_per_window(double window_s) const;
   std::size_t probes_measured() const { return measured_; }
 
  private:
@@ -39,7 +52,13 @@ class ProbeOverhead {
   bool last_in_span_ = false;
   double excess_w_ = 0.0;  // the probes' excess, exponentially (about 4 probes)
   std::size_t measured_ = 0;
-  double probes_ = 0.0, frames_ = 0.0;  // decaying counts (about 200 frames)
+  double probes_ = 0.0, frames_ = 0.0;  // decaying counts (about 200 frames), until a gap is seen
+  // Frames between probes, exponentially (about 4 gaps), and since the last probe: sparse
+  // probes (one every 600 frames) are not a share the decaying counts can hold.
+  double gap_frames_ = 0.0;
+  double since_probe_ = -1.0;  // -1: no probe yet
+  std::int64_t last_time_ns_ = -1;
+  double interval_s_ = 0.0;  // between frames, exponentially (about 32 frames); 0: not known
 };
 
 }  // namespace glbudget::loop
