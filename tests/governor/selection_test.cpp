@@ -77,10 +77,16 @@ TEST_CASE("a margin keeps the selection that far under the budget while anything
   CHECK(margined.index == 2);
   CHECK(margined.budget_w == 26.0);
   CHECK(margined.within_budget);
-  // A margin wider than the room under the budget: the budget itself decides.
+  // A margin wider than the room under the budget: the cheapest, which comes closest to
+  // keeping it, not the lowest error within the budget (25 W, at 26 W with a 2-W scatter).
   const Selection wide = select_configuration(power, error, Budget{Budget::Kind::Watts, 16.0}, 5.0);
   CHECK(wide.index == 3);
   CHECK(wide.within_budget);
+  const Selection wider = select_configuration(power, error, watts, 12.0);
+  CHECK(wider.index == 3);
+  CHECK(wider.within_budget);
+  const std::vector<double> tied{30.0, 25.0, 15.0, 15.0};  // of two cheapest, the lower error
+  CHECK(select_configuration(tied, error, watts, 12.0).index == 2);
   // Nothing fits either way: the cheapest, said to be over.
   const Selection none = select_configuration(power, error, Budget{Budget::Kind::Watts, 10.0}, 1.0);
   CHECK(none.index == 3);

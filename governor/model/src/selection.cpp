@@ -135,13 +135,21 @@ Selection select_configuration(std::span<const double> predicted_power_w, std::s
   };
   const bool margined = std::isfinite(margin_w) && margin_w > 0.0 && std::isfinite(selection.budget_w);
   if (margined && lowest_error_within(selection.budget_w - margin_w, &selection.index)) return selection;
-  if (lowest_error_within(selection.budget_w, &selection.index)) return selection;
 
   std::size_t cheapest = 0;
   for (std::size_t i = 0; i < predicted_power_w.size(); ++i) {
     const double p = predicted_power_w[i];
-    if (!std::isnan(p) && (std::isnan(predicted_power_w[cheapest]) || p < predicted_power_w[cheapest])) cheapest = i;
+    if (!std::isnan(p) && (std::isnan(predicted_power_w[cheapest]) || p < predicted_power_w[cheapest] ||
+                           (p == predicted_power_w[cheapest] && rank(error[i]) < rank(error[cheapest]))))
+      cheapest = i;
   }
+  // The margin is wider than the room under the budget: the configuration that comes closest
+  // to keeping it. One at the budget itself would be over it in about every other window.
+  if (margined && predicted_power_w[cheapest] <= selection.budget_w) {
+    selection.index = cheapest;
+    return selection;
+  }
+  if (lowest_error_within(selection.budget_w, &selection.index)) return selection;
   selection.index = cheapest;
   selection.within_budget = false;
   return selection;

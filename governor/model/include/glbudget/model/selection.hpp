@@ -43,8 +43,8 @@ struct Selection {
 // expensive one and 0% the cheapest); ties go to lower power. NaN errors rank last, NaN powers
 // are never admitted. Requires predicted_power_w.size() == error.size() > 0.
 // margin_w > 0 admits only power <= budget - margin while any configuration is that far
-// under the budget, and falls back to the budget itself when none is (budget_w is the
-// budget either way).
+// under the budget; when none is, the lowest-power configuration, which comes closest to
+// keeping the margin, if it is within the budget (budget_w is the budget either way).
 Selection select_configuration(std::span<const double> predicted_power_w, std::span<const double> error,
                                const Budget& budget, double margin_w = 0.0);
 // The same under a limit already in watts (budget_w, +inf: none).
