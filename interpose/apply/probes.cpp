@@ -166,8 +166,8 @@ struct Readback {
 
 // The shadow of an app texture gets immutable storage, which takes sized formats only: an app
 // texture specified with an unsized one (GL_RGBA, as GLES 2-era code does) gets the sized one
-// below; a depth texture the format of the bits the driver gave it (a depth blit between the
-// two needs the same format on both sides), 0 where none fits.
+// (sized_internal_format); a depth texture the format of the bits the driver gave it (a depth
+// blit between the two needs the same format on both sides), 0 where none fits.
 static GLint sized_depth_format(GLint depth_bits, GLint stencil_bits, bool floating) {
   if (stencil_bits > 0) return floating ? GL_DEPTH32F_STENCIL8 : GL_DEPTH24_STENCIL8;
   if (floating) return GL_DEPTH_COMPONENT32F;
@@ -180,25 +180,6 @@ static GLint sized_depth_format(GLint depth_bits, GLint stencil_bits, bool float
       return GL_DEPTH_COMPONENT32;
     default:
       return 0;
-  }
-}
-
-static GLint sized_format(GLint format) {
-  switch (format) {
-    case GL_RGBA:
-      return GL_RGBA8;
-    case GL_RGB:
-      return GL_RGB8;
-    case GL_RG:
-      return GL_RG8;
-    case GL_RED:
-      return GL_R8;
-    case GL_SRGB:
-      return GL_SRGB8;
-    case GL_SRGB_ALPHA:
-      return GL_SRGB8_ALPHA8;
-    default:
-      return format;
   }
 }
 
@@ -332,7 +313,7 @@ struct ProbeFrames::Impl {
             p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_DEPTH_TYPE, &depth_type);
             im.format = sized_depth_format(depth_bits, stencil_bits, depth_type == GL_FLOAT);
           } else {
-            im.format = sized_format(im.format);
+            im.format = sized_internal_format(im.format);
           }
           p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &w);
           p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &h);

@@ -406,10 +406,7 @@ bool TargetScaler::depth_texture(GLuint texture) const {
   return it != textures_.end() && depth_format(it->second.internal_format);
 }
 
-namespace {
-// The sized format a renderbuffer copy of an image of `format` takes (unsized formats as the
-// driver sizes them by default); 0 where none is known.
-GLenum sized_for_copy(GLint format) {
+GLint sized_internal_format(GLint format) {
   switch (format) {
     case GL_RGBA:
       return GL_RGBA8;
@@ -423,14 +420,24 @@ GLenum sized_for_copy(GLint format) {
       return GL_SRGB8_ALPHA8;
     case GL_SRGB:
       return GL_SRGB8;
+    default:
+      return format;
+  }
+}
+
+namespace {
+// The sized format a renderbuffer copy of an image of `format` takes; 0 where none is known
+// (an unsized depth format: the driver picked its depth, and a depth blit needs the very same).
+GLenum sized_for_copy(GLint format) {
+  switch (format) {
     case GL_DEPTH_COMPONENT:
     case GL_DEPTH_STENCIL:
     case GL_LUMINANCE:
     case GL_LUMINANCE_ALPHA:
     case GL_ALPHA:
-      return 0;  // the driver picks its depth; a depth blit needs the very same format
+      return 0;
     default:
-      return static_cast<GLenum>(format);
+      return static_cast<GLenum>(sized_internal_format(format));
   }
 }
 }  // namespace

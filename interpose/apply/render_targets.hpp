@@ -29,6 +29,9 @@ namespace glbudget {
 void scale_box(const GLint* in, double sx, double sy, GLint* out);
 // A blit rectangle's corners (x0, y0, x1, y1) scaled; `out` may be `in`.
 void scale_corners(const GLint* in, double sx, double sy, GLint* out);
+// The sized format of an unsized colour format (GL_RGBA: GL_RGBA8, as drivers size it), for
+// storage that takes sized formats only; other formats as they are.
+GLint sized_internal_format(GLint format);
 
 class TargetScaler {
  public:
