@@ -215,7 +215,8 @@ void handle_glBlitFramebuffer(pfn_glBlitFramebuffer real, GLint srcX0, GLint src
   GLint src[4] = {srcX0, srcY0, srcX1, srcY1}, dst[4] = {dstX0, dstY0, dstX1, dstY1};
   s->blit_rectangles(s->app_read_framebuffer(), s->app_draw_framebuffer(), src, dst);
   if (ProbeFrames* p = t_probe) p->prepare();
-  real(src[0], src[1], src[2], src[3], dst[0], dst[1], dst[2], dst[3], mask, filter);
+  if (!s->blit_multisampled_window(s->app_read_framebuffer(), s->app_draw_framebuffer(), src, dst, mask, filter))
+    real(src[0], src[1], src[2], src[3], dst[0], dst[1], dst[2], dst[3], mask, filter);
   if (ProbeFrames* p = t_probe) p->blit(app_src, app_dst, mask, filter);
 }
 
@@ -371,6 +372,7 @@ void handle_glBlitNamedFramebuffer(pfn_glBlitNamedFramebuffer real, GLuint readF
     return real(readFramebuffer, drawFramebuffer, srcX0, srcY0, srcX1, srcY1, dstX0, dstY0, dstX1, dstY1, mask, filter);
   GLint src[4] = {srcX0, srcY0, srcX1, srcY1}, dst[4] = {dstX0, dstY0, dstX1, dstY1};
   s->blit_rectangles(readFramebuffer, drawFramebuffer, src, dst);
+  if (s->blit_multisampled_window(readFramebuffer, drawFramebuffer, src, dst, mask, filter)) return;
   real(s->real_framebuffer(readFramebuffer), s->real_framebuffer(drawFramebuffer), src[0], src[1], src[2], src[3],
        dst[0], dst[1], dst[2], dst[3], mask, filter);
 }

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "apply_gl.hpp"
 #include "context_state.hpp"
@@ -317,7 +318,10 @@ struct ProbeFrames::Impl {
           }
           p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &w);
           p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &h);
-          im.levels = texture_levels();
+          // Its levels only where the app fills them by glGenerateMipmap, which the duplicate
+          // repeats; levels it draws one by one (framebuffers of level > 0 are not shadowed)
+          // would stay undefined in the shadow, where level 0 alone stands for them.
+          im.levels = generated_mipmaps.count(im.app) ? texture_levels() : 1;
           g.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(bound));
         }
         if (w <= 0 || h <= 0 || im.format == 0) return false;
@@ -332,6 +336,8 @@ struct ProbeFrames::Impl {
     out.height = std::max(1, static_cast<int>(out.app_height * stream_scale + 0.5));
     return true;
   }
+
+  std::unordered_set<GLuint> generated_mipmaps;  // app textures seen in glGenerateMipmap
 
   // The mip levels of the texture bound to GL_TEXTURE_2D that sampling can reach: its
   // immutable levels, or those specified from level 0 on, up to its maximum level.
@@ -1081,6 +1087,7 @@ void ProbeFrames::generate_mipmap(GLuint texture) {
   const ApplyGl& g = agl();
   const GLint bound = get(GL_TEXTURE_BINDING_2D);
   if (!texture) texture = static_cast<GLuint>(bound);
+  p.generated_mipmaps.insert(texture);
   bool rebound = false;
   for (int s = 0; s < p.stream_count; ++s) {
     const auto shadow = p.streams[s].textures.find(texture);

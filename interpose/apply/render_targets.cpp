@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <mutex>
 #include <set>
 #include <string>
@@ -429,22 +430,19 @@ namespace {
 // The sized format a renderbuffer copy of an image of `format` takes; 0 where none is known
 // (an unsized depth format: the driver picked its depth, and a depth blit needs the very same).
 GLenum sized_for_copy(GLint format) {
-  switch (format) {
-    case GL_DEPTH_COMPONENT:
-    case GL_DEPTH_STENCIL:
-    case GL_LUMINANCE:
-    case GL_LUMINANCE_ALPHA:
-    case GL_ALPHA:
-      return 0;
-    default:
-      return static_cast<GLenum>(sized_internal_format(format));
-  }
+  // Only formats a renderbuffer surely takes (legacy ones such as 3, 4 or GL_BGRA would raise an
+  // error the app could read).
+  const auto sized = static_cast<GLenum>(sized_internal_format(format));
+  GLenum upload_format = 0, type = 0;
+  return null_upload(sized, &upload_format, &type) ? sized : 0;
 }
 }  // namespace
 
 bool TargetScaler::bind_read_copy(GLint x, GLint y, GLsizei w, GLsizei h, bool depth_stencil) {
   const auto f = framebuffers_.find(read_fbo_);
-  if (f == framebuffers_.end() || f->second.scale == 1.0 || w <= 0 || h <= 0) return false;
+  // Attachments changed since they were learnt: read as it is rather than from a stale image.
+  if (f == framebuffers_.end() || f->second.scale == 1.0 || !f->second.attachments_known || w <= 0 || h <= 0)
+    return false;
   const ApplyGl& g = agl();
   GLint read_buffer = GL_NONE;
   g.GetIntegerv(GL_READ_BUFFER, &read_buffer);
@@ -648,7 +646,10 @@ void TargetScaler::ensure_scale(GLuint name, Framebuffer& f, bool carry) {
                  std::to_string(name) +
                  " was not made by glTexImage2D, glRenderbufferStorage or glTexStorage2D of a framebuffer format; "
                  "the framebuffer is not scaled");
-    s = 1.0;
+    // Its known images are left as they are: another framebuffer may share one (a depth
+    // buffer) at its own scale.
+    f.scale = 1.0;
+    return;
   }
   f.scale = s;
   for (const Attachment& a : f.attachments) {
@@ -904,11 +905,12 @@ GLint TargetScaler::texture_parameter(GLuint texture, GLenum pname, GLint value)
   if (!level_pname(pname)) return value;
   const auto it = textures_.find(texture);
   if (!texture || it == textures_.end() || !it->second.storage_levels) return value;
+  // A negative value is the driver's error, passed on (and not kept).
+  if (value < 0) return value;
   Image& im = it->second;
   (pname == GL_TEXTURE_BASE_LEVEL ? im.app_base_level : im.app_max_level) = value;
   // An immutable texture's base level is clamped to [0, levels - 1], its maximum to
-  // [base, levels - 1]; a negative value is the driver's error, passed on.
-  if (value < 0) return value;
+  // [base, levels - 1] (a maximum set before a higher base is not sent again).
   const GLint last = im.storage_levels - 1;
   const GLint base = std::clamp(im.app_base_level, 0, last);
   return pname == GL_TEXTURE_BASE_LEVEL ? base : std::clamp(value, base, last);
@@ -934,6 +936,32 @@ void TargetScaler::blit_rectangles(GLuint read, GLuint draw, GLint* src, GLint* 
   scale_corners(src, sx, sy, src);
   scale_of(draw, &sx, &sy);
   scale_corners(dst, sx, sy, dst);
+}
+
+bool TargetScaler::blit_multisampled_window(GLuint read, GLuint draw, const GLint* src, const GLint* dst,
+                                            GLbitfield mask, GLenum filter) {
+  if (!window_.fbo || window_.samples == 0 || (read != 0) == (draw != 0)) return false;
+  if (std::abs(src[2] - src[0]) == std::abs(dst[2] - dst[0]) && std::abs(src[3] - src[1]) == std::abs(dst[3] - dst[1]))
+    return false;
+  const ApplyGl& g = agl();
+  BlitState saved;
+  if (draw == 0) {
+    // Into the stand-in: stretched into the resolve image, then copied at its own size.
+    ensure_image_set(window_.resolve, window_.width, window_.height);
+    g.BindFramebuffer(GL_READ_FRAMEBUFFER, read);
+    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, window_.resolve.fbo);
+    g.BlitFramebuffer(src[0], src[1], src[2], src[3], dst[0], dst[1], dst[2], dst[3], mask, filter);
+    g.BindFramebuffer(GL_READ_FRAMEBUFFER, window_.resolve.fbo);
+    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, window_.fbo);
+    g.BlitFramebuffer(dst[0], dst[1], dst[2], dst[3], dst[0], dst[1], dst[2], dst[3], mask, GL_NEAREST);
+  } else {
+    // Out of the stand-in: resolved at its own size, then stretched.
+    const GLuint from = single_sampled_window((mask & (GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT)) != 0);
+    g.BindFramebuffer(GL_READ_FRAMEBUFFER, from);
+    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, draw);
+    g.BlitFramebuffer(src[0], src[1], src[2], src[3], dst[0], dst[1], dst[2], dst[3], mask, filter);
+  }
+  return true;
 }
 
 bool TargetScaler::texture_size(GLuint texture, GLint level, GLenum pname, GLint* value) const {

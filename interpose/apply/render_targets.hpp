@@ -119,6 +119,11 @@ class TargetScaler {
   void renderbuffer_storage(GLsizei samples, GLenum internal_format, GLsizei* width, GLsizei* height);
   // x0, y0, x1, y1 each, by the scales of the app's framebuffers `read` and `draw`.
   void blit_rectangles(GLuint read, GLuint draw, GLint* src, GLint* dst) const;
+  // A blit (rectangles scaled already) between an app framebuffer and a multisampled window's
+  // stand-in whose rectangles differ in size, which a multisampled framebuffer does not take:
+  // done here through the single-sampled resolve image; false where the driver can take it.
+  bool blit_multisampled_window(GLuint read, GLuint draw, const GLint* src, const GLint* dst, GLbitfield mask,
+                                GLenum filter);
   // The app's size for a scaled image (GL_TEXTURE_WIDTH/HEIGHT, GL_RENDERBUFFER_WIDTH/HEIGHT):
   // the texture bound to GL_TEXTURE_2D, or one named (glGetTextureLevelParameter).
   bool texture_size(GLuint texture, GLint level, GLenum pname, GLint* value) const;

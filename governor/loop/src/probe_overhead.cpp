@@ -10,6 +10,7 @@ constexpr double kExcessWeight = 1.0 / 4.0;
 constexpr double kShareDecay = 1.0 - 1.0 / 200.0;
 constexpr int kSpanFrames = 2;  // the probe frame and the one that reads its comparison back
 constexpr double kIntervalWeight = 1.0 / 32.0;
+constexpr double kLongestInterval_s = 0.5;
 }  // namespace
 
 void ProbeOverhead::close_span() {
@@ -25,7 +26,10 @@ void ProbeOverhead::close_span() {
 void ProbeOverhead::add(bool probe, double power_w, std::int64_t time_ns) {
   if (time_ns >= 0 && last_time_ns_ >= 0 && time_ns > last_time_ns_) {
     const double interval = static_cast<double>(time_ns - last_time_ns_) * 1e-9;
-    interval_s_ = interval_s_ > 0.0 ? interval_s_ + kIntervalWeight * (interval - interval_s_) : interval;
+    // A pause (loading, a breakpoint) is no frame rate: it would hold the windows' frames low
+    // for seconds after it.
+    if (interval < kLongestInterval_s)
+      interval_s_ = interval_s_ > 0.0 ? interval_s_ + kIntervalWeight * (interval - interval_s_) : interval;
   }
   if (time_ns >= 0) last_time_ns_ = time_ns;
   // Decaying counts rather than a running mean, so that the share is right from the first
