@@ -389,9 +389,9 @@ struct ProbeFrames::Impl {
       } else {
         g.GenTextures(1, &im.shadow);
         g.BindTexture(GL_TEXTURE_2D, im.shadow);
-        int chain = 1;  // the shadow's size may hold fewer levels than the app's
-        while ((std::max(s.width, s.height) >> chain) > 0) ++chain;
-        p.TexStorage2D(GL_TEXTURE_2D, std::min(im.levels, chain), static_cast<GLenum>(im.format), s.width, s.height);
+        // The shadow's size may hold fewer levels than the app's.
+        p.TexStorage2D(GL_TEXTURE_2D, std::min(im.levels, full_mip_levels(s.width, s.height)),
+                       static_cast<GLenum>(im.format), s.width, s.height);
         // Sampled as the app's texture is: its filtering, wrapping, depth comparison and levels.
         static const GLenum kParams[] = {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER,   GL_TEXTURE_WRAP_S,
                                          GL_TEXTURE_WRAP_T,     GL_TEXTURE_COMPARE_MODE, GL_TEXTURE_COMPARE_FUNC,

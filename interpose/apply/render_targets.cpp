@@ -27,6 +27,25 @@ bool is_depth(GLint f) {
 bool is_depth_stencil(GLint f) {
   return f == GL_DEPTH_STENCIL || f == GL_DEPTH24_STENCIL8 || f == GL_DEPTH32F_STENCIL8;
 }
+// The buffers an image of `format` holds, and the framebuffer point it attaches to.
+GLbitfield buffer_bits(GLint format) {
+  if (is_depth(format)) return GL_DEPTH_BUFFER_BIT;
+  if (is_depth_stencil(format)) return GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT;
+  if (format == GL_STENCIL_INDEX8) return GL_STENCIL_BUFFER_BIT;
+  return GL_COLOR_BUFFER_BIT;
+}
+GLenum attachment_point(GLint format) {
+  switch (buffer_bits(format)) {
+    case GL_DEPTH_BUFFER_BIT:
+      return GL_DEPTH_ATTACHMENT;
+    case GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT:
+      return GL_DEPTH_STENCIL_ATTACHMENT;
+    case GL_STENCIL_BUFFER_BIT:
+      return GL_STENCIL_ATTACHMENT;
+    default:
+      return GL_COLOR_ATTACHMENT0;
+  }
+}
 bool is_integer_format(GLenum format) {
   return format == GL_RED_INTEGER || format == GL_RG_INTEGER || format == GL_RGB_INTEGER || format == GL_RGBA_INTEGER ||
          format == GL_BGRA_INTEGER;
@@ -398,13 +417,17 @@ void TargetScaler::unbind_window_copy() { agl().BindFramebuffer(GL_READ_FRAMEBUF
 
 void TargetScaler::agl_bind_read_framebuffer(GLuint app) { agl().BindFramebuffer(GL_READ_FRAMEBUFFER, app); }
 
-bool TargetScaler::depth_format(GLint format) {
-  return is_depth(format) || is_depth_stencil(format) || format == GL_STENCIL_INDEX8;
-}
+bool TargetScaler::depth_format(GLint format) { return buffer_bits(format) != GL_COLOR_BUFFER_BIT; }
 
 bool TargetScaler::depth_texture(GLuint texture) const {
   const auto it = textures_.find(texture);
   return it != textures_.end() && depth_format(it->second.internal_format);
+}
+
+int full_mip_levels(int width, int height) {
+  int levels = 1;
+  while ((std::max(width, height) >> levels) > 0) ++levels;
+  return levels;
 }
 
 GLint sized_internal_format(GLint format) {
@@ -476,11 +499,8 @@ bool TargetScaler::bind_read_copy(GLint x, GLint y, GLsizei w, GLsizei h, bool d
       // One attachment point at a time, the one the format belongs to.
       g.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, 0);
       g.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, 0);
-      const GLenum point = !depth_stencil                                 ? GL_COLOR_ATTACHMENT0
-                           : is_depth(static_cast<GLint>(format))         ? GL_DEPTH_ATTACHMENT
-                           : is_depth_stencil(static_cast<GLint>(format)) ? GL_DEPTH_STENCIL_ATTACHMENT
-                                                                          : GL_STENCIL_ATTACHMENT;
-      g.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, point, GL_RENDERBUFFER, c.image);
+      g.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, attachment_point(static_cast<GLint>(format)), GL_RENDERBUFFER,
+                                c.image);
     }
     c.format = format;
     c.depth = depth_stencil;
@@ -497,11 +517,8 @@ bool TargetScaler::bind_read_copy(GLint x, GLint y, GLsizei w, GLsizei h, bool d
     BlitState saved;
     g.BindFramebuffer(GL_READ_FRAMEBUFFER, read_fbo_);
     g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, c.fbo);
-    const GLbitfield mask = !depth_stencil                             ? GL_COLOR_BUFFER_BIT
-                            : is_depth(image->internal_format)         ? GL_DEPTH_BUFFER_BIT
-                            : is_depth_stencil(image->internal_format) ? GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT
-                                                                       : GL_STENCIL_BUFFER_BIT;
-    g.BlitFramebuffer(from[0], from[1], from[2], from[3], box[0], box[1], box[2], box[3], mask, GL_NEAREST);
+    g.BlitFramebuffer(from[0], from[1], from[2], from[3], box[0], box[1], box[2], box[3],
+                      buffer_bits(image->internal_format), GL_NEAREST);
   }
   g.BindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(renderbuffer));
   g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
@@ -596,15 +613,7 @@ bool TargetScaler::cleared_before_drawn(const Framebuffer& f) const {
   for (const Attachment& a : f.attachments) {
     const auto& images = a.renderbuffer ? renderbuffers_ : textures_;
     auto it = images.find(a.name);
-    const GLint format = it == images.end() ? 0 : it->second.internal_format;
-    if (is_depth(format))
-      needed |= GL_DEPTH_BUFFER_BIT;
-    else if (is_depth_stencil(format))
-      needed |= GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT;
-    else if (format == GL_STENCIL_INDEX8)
-      needed |= GL_STENCIL_BUFFER_BIT;
-    else
-      needed |= GL_COLOR_BUFFER_BIT;
+    needed |= buffer_bits(it == images.end() ? 0 : it->second.internal_format);
   }
   return (f.cleared & needed) == needed;
 }
@@ -665,15 +674,8 @@ void TargetScaler::rescale(GLuint name, Image& image, double scale, bool carry_c
   const ApplyGl& g = agl();
   SavedBindings saved;
   const GLsizei old_w = image.stored_width(), old_h = image.stored_height();
-  const bool depth = is_depth(image.internal_format), depth_stencil = is_depth_stencil(image.internal_format);
-  const GLenum point = depth                                        ? GL_DEPTH_ATTACHMENT
-                       : depth_stencil                              ? GL_DEPTH_STENCIL_ATTACHMENT
-                       : image.internal_format == GL_STENCIL_INDEX8 ? GL_STENCIL_ATTACHMENT
-                                                                    : GL_COLOR_ATTACHMENT0;
-  const GLbitfield mask = depth                            ? GL_DEPTH_BUFFER_BIT
-                          : depth_stencil                  ? GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT
-                          : point == GL_STENCIL_ATTACHMENT ? GL_STENCIL_BUFFER_BIT
-                                                           : GL_COLOR_BUFFER_BIT;
+  const GLenum point = attachment_point(image.internal_format);
+  const GLbitfield mask = buffer_bits(image.internal_format);
   const GLenum filter = mask == GL_COLOR_BUFFER_BIT && !is_integer_format(image.format) ? GL_LINEAR : GL_NEAREST;
   // Contents are carried over (a clear made before the first draw that revealed the target,
   // or what a temporal effect keeps), except for multisampled images (blits between
@@ -858,7 +860,7 @@ bool TargetScaler::tex_storage_2d(GLuint texture, GLsizei levels, GLenum interna
   // Other calls (and the app's mistakes, which must raise the driver's errors) go as they are.
   if (!texture || levels < 1 || width <= 0 || height <= 0 || !null_upload(internal_format, &format, &type))
     return false;
-  if (levels > 1 + static_cast<GLsizei>(std::log2(std::max(width, height)))) return false;
+  if (levels > full_mip_levels(width, height)) return false;
   if (levels > 1 && !(width == window_width_ && height == window_height_) && !named_by_manifest(texture)) return false;
   if (gles_ && internal_format == GL_RGBA16) return false;  // GLES only with EXT_texture_norm16
   const auto known = textures_.find(texture);

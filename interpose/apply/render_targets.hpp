@@ -32,6 +32,8 @@ void scale_corners(const GLint* in, double sx, double sy, GLint* out);
 // The sized format of an unsized colour format (GL_RGBA: GL_RGBA8, as drivers size it), for
 // storage that takes sized formats only; other formats as they are.
 GLint sized_internal_format(GLint format);
+// The levels of a full mip chain of a width x height level 0 (1 + log2 of the larger side).
+int full_mip_levels(int width, int height);
 
 class TargetScaler {
  public:
