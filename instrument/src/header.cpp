@@ -75,13 +75,7 @@ std::string declarations(const LanguageVersion& language, Stage stage, int bindi
 
 }  // namespace
 
-HeaderPlan plan_header(std::string& text, const syntax::Unit& unit, const LanguageVersion& language, Stage stage,
-                       int binding) {
-  if (language.es && language.version < 300)
-    throw std::runtime_error("GLSL ES 1.00 has no shader storage buffers to count into");
-  HeaderPlan plan;
-  plan.binding_in_source = language.es ? language.version >= 300 : language.version >= 420;
-
+HeaderPoints header_points(std::string& text, const syntax::Unit& unit) {
   const std::size_t first_function = unit.functions.empty() ? text.size() : unit.functions.front().whole.begin;
   const Directive* version = nullptr;
   const Directive* last_extension = nullptr;
@@ -90,30 +84,45 @@ HeaderPlan plan_header(std::string& text, const syntax::Unit& unit, const Langua
     if (d.name == "version") version = &d;
     if (d.name == "extension") last_extension = &d;
   }
-  if (language.es && language.version == 300 && version) {
-    const std::size_t digits = text.find("300", version->whole.begin);
-    if (digits < version->whole.end) text.replace(digits, 3, "310");
-  }
-
-  auto line_fixup = [&](std::size_t offset) {
-    const long next = logical_line(text, unit.directives, offset, language);
-    return "#line " + std::to_string(line_names_next_line(language) ? next : next - 1) + "\n";
-  };
-
-  const std::size_t extension_point = version ? after(*version, text) : 0;
-  const std::size_t declaration_point = last_extension ? after(*last_extension, text) : extension_point;
-  if (declaration_point > first_function)
+  HeaderPoints points;
+  points.version = version;
+  points.extension = version ? after(*version, text) : 0;
+  points.declaration = last_extension ? after(*last_extension, text) : points.extension;
+  if (points.declaration > first_function)
     throw std::runtime_error("an #extension directive follows the first function");
+  return points;
+}
+
+std::string line_fixup(std::string_view text, const syntax::Unit& unit, std::size_t offset,
+                       const LanguageVersion& language) {
+  const long next = logical_line(text, unit.directives, offset, language);
+  return "#line " + std::to_string(line_names_next_line(language) ? next : next - 1) + "\n";
+}
+
+HeaderPlan plan_header(std::string& text, const syntax::Unit& unit, const LanguageVersion& language, Stage stage,
+                       int binding) {
+  if (language.es && language.version < 300)
+    throw std::runtime_error("GLSL ES 1.00 has no shader storage buffers to count into");
+  HeaderPlan plan;
+  plan.binding_in_source = language.es ? language.version >= 300 : language.version >= 420;
+
+  const HeaderPoints points = header_points(text, unit);
+  if (language.es && language.version == 300 && points.version) {
+    const std::size_t digits = text.find("300", points.version->whole.begin);
+    if (digits < points.version->whole.end) text.replace(digits, 3, "310");
+  }
 
   std::string extension_lines;
   for (const std::string& e : extensions_needed(language)) extension_lines += "#extension " + e + "\n";
   const std::string decls = declarations(language, stage, binding, plan.binding_in_source);
-  if (extension_point == declaration_point) {
-    plan.insertions.push_back({extension_point, extension_lines + decls + line_fixup(extension_point)});
+  if (points.extension == points.declaration) {
+    plan.insertions.push_back(
+        {points.extension, extension_lines + decls + line_fixup(text, unit, points.extension, language)});
   } else {
     if (!extension_lines.empty())
-      plan.insertions.push_back({extension_point, extension_lines + line_fixup(extension_point)});
-    plan.insertions.push_back({declaration_point, decls + line_fixup(declaration_point)});
+      plan.insertions.push_back(
+          {points.extension, extension_lines + line_fixup(text, unit, points.extension, language)});
+    plan.insertions.push_back({points.declaration, decls + line_fixup(text, unit, points.declaration, language)});
   }
   return plan;
 }

@@ -1,5 +1,6 @@
 // GL-free tests of the instrumenter: static figures of a hand-counted corpus, the counting
 // rule on small cases, the inserted counters, and that glslang accepts what we produce.
+#include "glbudget/instrument/app_space.hpp"
 #include "glbudget/instrument/instrument.hpp"
 #include "shader_files.hpp"
 
@@ -339,4 +340,109 @@ TEST_CASE("truncated and mangled shaders fail cleanly, never crash", "[instrumen
   INFO(ok << " variants instrumented, " << failed << " refused");
   CHECK(failed > 0);
   CHECK(ok > 0);
+}
+
+// --- The app-space rewrite (app_space.hpp) ----------------------------------------------------
+
+namespace {
+AppSpaceResult app_space(const std::string& source) { return to_app_space(source, std::nullopt); }
+}  // namespace
+
+TEST_CASE("a shader without pixel coordinates is not rewritten", "[app_space]") {
+  const AppSpaceResult r = app_space(
+      "#version 330\nin vec2 uv; uniform sampler2D t; out vec4 o;\n"
+      "void main() { o = texture(t, uv); }\n");
+  CHECK_FALSE(r.needed);
+  CHECK_FALSE(r.ok);
+}
+
+TEST_CASE("gl_FragCoord is read in the app's pixels, its redeclaration kept", "[app_space]") {
+  const std::string source =
+      "#version 330 core\n#extension GL_ARB_fragment_coord_conventions : enable\n"
+      "layout(origin_upper_left) in vec4 gl_FragCoord;\nuniform vec2 u_res; uniform sampler2D t; out vec4 o;\n"
+      "#define UV (gl_FragCoord.xy / u_res)\n"
+      "void main() {\n  o = texture(t, UV) * gl_FragCoord.z;\n}\n";
+  const AppSpaceResult r = app_space(source);
+  REQUIRE(r.ok);
+  INFO(r.source);
+  CHECK(r.frag_coord);
+  CHECK(r.samplers.empty());
+  CHECK(r.source.find("in vec4 gl_FragCoord;") != std::string::npos);
+  CHECK(r.source.find("uniform highp vec2 glbudget_frag_ratio;") != std::string::npos);
+  // Each read, also those a macro made: two in UV, one for .z.
+  std::size_t reads = 0;
+  for (std::size_t at = 0; (at = r.source.find("gl_FragCoord.xy * glbudget_frag_ratio", at)) != std::string::npos; ++at)
+    ++reads;
+  CHECK(reads == 2);
+  // The declarations come after the #extension line, and the app's lines keep their numbers.
+  CHECK(r.source.find("glbudget_frag_ratio") > r.source.find("#extension"));
+  CHECK(r.source.find("#line 3\n") != std::string::npos);
+  CHECK(glslang_errors(r.source, Stage::fragment).empty());
+}
+
+TEST_CASE("texelFetch and textureSize of uniform 2D samplers take and give the app's texels", "[app_space]") {
+  const std::string source =
+      "#version 330 core\nuniform sampler2D scene; uniform isampler2D ids; uniform usampler2D mask;\n"
+      "uniform sampler2DShadow shadow; uniform sampler3D volume; out vec4 o;\n"
+      "void main() {\n"
+      "  ivec2 p = ivec2(gl_FragCoord.xy);\n"
+      "  vec4 c = texelFetch(scene, p, 0) + texelFetchOffset(scene, p, 0, ivec2(1, 0));\n"
+      "  c += vec4(texelFetch(ids, p / 2, 1)) + vec4(texelFetch(mask, textureSize(scene, 0) - 1, 0));\n"
+      "  c += vec4(vec2(textureSize(shadow, 0)), vec2(textureSize(volume, 0).xy));\n"
+      "  o = c + texelFetch(volume, ivec3(p, 0), 0);\n"
+      "}\n";
+  const AppSpaceResult r = app_space(source);
+  REQUIRE(r.ok);
+  INFO(r.source);
+  CHECK(r.samplers == std::vector<std::string>{"ids", "mask", "scene", "shadow"});  // not the 3D one
+  std::string body = r.source.substr(r.source.find("void main"));
+  body.erase(std::remove(body.begin(), body.end(), ' '), body.end());
+  INFO(body);
+  CHECK(body.find("glbudget_texelFetch(scene,p,0,glbudget_size_scene)") != std::string::npos);
+  CHECK(body.find("glbudget_texelFetchOffset(scene,p,0,ivec2(1,0),glbudget_size_scene)") != std::string::npos);
+  CHECK(
+      body.find("glbudget_texelFetch(mask,glbudget_textureSize(scene,0,glbudget_size_scene)-1,0,glbudget_size_mask)") !=
+      std::string::npos);
+  CHECK(body.find("glbudget_texelFetch(ids,p/2,1,glbudget_size_ids)") != std::string::npos);
+  CHECK(body.find("texelFetch(volume,ivec3(") != std::string::npos);
+  CHECK(body.find("textureSize(volume,0)") != std::string::npos);
+  CHECK(glslang_errors(r.source, Stage::fragment).empty());
+}
+
+TEST_CASE("the rewrite compiles in GLSL ES and old desktop GLSL", "[app_space]") {
+  const char* sources[] = {
+      "#version 100\nprecision mediump float;\nuniform vec2 u_res;\n"
+      "void main() { gl_FragColor = vec4(gl_FragCoord.xy / u_res, 0.0, 1.0); }\n",
+      "#version 300 es\nprecision mediump float;\nuniform mediump isampler2D ids; uniform sampler2D t; out vec4 o;\n"
+      "void main() { o = texelFetch(t, ivec2(gl_FragCoord.xy), 0) + vec4(texelFetch(ids, ivec2(0), 0)); }\n",
+      "#version 120\nuniform vec2 u_res;\nvoid main() { gl_FragColor = vec4(gl_FragCoord.xy / u_res, 0.0, 1.0); }\n",
+      "varying vec2 v;\nvoid main() { gl_FragColor = vec4(gl_FragCoord.xy * v, 0.0, 1.0); }\n",
+  };
+  for (const char* source : sources) {
+    INFO(source);
+    const AppSpaceResult r = app_space(source);
+    REQUIRE(r.ok);
+    INFO(r.source);
+    CHECK(glslang_errors(r.source, Stage::fragment).empty());
+  }
+}
+
+TEST_CASE("a sampler known only at run time leaves the shader as it is, saying why", "[app_space]") {
+  const char* sources[] = {
+      "#version 330\nuniform sampler2D t[2]; out vec4 o;\n"
+      "void main() { o = texelFetch(t[1], ivec2(gl_FragCoord.xy), 0); }\n",
+      "#version 330\nuniform sampler2D t; out vec4 o;\n"
+      "vec4 at(sampler2D s, ivec2 p) { return texelFetch(s, p, 0); }\n"
+      "void main() { o = at(t, ivec2(gl_FragCoord.xy)); }\n",
+  };
+  for (const char* source : sources) {
+    const AppSpaceResult r = app_space(source);
+    CHECK(r.needed);
+    CHECK_FALSE(r.ok);
+    CHECK(r.error.find("not a uniform sampler named directly") != std::string::npos);
+  }
+  const AppSpaceResult broken = app_space("#version 330\nout vec4 o; void main() { o = gl_FragCoord }\n");
+  CHECK(broken.needed);
+  CHECK_FALSE(broken.ok);
+  CHECK_FALSE(broken.error.empty());
 }
