@@ -858,3 +858,15 @@ TEST_CASE("the demo's replacement shaders keep the declarations of the shaders t
   CHECK(read(kDemo + "/manifest/ssr_off.frag").starts_with("#version 330 core\n"));
   CHECK(read(kDemo + "/manifest/fxaa_off.frag").starts_with("#version 330 core\n"));
 }
+
+TEST_CASE("shader_coordinates: app by default, scaled when asked, a bad value warned") {
+  CHECK(load_ok("[[pass]]\nname = \"a\"\n").app_coordinates);
+  CHECK_FALSE(load_ok("shader_coordinates = \"scaled\"\n[[pass]]\nname = \"a\"\n").app_coordinates);
+  CHECK(load_ok("shader_coordinates = \"app\"\n[[pass]]\nname = \"a\"\n").app_coordinates);
+  std::vector<std::string> problems;
+  CHECK(load_ok("shader_coordinates = \"stored\"\n[[pass]]\nname = \"a\"\n", &problems).app_coordinates);
+  REQUIRE(problems.size() == 1);
+  CHECK(problems[0] == "m.toml:1:22: shader_coordinates must be \"app\" or \"scaled\"; \"app\" is used");
+  CHECK_FALSE(
+      with_resolution_pass(load_ok("shader_coordinates = \"scaled\"\n[[pass]]\nname = \"a\"\n")).app_coordinates);
+}

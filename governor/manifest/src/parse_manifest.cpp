@@ -15,7 +15,15 @@ LoadResult parse_manifest(const std::string& toml_text, const std::string& path)
       return result;
     }
     const toml::table& root = parsed.table();
-    reader.warn_unknown_keys(root, {"pass"}, "the manifest");
+    reader.warn_unknown_keys(root, {"pass", "shader_coordinates"}, "the manifest");
+    bool app_coordinates = true;
+    if (const toml::node* coordinates = root.get("shader_coordinates")) {
+      const auto* text = coordinates->as_string();
+      if (text && (text->get() == "app" || text->get() == "scaled"))
+        app_coordinates = text->get() == "app";
+      else
+        reader.report(coordinates->source(), "shader_coordinates must be \"app\" or \"scaled\"; \"app\" is used");
+    }
 
     std::vector<detail::ParsedPass> passes;
     std::map<std::string, std::string> names;
@@ -28,7 +36,8 @@ LoadResult parse_manifest(const std::string& toml_text, const std::string& path)
     } else if (pass_node) {
       reader.report(pass_node->source(), "pass must be an array of tables ([[pass]])");
     }
-    Manifest manifest{.path = path, .passes = detail::resolve(reader, std::move(passes))};
+    Manifest manifest{
+        .path = path, .passes = detail::resolve(reader, std::move(passes)), .app_coordinates = app_coordinates};
     if (manifest.passes.empty()) {
       reader.report(pass_node ? pass_node->source() : toml::source_region{},
                     "no passes: the manifest needs at least one usable [[pass]]", true);

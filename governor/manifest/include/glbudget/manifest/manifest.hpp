@@ -17,7 +17,8 @@
 //   scale = 0.5                                    # render targets at half width and height
 //   targets = ["self", "pass:metals", "default", "window-sized", "texture:12", "framebuffer:3"]
 //
-// Schema. Top level: `pass`, an array of tables, in the order of GLBUDGET_FORCE.
+// Schema. Top level: `pass`, an array of tables, in the order of GLBUDGET_FORCE;
+// `shader_coordinates`, "app" (default) or "scaled" (Manifest::app_coordinates).
 //   pass.name     string, required, unique.
 //   pass.match    table: `hash` (string or array of strings of 16 hex digits, the frame log's
 //                 program hash) and/or `source` (string or array of non-empty strings, each a
@@ -134,6 +135,12 @@ struct Pass {
 struct Manifest {
   std::string path;  // where it was read from ("" for the built-in one)
   std::vector<Pass> passes;
+  // `shader_coordinates`: "app" (the default) rewrites the fragment shaders that read
+  // gl_FragCoord, texelFetch or textureSize so that, drawing into a scaled target, they see
+  // the app's pixels (instrument/app_space.hpp): right for shaders written for one resolution.
+  // "scaled" leaves them as they are: right for an app whose shaders follow its own render
+  // scale, as a manifest reproducing that scale from outside does.
+  bool app_coordinates = true;
   // Index of the pass of this name, or -1.
   int find(const std::string& name) const;
 };
