@@ -105,6 +105,7 @@ ApplyGl load_all() {
   load(g.GenTextures, "glGenTextures");
   load(g.DeleteTextures, "glDeleteTextures");
   load(g.BindTexture, "glBindTexture");
+  load(g.ActiveTexture, "glActiveTexture");
   load(g.TexImage2D, "glTexImage2D");
   load(g.TexParameteri, "glTexParameteri");
   load(g.GetTexParameteriv, "glGetTexParameteriv");

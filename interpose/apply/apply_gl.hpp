@@ -103,6 +103,7 @@ struct ApplyGl {
   void(APIENTRYP GenTextures)(GLsizei, GLuint*) = nullptr;
   void(APIENTRYP DeleteTextures)(GLsizei, const GLuint*) = nullptr;
   void(APIENTRYP BindTexture)(GLenum, GLuint) = nullptr;
+  void(APIENTRYP ActiveTexture)(GLenum) = nullptr;
   void(APIENTRYP TexImage2D)(GLenum, GLint, GLint, GLsizei, GLsizei, GLint, GLenum, GLenum, const void*) = nullptr;
   void(APIENTRYP TexParameteri)(GLenum, GLenum, GLint) = nullptr;
   void(APIENTRYP GetTexParameteriv)(GLenum, GLenum, GLint*) = nullptr;

@@ -118,6 +118,7 @@ const manifest::Manifest& active_manifest() { return state().manifest; }
 bool manifest_has_programs() { return state().has_programs; }
 bool manifest_scales_targets() { return state().scales_targets; }
 bool manifest_scales_window() { return state().scales_window; }
+bool manifest_app_coordinates() { return state().manifest.app_coordinates; }
 
 Levels configuration_for_frame(uint64_t frame) {
   const State& s = state();

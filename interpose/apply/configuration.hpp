@@ -41,6 +41,8 @@ const manifest::Manifest& active_manifest();
 bool manifest_has_programs();    // any pass matches programs
 bool manifest_scales_targets();  // any level scales the app's render targets
 bool manifest_scales_window();   // any level scales the default framebuffer
+// Fragment shaders see the app's pixels in scaled targets (manifest `shader_coordinates`).
+bool manifest_app_coordinates();
 
 // The configuration the frame with this number (1-based, per context) draws.
 Levels configuration_for_frame(uint64_t frame);

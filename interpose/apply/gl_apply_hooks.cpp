@@ -26,7 +26,7 @@ void answer_for_app(GLenum pname, T* params) {
   TargetScaler* s = c->targets.get();
   if (pname == GL_CURRENT_PROGRAM && c->bound_variants) {
     params[0] = static_cast<T>(c->program);
-  } else if (pname == GL_NUM_PROGRAM_BINARY_FORMATS && manifest_has_programs()) {
+  } else if (pname == GL_NUM_PROGRAM_BINARY_FORMATS && shadows_programs(*c)) {
     // An app that loads cached binaries never gives its sources for the manifest to match: with
     // no binary format, apps build from source, as after a driver update.
     params[0] = 0;

@@ -11,6 +11,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "app_space_uniforms.hpp"
 #include "apply_gl.hpp"
 #include "context_state.hpp"
 #include "gl_errors.hpp"
@@ -603,7 +604,24 @@ struct ProbeFrames::Impl {
       g.BindTexture(GL_TEXTURE_2D, want ? t->second : static_cast<GLuint>(unit_texture[u]));
       redirected[u] = want;
     }
+    if (c.bound_variants) give_app_space_for_stream(c.bound_variants->at(st.config), sh);
     return true;
+  }
+
+  // A program in app coordinates (apply/app_space_uniforms.hpp) sees the app's pixels in the
+  // stream's shadows, which hold the app's images at the stream's scales.
+  void give_app_space_for_stream(const Variant& v, const Shadow& sh) {
+    if (!v.program || !v.app_space.any()) return;
+    const float rx = static_cast<float>(sh.app_width) / static_cast<float>(sh.width);
+    const float ry = static_cast<float>(sh.app_height) / static_cast<float>(sh.height);
+    give_app_space(v, rx, ry, [&](GLint unit) -> SamplerSize {
+      const bool tracked = unit >= 0 && unit < units;
+      const GLuint app = tracked ? static_cast<GLuint>(unit_texture[unit]) : targets()->texture_at_unit(unit);
+      GLint w = 0, h = 0;
+      bool scaled = false;
+      if (!targets()->app_texture_size(app, &w, &h, &scaled)) return {0, 0, 0};
+      return scaled || (tracked && redirected[unit]) ? SamplerSize{w, h, 1} : SamplerSize{0, 0, 0};
+    });
   }
 
   bool begin_duplicate() {

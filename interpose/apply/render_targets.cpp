@@ -976,6 +976,27 @@ bool TargetScaler::texture_size(GLuint texture, GLint level, GLenum pname, GLint
   return true;
 }
 
+bool TargetScaler::app_texture_size(GLuint texture, GLint* width, GLint* height, bool* scaled) const {
+  auto it = textures_.find(texture);
+  if (it == textures_.end() || it->second.app_size.empty()) return false;
+  *width = it->second.app_size[0][0];
+  *height = it->second.app_size[0][1];
+  *scaled = it->second.scale != 1.0;
+  return *width > 0 && *height > 0;
+}
+
+GLuint TargetScaler::texture_at_unit(GLint unit) {
+  const ApplyGl& g = agl();
+  if (texture_units_ < 0) g.GetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &texture_units_);
+  if (unit < 0 || unit >= texture_units_ || !g.ActiveTexture) return 0;
+  GLint active = GL_TEXTURE0, bound = 0;
+  g.GetIntegerv(GL_ACTIVE_TEXTURE, &active);
+  g.ActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(unit));
+  g.GetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
+  g.ActiveTexture(static_cast<GLenum>(active));
+  return static_cast<GLuint>(bound);
+}
+
 bool TargetScaler::renderbuffer_size(GLenum pname, GLint* value) const {
   if (pname != GL_RENDERBUFFER_WIDTH && pname != GL_RENDERBUFFER_HEIGHT) return false;
   GLint bound = 0;

@@ -130,6 +130,11 @@ class TargetScaler {
   // the texture bound to GL_TEXTURE_2D, or one named (glGetTextureLevelParameter).
   bool texture_size(GLuint texture, GLint level, GLenum pname, GLint* value) const;
   bool renderbuffer_size(GLenum pname, GLint* value) const;
+  // The app's size of level 0 of a 2D texture the scaler knows, and whether it is stored at
+  // another size now; false for a texture it does not know (stored as the app made it).
+  bool app_texture_size(GLuint texture, GLint* width, GLint* height, bool* scaled) const;
+  // The 2D texture bound to texture unit `unit` (0 for a unit the driver does not have).
+  GLuint texture_at_unit(GLint unit);
   // The app's viewport and scissor box (4 values) for glGet*.
   const GLint* app_viewport() const { return viewport_.data(); }
   const GLint* app_scissor() const { return scissor_.data(); }
@@ -237,6 +242,7 @@ class TargetScaler {
   bool any_scaled_ = false;
   bool gles_ = false;
   uint64_t frame_ = 1;
+  GLint texture_units_ = -1;  // GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, once asked
 };
 
 }  // namespace glbudget

@@ -14,6 +14,7 @@
 #include "gl_errors.hpp"
 #include "messages.hpp"
 #include "options.hpp"
+#include "glbudget/instrument/app_space.hpp"
 #include "glbudget/instrument/defines.hpp"
 #include "pass_names.hpp"
 #include "shader_instrumentation.hpp"
@@ -480,10 +481,57 @@ int match_pass(PassId hash, const std::vector<ShaderSource>& sources) {
   return -1;
 }
 
+namespace {
+// A level's sources with the fragment stage rewritten to see the app's pixels, when it reads
+// any; `rewritten` says whether it did. Where a use cannot be followed, `refused` says which.
+// A shader the rewrite cannot read is left to the driver, whose verdict the app gets anyway.
+std::vector<ShaderSource> in_app_coordinates(std::vector<ShaderSource> sources,
+                                             const std::optional<std::vector<std::string>>& extensions,
+                                             std::vector<std::string>* samplers, bool* frag_coord, bool* rewritten,
+                                             std::string* refused) {
+  *rewritten = false;
+  for (ShaderSource& s : sources) {
+    if (s.stage != GL_FRAGMENT_SHADER) continue;
+    instrument::AppSpaceResult r = instrument::to_app_space(s.source, extensions);
+    if (!r.needed) continue;
+    if (!r.ok) {
+      if (r.unsupported && refused->empty()) *refused = r.error;
+      continue;
+    }
+    s.source = std::move(r.source);
+    *samplers = std::move(r.samplers);
+    *frag_coord = r.frag_coord;
+    *rewritten = true;
+  }
+  return sources;
+}
+
+// The rewritten shader's own uniforms: located, and set to draw as the app's program does.
+void locate_app_space(Variant& v, bool frag_coord, const std::vector<std::string>& samplers) {
+  const ApplyGl& g = agl();
+  if (frag_coord) v.app_space.frag_ratio = g.GetUniformLocation(v.program, instrument::kFragRatioUniform);
+  if (v.app_space.frag_ratio >= 0) {
+    const GLfloat one[2] = {1.0f, 1.0f};
+    g.ProgramUniform2fv(v.program, v.app_space.frag_ratio, 1, one);
+  }
+  for (const std::string& name : samplers) {
+    AppSpaceUniforms::Sampler s;
+    s.sampler = g.GetUniformLocation(v.program, name.c_str());
+    s.size = g.GetUniformLocation(v.program, (instrument::kSamplerSizePrefix + name).c_str());
+    if (s.sampler >= 0 && s.size >= 0) v.app_space.samplers.push_back(s);  // else optimised away
+  }
+  v.app_space.given = std::make_shared<AppSpaceUniforms::Given>();
+  v.app_space.given->sizes.assign(v.app_space.samplers.size(), {0, 0, 0});
+}
+}  // namespace
+
 std::shared_ptr<VariantSet> build_variants(GLuint program, PassId app_hash, int pass,
                                            const std::vector<ShaderSource>& sources, const GlCaps& caps,
-                                           const NameBindings& bindings, Instrumentation* inst) {
-  const manifest::Pass& mp = active_manifest().passes[static_cast<size_t>(pass)];
+                                           const NameBindings& bindings, Instrumentation* inst, bool app_coordinates,
+                                           const std::optional<std::vector<std::string>>& driver_extensions,
+                                           std::string* refused) {
+  static const manifest::Pass kNoPass{.name = "", .match = {}, .levels = {manifest::Level{}}, .scales = {}};
+  const manifest::Pass& mp = pass >= 0 ? active_manifest().passes[static_cast<size_t>(pass)] : kNoPass;
   auto set = std::make_shared<VariantSet>();
   set->app_program = program;
   set->pass = pass;
@@ -493,65 +541,87 @@ std::shared_ptr<VariantSet> build_variants(GLuint program, PassId app_hash, int 
   std::array<StageInterface, kShaderStages> app_stages;
   bool app_stages_read = false;
   bool any = false;
+  // The app's program in app coordinates, shared by the levels that otherwise draw it.
+  std::optional<Variant> app_twin;
   drain_gl_errors();  // raised by the shim's work before this (instrumenting the app's program): not a variant's
   for (size_t l = 0; l < mp.levels.size(); ++l) {
     const manifest::Level& level = mp.levels[l];
     Variant v;
     v.pass_hash = app_hash;
     v.draws = level.draws;
-    if (level.changes_program() && !g_out_of_memory) {
-      const std::string where =
-          "pass '" + mp.name + "' level " + std::to_string(l) + (level.name.empty() ? "" : " (" + level.name + ")");
+    const std::string where = pass < 0 ? "program " + hash_text(app_hash)
+                                       : "pass '" + mp.name + "' level " + std::to_string(l) +
+                                             (level.name.empty() ? "" : " (" + level.name + ")");
+    const bool changes = level.changes_program();
+    if (!changes && app_twin) {
+      v = *app_twin;
+      v.draws = level.draws;
+    } else if ((changes || app_coordinates) && !g_out_of_memory) {
       if (!apply_gl_has_program_uniforms()) {
         say_once("no-program-uniform", "variants need glProgramUniform* (GL 4.1, GLES 3.1); " + where +
                                            " and every other program variant draw with the app's programs");
       } else {
-        const std::vector<ShaderSource> modified = variant_sources(sources, level);
+        const std::vector<ShaderSource> modified = changes ? variant_sources(sources, level) : sources;
         std::vector<uint64_t> hashes;
         for (const ShaderSource& s : modified) hashes.push_back(shader_hash(s.stage, s.source));
+        // Its name in the log and the dump: the sources before the app-coordinates rewrite,
+        // which only restores what the app drew.
         const PassId variant_hash = program_hash(std::move(hashes));
-        v.dump_name = hash_text(variant_hash);
-        if (variant_hash == app_hash) v.dump_name += "-level" + std::to_string(l);
-        std::string error;
-        v.program = link_variant(program, modified, caps, bindings, inst, v.dump_name, where, &v.instrumented, &error);
-        if (!v.program) {
-          say_once(where + hash_text(app_hash), where + ": the variant of program " + hash_text(app_hash) + " " +
-                                                    error + "; this level draws the app's program");
-        } else {
-          v.pass_hash = variant_hash;
-          map_uniforms(program, v, level);
-          map_blocks(program, v, caps);
-          if (!app_stages_read) {
-            for (const auto& [slot, stage] : stages) {
-              app_stages[static_cast<size_t>(slot)] = stage_interface(program, stage);
-              set->app_subroutines[static_cast<size_t>(slot)] = app_stages[static_cast<size_t>(slot)].stage;
+        std::vector<std::string> samplers;
+        bool frag_coord = false, rewritten = false;
+        const std::vector<ShaderSource> built =
+            app_coordinates
+                ? in_app_coordinates(modified, driver_extensions, &samplers, &frag_coord, &rewritten, refused)
+                : modified;
+        if (changes || rewritten) {
+          v.dump_name = hash_text(variant_hash);
+          if (variant_hash == app_hash && changes) v.dump_name += "-level" + std::to_string(l);
+          std::string error;
+          v.program = link_variant(program, built, caps, bindings, rewritten ? nullptr : inst, v.dump_name, where,
+                                   &v.instrumented, &error);
+          if (!v.program) {
+            say_once(where + hash_text(app_hash), where + ": the variant of program " + hash_text(app_hash) + " " +
+                                                      error + "; this level draws the app's program");
+          } else {
+            v.pass_hash = variant_hash;
+            map_uniforms(program, v, level);
+            map_blocks(program, v, caps);
+            if (!app_stages_read) {
+              for (const auto& [slot, stage] : stages) {
+                app_stages[static_cast<size_t>(slot)] = stage_interface(program, stage);
+                set->app_subroutines[static_cast<size_t>(slot)] = app_stages[static_cast<size_t>(slot)].stage;
+              }
+              app_stages_read = true;
             }
-            app_stages_read = true;
+            map_subroutines(app_stages, stages, v);
+            if (pass >= 0) hold_uniforms(mp, l, level, v.program);
+            if (rewritten) locate_app_space(v, frag_coord, samplers);
           }
-          map_subroutines(app_stages, stages, v);
-          hold_uniforms(mp, l, level, v.program);
+          // The app's errors were moved aside by the caller (OwnGlWork): what is pending now,
+          // the variant's build raised. A variant built amid errors is not drawn.
+          if (pass >= 0) provoke_out_of_memory_for_test(mp.name, l);
+          const std::vector<GLenum> raised = drain_gl_errors();
+          const bool out_of_memory = std::find(raised.begin(), raised.end(), GL_OUT_OF_MEMORY) != raised.end();
+          if (!raised.empty()) {
+            if (v.program) agl().DeleteProgram(v.program);
+            v = Variant{};
+            v.pass_hash = app_hash;
+            v.draws = level.draws;
+          }
+          if (out_of_memory) {
+            g_out_of_memory = true;
+            say(where + ": the driver ran out of memory (GL_OUT_OF_MEMORY) building the variant of program " +
+                hash_text(app_hash) + "; no more variants are built, and levels without one draw the app's programs");
+          } else if (!raised.empty()) {
+            say_once(where + hash_text(app_hash) + "errors",
+                     where + ": building the variant of program " + hash_text(app_hash) + " raised " +
+                         error_names(raised) + "; this level draws the app's program");
+          }
+          if (v.program) set->programs.push_back(v.program);
+          if (!changes) app_twin = v;  // built or not: the other identity levels share it
+        } else if (!changes) {
+          app_twin = v;  // nothing to rewrite: the app's program as it is
         }
-        // The app's errors were moved aside by the caller (OwnGlWork): what is pending now,
-        // the variant's build raised. A variant built amid errors is not drawn.
-        provoke_out_of_memory_for_test(mp.name, l);
-        const std::vector<GLenum> raised = drain_gl_errors();
-        const bool out_of_memory = std::find(raised.begin(), raised.end(), GL_OUT_OF_MEMORY) != raised.end();
-        if (!raised.empty()) {
-          if (v.program) agl().DeleteProgram(v.program);
-          v = Variant{};
-          v.pass_hash = app_hash;
-          v.draws = level.draws;
-        }
-        if (out_of_memory) {
-          g_out_of_memory = true;
-          say(where + ": the driver ran out of memory (GL_OUT_OF_MEMORY) building the variant of program " +
-              hash_text(app_hash) + "; no more variants are built, and levels without one draw the app's programs");
-        } else if (!raised.empty()) {
-          say_once(where + hash_text(app_hash) + "errors", where + ": building the variant of program " +
-                                                               hash_text(app_hash) + " raised " + error_names(raised) +
-                                                               "; this level draws the app's program");
-        }
-        if (v.program) set->programs.push_back(v.program);
       }
     }
     any |= v.program != 0 || !v.draws;

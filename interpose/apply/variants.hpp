@@ -8,6 +8,7 @@
 #pragma once
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,25 @@ struct SubroutineMap {
   std::vector<GLint> app_location;  // variant location -> the app's (-1: the app has no such uniform)
 };
 
+// The uniforms of a variant whose fragment shader was rewritten to see the app's pixels in
+// scaled targets (instrument/app_space.hpp), set before its draws (apply/app_space.hpp). The
+// values last given (uniforms are the program's state) are shared by the levels that draw the
+// same program, and skip repeating them.
+struct AppSpaceUniforms {
+  GLint frag_ratio = -1;  // glbudget_frag_ratio (-1: the shader does not read gl_FragCoord)
+  struct Sampler {
+    GLint sampler = -1;  // the sampler uniform (its value: the texture unit)
+    GLint size = -1;     // its glbudget_size_<name>
+  };
+  std::vector<Sampler> samplers;
+  struct Given {
+    std::array<float, 2> ratio{1.0f, 1.0f};
+    std::vector<std::array<GLint, 3>> sizes;  // per sampler
+  };
+  std::shared_ptr<Given> given;
+  bool any() const { return frag_ratio >= 0 || !samplers.empty(); }
+};
+
 struct Variant {
   GLuint program = 0;         // 0: the level draws with the app's program
   PassId pass_hash = 0;       // the program's name in the frame log (as if the app had built it)
@@ -52,17 +72,18 @@ struct Variant {
   std::vector<GLint> uniform_block;  // app block index -> variant index (-1: absent)
   std::vector<GLint> storage_block;
   std::array<SubroutineMap, kShaderStages> subroutines;  // per stage slot
+  AppSpaceUniforms app_space;
 };
 
 struct VariantSet {
   GLuint app_program = 0;
-  int pass = -1;                                               // manifest pass
-  std::vector<Variant> levels;                                 // one per level of the pass
-  std::vector<GLuint> programs;                                // distinct variant programs (not the app's)
+  int pass = -1;                 // manifest pass; -1: no pass, one level (the app's program in app coordinates)
+  std::vector<Variant> levels;   // one per level of the pass
+  std::vector<GLuint> programs;  // distinct variant programs (not the app's)
   std::array<SubroutineStage, kShaderStages> app_subroutines;  // the app program's, per stage slot
 
   const Variant& at(const Levels& config) const {
-    const int l = config[pass];
+    const int l = pass < 0 ? 0 : config[pass];
     return levels[static_cast<size_t>(l < static_cast<int>(levels.size()) ? l : 0)];
   }
   GLuint program_for(const Levels& config) const {
@@ -79,7 +100,11 @@ struct ShaderSource {
 // The manifest pass that claims a linked program, or -1.
 int match_pass(PassId hash, const std::vector<ShaderSource>& sources);
 
-// Builds the variants of `program` (linked successfully by the app) for manifest pass `pass`.
+// Builds the variants of `program` (linked successfully by the app) for manifest pass `pass`
+// (-1: one level, the app's program unchanged). With `app_coordinates`, every level whose
+// fragment shader reads pixel coordinates is built rewritten to see the app's pixels in
+// scaled targets (instrument/app_space.hpp), the app's own level too; where the rewrite cannot
+// follow a use, `refused` gets why (the first one) and the level is built as it is.
 // Levels whose variant does not compile or link are reported once and fall back to the app's
 // program. Null when the pass needs no variant program (only draws/scale levels) and skips
 // nothing, or when the driver lacks glProgramUniform*.
@@ -94,7 +119,9 @@ struct NameBindings {
 // GL_OUT_OF_MEMORY no variant is built again in the process.
 std::shared_ptr<VariantSet> build_variants(GLuint program, PassId app_hash, int pass,
                                            const std::vector<ShaderSource>& sources, const GlCaps& caps,
-                                           const NameBindings& bindings, Instrumentation* inst);
+                                           const NameBindings& bindings, Instrumentation* inst, bool app_coordinates,
+                                           const std::optional<std::vector<std::string>>& driver_extensions,
+                                           std::string* refused);
 void delete_variants(const VariantSet& set);
 
 // The app's last glUniformSubroutinesuiv of one stage, in its program's indices, and the

@@ -47,6 +47,9 @@ struct ProgramInfo {
   // engine binding one scheme for every program): replayed on each variant.
   std::vector<std::pair<std::string, GLuint>> attribute_bindings;
   std::vector<std::pair<std::string, std::pair<GLuint, GLuint>>> frag_data_bindings;  // colour, index
+  // Why its fragment shader could not be rewritten to see the app's pixels ("": it was, or
+  // needed not be): said once it draws into a scaled target.
+  std::string app_space_refused;
 };
 
 class TargetScaler;
@@ -57,6 +60,7 @@ struct ShareGroup {
   std::unordered_map<GLuint, ShaderInfo> shaders;
   std::unordered_map<GLuint, ProgramInfo> programs;
   std::atomic<bool> has_variants{false};  // any program of the group has variants
+  std::atomic<bool> has_refused{false};   // any has app_space_refused
 };
 
 struct ContextState {
@@ -71,12 +75,14 @@ struct ContextState {
   std::unique_ptr<PassCounter> counter;
   std::unique_ptr<Instrumentation> instrumentation;  // GLBUDGET_INSTRUMENT, made on first use
   bool instrumentation_probed = false;
+  std::optional<std::vector<std::string>> extensions;  // the driver's, once read (state/gl_programs.cpp)
 
   GLuint program = 0;       // the app's program (the driver may have a variant of it bound)
   GLuint real_program = 0;  // the program the driver has bound
   GLuint pipeline = 0;
   std::shared_ptr<const VariantSet> bound_variants;  // of `program`, when it has variants
   int manifest_pass = -1;                            // the manifest pass of `program`
+  bool app_space_refused = false;                    // `program` has ProgramInfo::app_space_refused
   // The app's subroutine selections per stage slot while `program` has variants, in its terms
   // (apply/subroutines.hpp): re-applied after glbudget's own glUseProgram.
   std::array<SubroutineSelection, kShaderStages> subroutines;
@@ -111,6 +117,10 @@ void display_terminated(void* display);
 
 // Takes the configuration for the context's next frame (at its swap, and when it starts).
 void apply_configuration(ContextState& c, const Levels& config);
+
+// Whether the context builds copies of the app's programs: variants for a manifest's passes,
+// or its programs in app coordinates while render targets may be scaled (apply/variants.hpp).
+bool shadows_programs(const ContextState& c);
 
 // Binds, in the driver, the variant of the app's current program that the context's
 // configuration draws with (or the app's own program).

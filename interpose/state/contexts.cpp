@@ -3,6 +3,7 @@
 #include <unordered_map>
 
 #include "context_state.hpp"
+#include "app_space_uniforms.hpp"
 #include "frame_log.hpp"
 #include "frame_output.hpp"
 #include "gl_calls.hpp"
@@ -72,6 +73,8 @@ void initialise(ContextState& c, Registry& r) {
         [](void* ctx) {
           auto* cs = static_cast<ContextState*>(ctx);
           cs->targets->on_draw(cs->manifest_pass);
+          if (cs->bound_variants) give_app_space_for_draw(*cs);
+          if (cs->app_space_refused) report_app_space_refused(*cs);
         },
         &c);
   }

@@ -40,8 +40,25 @@ bool link_succeeded(GLuint program) {
   return ok == GL_TRUE;
 }
 
-// After the app's link: the manifest pass that claims the program, and its variants. Caller
-// holds the share group's lock.
+bool app_coordinate_copies(const ContextState& c) { return c.targets && manifest_app_coordinates(); }
+
+// The driver's extensions, for preprocessing as the driver does (read once per context).
+const std::optional<std::vector<std::string>>& driver_extensions(ContextState& c) {
+  if (!c.extensions && gl().GetStringi && c.caps.major >= 3) {
+    GLint count = 0;
+    gl().GetIntegerv(GL_NUM_EXTENSIONS, &count);
+    std::vector<std::string> names;
+    for (GLint i = 0; i < count; ++i)
+      if (auto e = reinterpret_cast<const char*>(gl().GetStringi(GL_EXTENSIONS, static_cast<GLuint>(i))))
+        names.emplace_back(e);
+    c.extensions = std::move(names);
+  }
+  return c.extensions;
+}
+
+// After the app's link: the manifest pass that claims the program, and its variants; where
+// render targets may be scaled, its copy that sees the app's pixels in them. Caller holds the
+// share group's lock.
 void shadow_program(ContextState& c, ShareGroup& g, GLuint program, ProgramInfo& p,
                     std::vector<ShaderSource> sources = {}) {
   if (p.variants) {
@@ -49,22 +66,28 @@ void shadow_program(ContextState& c, ShareGroup& g, GLuint program, ProgramInfo&
     p.variants.reset();
   }
   p.manifest_pass = -1;
-  if (!manifest_has_programs()) return;
+  // Instrumented runs (calibration, dumps) count the app's programs as they are.
+  const bool app_coordinates = app_coordinate_copies(c) && !instrumentation_of(c);
+  if (!manifest_has_programs() && !app_coordinates) return;
   for (GLuint s : p.shaders) {
     auto it = g.shaders.find(s);
     if (it != g.shaders.end()) sources.push_back({it->second.stage, it->second.source});
   }
-  p.manifest_pass = match_pass(p.pass, sources);
-  if (p.manifest_pass < 0) return;
-  note_pass_matched(p.manifest_pass);
+  if (manifest_has_programs()) p.manifest_pass = match_pass(p.pass, sources);
+  if (p.manifest_pass >= 0) note_pass_matched(p.manifest_pass);
+  if (p.manifest_pass < 0 && !app_coordinates) return;
   if (!link_succeeded(program)) return;  // the app's own failure: nothing to shadow
+  p.app_space_refused.clear();
   p.variants = build_variants(program, p.pass, p.manifest_pass, sources, c.caps,
-                              {p.attribute_bindings, p.frag_data_bindings}, instrumentation_of(c));
+                              {p.attribute_bindings, p.frag_data_bindings}, instrumentation_of(c), app_coordinates,
+                              app_coordinates ? driver_extensions(c) : std::nullopt, &p.app_space_refused);
+  if (p.variants) g.has_variants = true;
+  if (!p.app_space_refused.empty()) g.has_refused = true;
+  if (p.manifest_pass < 0) return;
   // The governor sums a pass's programs, under whichever name a variant logs them.
   note_program_pass(p.pass, p.manifest_pass);
   if (p.variants)
     for (const Variant& v : p.variants->levels) note_program_pass(v.pass_hash, p.manifest_pass);
-  if (p.variants) g.has_variants = true;
   std::vector<DrawnProgram> drawn_at_level(active_manifest().passes[static_cast<size_t>(p.manifest_pass)].levels.size(),
                                            {p.pass, hash_text(p.pass)});
   if (p.variants)
@@ -103,15 +126,19 @@ void update_pipeline_uniforms(ContextState& c) {
 }
 }  // namespace
 
+bool shadows_programs(const ContextState& c) { return manifest_has_programs() || app_coordinate_copies(c); }
+
 void bind_program(ContextState& c) {
   std::shared_ptr<const VariantSet> variants;
   int pass = -1;
-  if (c.program && manifest_has_programs()) {
+  c.app_space_refused = false;
+  if (c.program && (c.group->has_variants || c.group->has_refused)) {
     std::lock_guard lock(c.group->mu);
     auto it = c.group->programs.find(c.program);
     if (it != c.group->programs.end()) {
       variants = it->second.variants;
       pass = it->second.manifest_pass;
+      c.app_space_refused = !it->second.app_space_refused.empty();
     }
   }
   c.bound_variants = std::move(variants);
@@ -272,7 +299,7 @@ void handle_glUseProgram(pfn_glUseProgram real, GLuint program) {
 void handle_glBindAttribLocation(pfn_glBindAttribLocation real, GLuint program, GLuint index, const GLchar* name) {
   real(program, index, name);
   ContextState* c = current_context();
-  if (!c || !name || !manifest_has_programs()) return;
+  if (!c || !name || !shadows_programs(*c)) return;
   std::lock_guard lock(c->group->mu);
   auto& bindings = c->group->programs[program].attribute_bindings;
   std::erase_if(bindings, [&](const auto& b) { return b.first == name; });
@@ -283,7 +310,7 @@ void handle_glBindFragDataLocationIndexed(pfn_glBindFragDataLocationIndexed real
                                           GLuint index, const GLchar* name) {
   real(program, colorNumber, index, name);
   ContextState* c = current_context();
-  if (!c || !name || !manifest_has_programs()) return;
+  if (!c || !name || !shadows_programs(*c)) return;
   std::lock_guard lock(c->group->mu);
   auto& bindings = c->group->programs[program].frag_data_bindings;
   std::erase_if(bindings, [&](const auto& b) { return b.first == name; });
@@ -293,7 +320,7 @@ void handle_glBindFragDataLocationIndexed(pfn_glBindFragDataLocationIndexed real
 void handle_glBindFragDataLocation(pfn_glBindFragDataLocation real, GLuint program, GLuint color, const GLchar* name) {
   real(program, color, name);
   ContextState* c = current_context();
-  if (!c || !name || !manifest_has_programs()) return;
+  if (!c || !name || !shadows_programs(*c)) return;
   std::lock_guard lock(c->group->mu);
   auto& bindings = c->group->programs[program].frag_data_bindings;
   std::erase_if(bindings, [&](const auto& b) { return b.first == name; });

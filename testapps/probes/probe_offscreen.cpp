@@ -17,6 +17,12 @@
 //                        small quad ("pick R G B A", one pixel read alone), and the same pixel
 //                        copied by glCopyTexSubImage2D into a 1x1 texture and read from it
 //                        ("copied R G B A")
+//   --compose MODE       how the compose pass finds its texels: "uv" (default) interpolated
+//                        coordinates; "fragcoord" gl_FragCoord divided by the window's size,
+//                        set in a uniform (post-processing written for one resolution);
+//                        "fetch" texelFetch at gl_FragCoord (the quarter at a quarter of it);
+//                        "size" gl_FragCoord divided by textureSize (the quarter's times 4);
+//                        "array" texelFetch at gl_FragCoord of a sampler array's elements
 // Exits 4 when glGetError reports an error at any frame: none of the app's calls raises one;
 // 5 when a texture does not answer as the app made it (size, immutable format and levels).
 //   pass A, B: the known scene, into the window-sized framebuffer
@@ -44,6 +50,28 @@ const char* kQuarter =
 const char* kCompose =
     "#version 330 core\nin vec2 uv;\nuniform sampler2D scene;\nuniform sampler2D quarter;\nout vec4 frag;\n"
     "void main(){ frag = texture(scene, uv) * 0.75 + texture(quarter, uv) * 0.5; /* compose */ }\n";
+
+// The compose pass of each --compose mode: the same image, found three other ways.
+const char* compose_source(const std::string& mode) {
+  if (mode == "fragcoord")
+    return "#version 330 core\nuniform sampler2D scene;\nuniform sampler2D quarter;\nuniform vec2 u_resolution;\n"
+           "out vec4 frag;\nvoid main(){ vec2 uv = gl_FragCoord.xy / u_resolution;\n"
+           "  frag = texture(scene, uv) * 0.75 + texture(quarter, uv) * 0.5; /* compose */ }\n";
+  if (mode == "fetch")
+    return "#version 330 core\nuniform sampler2D scene;\nuniform sampler2D quarter;\nout vec4 frag;\n"
+           "void main(){ ivec2 p = ivec2(gl_FragCoord.xy);\n"
+           "  frag = texelFetch(scene, p, 0) * 0.75 + texelFetch(quarter, p / 4, 0) * 0.5; /* compose */ }\n";
+  if (mode == "size")
+    return "#version 330 core\nuniform sampler2D scene;\nuniform sampler2D quarter;\nout vec4 frag;\n"
+           "void main(){ vec2 uv = gl_FragCoord.xy / vec2(textureSize(scene, 0));\n"
+           "  vec2 quv = gl_FragCoord.xy / vec2(textureSize(quarter, 0) * 4);\n"
+           "  frag = texture(scene, uv) * 0.75 + texture(quarter, quv) * 0.5; /* compose */ }\n";
+  if (mode == "array")
+    return "#version 330 core\nuniform sampler2D images[2];\nout vec4 frag;\n"
+           "void main(){ ivec2 p = ivec2(gl_FragCoord.xy);\n"
+           "  frag = texelFetch(images[0], p, 0) * 0.75 + texelFetch(images[1], p / 4, 0) * 0.5; /* compose */ }\n";
+  return kCompose;
+}
 
 GLuint program(const char* vs, const char* fs) {
   GLuint p = glCreateProgram();
@@ -174,8 +202,9 @@ int main(int argc, char** argv) {
   ProbeArgs args = parse_probe_args(argc, argv);
   bool compat = false;
   Format format = Format::kSized;
-  std::string read_fbo_path;
+  std::string read_fbo_path, compose = "uv";
   for (int i = 1; i + 1 < argc; ++i) {
+    if (!strcmp(argv[i], "--compose")) compose = argv[i + 1];
     if (!strcmp(argv[i], "--read-fbo")) read_fbo_path = argv[i + 1];
     if (!strcmp(argv[i], "--profile")) compat = !strcmp(argv[i + 1], "compat");
     if (!strcmp(argv[i], "--format"))
@@ -197,7 +226,8 @@ int main(int argc, char** argv) {
   PROBE_GL_FUNCTIONS(DIRECT)
 #undef DIRECT
   KnownScene scene(gl, ShaderDialect::kGlsl330Core, w, h);
-  const GLuint quarter_program = program(kVertex, kQuarter), compose_program = program(kVertex, kCompose);
+  const GLuint quarter_program = program(kVertex, kQuarter),
+               compose_program = program(kVertex, compose_source(compose));
   if (!scene.ok() || !quarter_program || !compose_program) {
     fprintf(stderr, "probe_offscreen: %s\n", scene.ok() ? "a program does not link" : scene.error().c_str());
     return 2;
@@ -247,6 +277,9 @@ int main(int argc, char** argv) {
   glUseProgram(compose_program);
   glUniform1i(glGetUniformLocation(compose_program, "scene"), 0);
   glUniform1i(glGetUniformLocation(compose_program, "quarter"), 1);
+  const GLint images[2] = {0, 1};
+  glUniform1iv(glGetUniformLocation(compose_program, "images"), 2, images);
+  glUniform2f(glGetUniformLocation(compose_program, "u_resolution"), static_cast<float>(w), static_cast<float>(h));
 
   std::vector<uint8_t> image;
   GLenum error = glGetError();

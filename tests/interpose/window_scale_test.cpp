@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <thread>
 
@@ -220,6 +221,106 @@ TEST_CASE("an app's window-sized framebuffers follow the window's scale, smaller
   CHECK(small.rgb != plain.rgb);
   CHECK(ssim_of(plain, small) >= 0.95);
   for (const std::string& path : {plain_img, images["0"], images["2"]}) unlink(path.c_str());
+}
+
+TEST_CASE("a pass that finds its texels from gl_FragCoord sees the app's pixels in scaled targets", "[integration]") {
+  // probe_offscreen's compose pass, drawn into the scaled window, finds the scene's and the
+  // quarter's texels from gl_FragCoord: divided by the window's size the app set in a uniform,
+  // by texelFetch at it, or divided by textureSize. Drawn as written, at 60 % its gl_FragCoord
+  // counts the stand-in's pixels: the first puts the image in a corner, the others read the
+  // quarter-sized (unscaled) texture at the wrong place. Rewritten (manifest
+  // shader_coordinates = "app", the default) each looks like the unscaled image; at 100 % it
+  // is the unscaled image, bit for bit.
+  const std::string mode = GENERATE("fragcoord", "fetch", "size");
+  INFO("compose: " << mode);
+  const std::vector<std::string> args = {
+      probe_path("probe_offscreen"), "--frames", "3", "--size", "128", "--compose", mode, "--out"};
+  const std::string manifest = temp_path("coordinates_scaled.toml");
+  {
+    std::ofstream m(manifest);
+    m << "shader_coordinates = \"scaled\"\n[[pass]]\nname = \"other\"\n";
+  }
+  std::map<std::string, Ppm> images;
+  const std::map<std::string, std::map<std::string, std::string>> runs = {
+      {"plain", {}},
+      {"100", {{"GLBUDGET_FORCE", "0"}}},
+      {"60", {{"GLBUDGET_FORCE", "2"}}},
+      {"60 as written", {{"GLBUDGET_FORCE", "2,0"}, {"GLBUDGET_CONFIG", manifest}}}};
+  for (const auto& [name, settings] : runs) {
+    const std::string img = temp_path("coordinates.ppm");
+    std::map<std::string, std::string> env = settings;
+    if (name != "plain") {
+      env["LD_PRELOAD"] = shim_path();
+      env["GLBUDGET_SENSOR"] = "cpu";
+    }
+    std::vector<std::string> argv = args;
+    argv.push_back(img);
+    const ProcessResult r = run_process(argv, env);
+    INFO(name << "\n" << r.err);
+    REQUIRE(r.exit_code == 0);  // 4: a GL error reached the app
+    CHECK(r.err.find("glbudget:") == std::string::npos);
+    images[name] = read_ppm(img);
+    unlink(img.c_str());
+  }
+  unlink(manifest.c_str());
+  const Ppm& plain = images["plain"];
+  REQUIRE(!plain.rgb.empty());
+  CHECK(images["100"].rgb == plain.rgb);
+  REQUIRE(images["60"].width == plain.width);
+  const double rewritten = ssim_of(plain, images["60"]), as_written = ssim_of(plain, images["60 as written"]);
+  INFO("SSIM at 60 %: " << rewritten << " rewritten, " << as_written << " as written");
+  CHECK(rewritten >= 0.95);
+  CHECK(as_written < 0.9);
+
+  // Quality probes at 60 %: the best stream draws the pass into its own window-sized shadows,
+  // where the pass must see ratio 1 and the scene's shadow at its own size: its image of frame
+  // 4 is the unscaled run's frame 4, bit for bit.
+  const std::string dir = temp_path("coordinates_probes"), plain4 = temp_path("coordinates_plain4.ppm"),
+                    img = temp_path("coordinates_probed.ppm");
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  REQUIRE(run_process(
+              {probe_path("probe_offscreen"), "--frames", "4", "--size", "128", "--compose", mode, "--out", plain4}, {})
+              .exit_code == 0);
+  const ProcessResult probed =
+      run_process({probe_path("probe_offscreen"), "--frames", "5", "--size", "128", "--compose", mode, "--out", img},
+                  {{"LD_PRELOAD", shim_path()},
+                   {"GLBUDGET_SENSOR", "cpu"},
+                   {"GLBUDGET_FORCE", "2"},
+                   {"GLBUDGET_PROBE_PERIOD", "2"},
+                   {"GLBUDGET_DUMP_PROBES", dir}});
+  INFO(probed.err);
+  REQUIRE(probed.exit_code == 0);
+  const Ppm best = read_ppm(dir + "/probe_c0_f4_s1_0.ppm"), unscaled = read_ppm(plain4);
+  REQUIRE(!best.rgb.empty());
+  REQUIRE(best.width == unscaled.width);
+  const size_t row = static_cast<size_t>(best.width) * 3;  // probe images are stored bottom-up
+  bool same = best.rgb.size() == unscaled.rgb.size();
+  for (size_t y = 0; same && y < static_cast<size_t>(best.height); ++y)
+    same = std::equal(best.rgb.begin() + y * row, best.rgb.begin() + (y + 1) * row,
+                      unscaled.rgb.begin() + (best.height - 1 - y) * row);
+  CHECK(same);
+  std::filesystem::remove_all(dir);
+  for (const std::string& path : {plain4, img}) unlink(path.c_str());
+}
+
+TEST_CASE("a pass whose texels cannot be followed is said once, when it draws into a scaled target", "[integration]") {
+  // The compose pass reads a sampler array's elements with texelFetch: which texture an
+  // element is, the rewrite cannot know. At 100 % nothing is said; at 60 % one line.
+  for (const std::string level : {"0", "2"}) {
+    const std::string img = temp_path("coordinates_array.ppm");
+    const ProcessResult r = run_process(
+        {probe_path("probe_offscreen"), "--frames", "3", "--size", "64", "--compose", "array", "--out", img},
+        {{"LD_PRELOAD", shim_path()}, {"GLBUDGET_FORCE", level}});
+    INFO(level << "\n" << r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(count_lines_with(r.err, "glbudget:") == (level == "0" ? 0 : 1));
+    if (level == "2")
+      CHECK(
+          r.err.find("in their pixel coordinates (texelFetch of 'images[0]', not a uniform sampler named directly)") !=
+          std::string::npos);
+    unlink(img.c_str());
+  }
 }
 
 TEST_CASE("an app reading its scaled framebuffer back reads it at its own size: screenshots and picking",
