@@ -53,7 +53,8 @@ std::vector<Token> tokenize(std::string_view text) {
       tokens.push_back({i, j, text.substr(i, j - i), true});
       i = j;
       line_start = false;
-    } else if (std::isdigit(static_cast<unsigned char>(c)) || (c == '.' && i + 1 < text.size() && std::isdigit(static_cast<unsigned char>(text[i + 1])))) {
+    } else if (std::isdigit(static_cast<unsigned char>(c)) ||
+               (c == '.' && i + 1 < text.size() && std::isdigit(static_cast<unsigned char>(text[i + 1])))) {
       std::size_t j = i;
       while (j < text.size() && (identifier_char(text[j]) || text[j] == '.')) ++j;
       tokens.push_back({i, j, text.substr(i, j - i), false});
@@ -154,8 +155,7 @@ std::string declarations(const LanguageVersion& language, bool frag_coord,
   }
   if (used.empty()) return out;
   // texelFetch and textureSize need GLSL 1.30 or ES 3.00, which have precision qualifiers.
-  for (const auto& [name, type] : used)
-    out += std::string("uniform highp ivec3 ") + kSamplerSizePrefix + name + ";\n";
+  for (const auto& [name, type] : used) out += std::string("uniform highp ivec3 ") + kSamplerSizePrefix + name + ";\n";
   out +=
       "highp ivec2 glbudget_app_size(highp ivec2 stored, highp ivec3 app, int lod) {\n"
       "  return app.z == 0 ? stored : max(ivec2(1), app.xy >> lod);\n"
@@ -175,8 +175,8 @@ std::string declarations(const LanguageVersion& language, bool frag_coord,
     if (texel.empty()) continue;  // shadow samplers take no texelFetch
     const std::string r(texel);
     out += "highp " + r + " glbudget_texelFetch(highp " + s + " s, highp ivec2 p, int lod, highp ivec3 app) {\n" +
-           "  return texelFetch(s, glbudget_stored_texel(p, textureSize(s, lod), app, lod), lod);\n}\n" + "highp " +
-           r + " glbudget_texelFetchOffset(highp " + s +
+           "  return texelFetch(s, glbudget_stored_texel(p, textureSize(s, lod), app, lod), lod);\n}\n" + "highp " + r +
+           " glbudget_texelFetchOffset(highp " + s +
            " s, highp ivec2 p, int lod, highp ivec2 offset, highp ivec3 app) {\n" +
            "  return glbudget_texelFetch(s, p + offset, lod, app);\n}\n";
   }
@@ -230,8 +230,8 @@ AppSpaceResult to_app_space(const std::string& app_source,
       const std::string_view x = t[i].text;
       if (x == "gl_FragCoord") {
         if (i > 0 && t[i - 1].text == "vec4") continue;  // its redeclaration (layout(origin_upper_left) ...)
-        edits.push_back({t[i].begin, t[i].end,
-                         std::string("vec4(gl_FragCoord.xy * ") + kFragRatioUniform + ", gl_FragCoord.zw)"});
+        edits.push_back(
+            {t[i].begin, t[i].end, std::string("vec4(gl_FragCoord.xy * ") + kFragRatioUniform + ", gl_FragCoord.zw)"});
         result.frag_coord = true;
         continue;
       }
@@ -254,7 +254,8 @@ AppSpaceResult to_app_space(const std::string& app_source,
       if (x == "textureSize" && args.size() != 2) continue;
       used[std::string(declared->first)] = scalable_samplers().find(declared->second.type)->first;
       edits.push_back({t[i].begin, t[i].end, "glbudget_" + std::string(x)});
-      edits.push_back({t[close].begin, t[close].begin, ", " + std::string(kSamplerSizePrefix) + std::string(declared->first)});
+      edits.push_back(
+          {t[close].begin, t[close].begin, ", " + std::string(kSamplerSizePrefix) + std::string(declared->first)});
     }
     if (edits.empty()) return result;
     result.needed = true;

@@ -69,8 +69,9 @@ void report_app_space_refused(ContextState& c) {
   }
   // Once per process: an engine may have many such programs.
   reported = true;
-  say_once("app-space", "program " + hash_text(pass) + " draws into scaled render targets in their pixel coordinates (" +
-                            why + "): it may sample the wrong texels (other programs are not reported)");
+  say_once("app-space", "program " + hash_text(pass) +
+                            " draws into scaled render targets in their pixel coordinates (" + why +
+                            "): it may sample the wrong texels (other programs are not reported)");
 }
 
 }  // namespace glbudget

@@ -26,10 +26,10 @@ inline constexpr const char* kFragRatioUniform = "glbudget_frag_ratio";
 inline constexpr const char* kSamplerSizePrefix = "glbudget_size_";
 
 struct AppSpaceResult {
-  bool needed = false;  // the shader reads gl_FragCoord, or texel coordinates of a 2D sampler
-  bool ok = false;      // rewritten: `source`
-  std::string source;   // preprocessed, one string
-  std::string error;    // why a needed rewrite was not made
+  bool needed = false;       // the shader reads gl_FragCoord, or texel coordinates of a 2D sampler
+  bool ok = false;           // rewritten: `source`
+  std::string source;        // preprocessed, one string
+  std::string error;         // why a needed rewrite was not made
   bool unsupported = false;  // a use the rewrite cannot follow (`error` names it), not a shader it cannot read
   bool frag_coord = false;
   std::vector<std::string> samplers;  // each gets glbudget_size_<name>
@@ -37,6 +37,7 @@ struct AppSpaceResult {
 
 // `source`: the fragment shader's strings, concatenated. `driver_extensions` as for
 // instrument_shader() (extension conditionals follow the driver).
-AppSpaceResult to_app_space(const std::string& source, const std::optional<std::vector<std::string>>& driver_extensions);
+AppSpaceResult to_app_space(const std::string& source,
+                            const std::optional<std::vector<std::string>>& driver_extensions);
 
 }  // namespace glbudget::instrument
