@@ -66,6 +66,7 @@ void shadow_program(ContextState& c, ShareGroup& g, GLuint program, ProgramInfo&
     p.variants.reset();
   }
   p.manifest_pass = -1;
+  p.app_space_refused.clear();
   // Instrumented runs (calibration, dumps) count the app's programs as they are.
   const bool app_coordinates = app_coordinate_copies(c) && !instrumentation_of(c);
   if (!manifest_has_programs() && !app_coordinates) return;
@@ -77,7 +78,6 @@ void shadow_program(ContextState& c, ShareGroup& g, GLuint program, ProgramInfo&
   if (p.manifest_pass >= 0) note_pass_matched(p.manifest_pass);
   if (p.manifest_pass < 0 && !app_coordinates) return;
   if (!link_succeeded(program)) return;  // the app's own failure: nothing to shadow
-  p.app_space_refused.clear();
   p.variants = build_variants(program, p.pass, p.manifest_pass, sources, c.caps,
                               {p.attribute_bindings, p.frag_data_bindings}, instrumentation_of(c), app_coordinates,
                               app_coordinates ? driver_extensions(c) : std::nullopt, &p.app_space_refused);
