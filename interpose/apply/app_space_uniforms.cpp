@@ -31,8 +31,8 @@ void give_sampler_size(const Variant& v, size_t sampler, const SamplerSize& size
   agl().ProgramUniform3iv(v.program, v.app_space.samplers[sampler].size, 1, given.data());
 }
 
-void give_app_space_for_draw(ContextState& c) {
-  const Variant& v = c.bound_variants->at(c.config);
+void give_app_space_for_draw(ContextState& c, const VariantSet& set) {
+  const Variant& v = set.at(c.config);
   if (!v.program || !v.app_space.any()) return;
   TargetScaler& t = *c.targets;
   double sx = 1.0, sy = 1.0;

@@ -15,8 +15,9 @@ struct ContextState;
 // texture is stored as the app made it.
 using SamplerSize = std::array<GLint, 3>;
 
-// The app's own draw: the bound draw framebuffer's scale, the textures bound to the units.
-void give_app_space_for_draw(ContextState& c);
+// The app's own draw with `set`'s program (bound, or its pipeline's fragment stage): the bound
+// draw framebuffer's scale, the textures bound to the units.
+void give_app_space_for_draw(ContextState& c, const VariantSet& set);
 // A draw of a program whose shader could not be rewritten: said once, when it draws into a
 // scaled target or while textures are scaled.
 void report_app_space_refused(ContextState& c);

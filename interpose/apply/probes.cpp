@@ -604,7 +604,10 @@ struct ProbeFrames::Impl {
       g.BindTexture(GL_TEXTURE_2D, want ? t->second : static_cast<GLuint>(unit_texture[u]));
       redirected[u] = want;
     }
-    if (c.bound_variants) give_app_space_for_stream(c.bound_variants->at(st.config), sh);
+    if (c.bound_variants)
+      give_app_space_for_stream(c.bound_variants->at(st.config), sh);
+    else if (c.pipeline_fragment_variants)
+      give_app_space_for_stream(c.pipeline_fragment_variants->at(st.config), sh);
     return true;
   }
 

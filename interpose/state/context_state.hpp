@@ -95,6 +95,9 @@ struct ContextState {
   std::unordered_map<GLuint, GLuint> pipeline_active;  // glActiveShaderProgram, the app's
   // With a pipeline bound and no program, non-DSA glUniform* go to its active program.
   std::shared_ptr<const VariantSet> pipeline_uniform_variants;
+  // With a pipeline bound and no program: the variants of its fragment stage's program, whose
+  // copy in app coordinates gets its ratios before each draw (apply/app_space_uniforms.hpp).
+  std::shared_ptr<const VariantSet> pipeline_fragment_variants;
   bool list_compile_only = false;
   // Errors the app had not read when the shim's own GL work began (state/gl_errors.hpp):
   // its glGetError answers these first.

@@ -73,7 +73,10 @@ void initialise(ContextState& c, Registry& r) {
         [](void* ctx) {
           auto* cs = static_cast<ContextState*>(ctx);
           cs->targets->on_draw(cs->manifest_pass);
-          if (cs->bound_variants) give_app_space_for_draw(*cs);
+          if (cs->bound_variants)
+            give_app_space_for_draw(*cs, *cs->bound_variants);
+          else if (cs->pipeline_fragment_variants)
+            give_app_space_for_draw(*cs, *cs->pipeline_fragment_variants);
           if (cs->app_space_refused) report_app_space_refused(*cs);
         },
         &c);

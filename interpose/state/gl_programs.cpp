@@ -102,6 +102,7 @@ namespace {
 // the matching stage names for glGetProgramPipelineiv.
 const GLbitfield kStageBits[6] = {GL_VERTEX_SHADER_BIT,       GL_FRAGMENT_SHADER_BIT,        GL_GEOMETRY_SHADER_BIT,
                                   GL_TESS_CONTROL_SHADER_BIT, GL_TESS_EVALUATION_SHADER_BIT, GL_COMPUTE_SHADER_BIT};
+constexpr int kFragmentSlot = 1;  // of the arrays above
 const GLenum kStageNames[6] = {GL_VERTEX_SHADER,       GL_FRAGMENT_SHADER,        GL_GEOMETRY_SHADER,
                                GL_TESS_CONTROL_SHADER, GL_TESS_EVALUATION_SHADER, GL_COMPUTE_SHADER};
 
@@ -120,9 +121,12 @@ GLuint real_stage_program(ContextState& c, GLuint program) {
 
 void update_pipeline_uniforms(ContextState& c) {
   c.pipeline_uniform_variants.reset();
+  c.pipeline_fragment_variants.reset();
   if (c.program || !c.pipeline) return;
   auto it = c.pipeline_active.find(c.pipeline);
   if (it != c.pipeline_active.end()) c.pipeline_uniform_variants = variants_of(c, it->second);
+  auto stages = c.pipeline_stages.find(c.pipeline);
+  if (stages != c.pipeline_stages.end()) c.pipeline_fragment_variants = variants_of(c, stages->second[kFragmentSlot]);
 }
 }  // namespace
 
@@ -238,6 +242,10 @@ void handle_glLinkProgram(pfn_glLinkProgram real, GLuint program) {
     shadow_program(*c, *c->group, program, p);
   }
   if (c->program == program) bind_program(*c);
+  if (!c->pipeline_stages.empty()) {  // the relinked program's new variants into the stages that hold it
+    bind_pipeline_stages(*c);
+    update_pipeline_uniforms(*c);
+  }
   refresh_if_bound(c);
 }
 
@@ -386,7 +394,10 @@ void handle_glUseProgramStages(pfn_glUseProgramStages real, GLuint pipeline, GLb
       slots[i] = program;
       real_slots[i] = real_program;
     }
-  if (c->pipeline == pipeline) refresh_if_bound(c);
+  if (c->pipeline == pipeline) {
+    update_pipeline_uniforms(*c);
+    refresh_if_bound(c);
+  }
 }
 
 void handle_glActiveShaderProgram(pfn_glActiveShaderProgram real, GLuint pipeline, GLuint program) {

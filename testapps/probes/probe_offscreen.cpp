@@ -23,6 +23,8 @@
 //                        "fetch" texelFetch at gl_FragCoord (the quarter at a quarter of it);
 //                        "size" gl_FragCoord divided by textureSize (the quarter's times 4);
 //                        "array" texelFetch at gl_FragCoord of a sampler array's elements
+//   --pipeline 1         the compose pass drawn by a program pipeline of separable programs
+//                        (glCreateShaderProgramv), its uniforms set by glProgramUniform*
 // Exits 4 when glGetError reports an error at any frame: none of the app's calls raises one;
 // 5 when a texture does not answer as the app made it (size, immutable format and levels).
 //   pass A, B: the known scene, into the window-sized framebuffer
@@ -71,6 +73,24 @@ const char* compose_source(const std::string& mode) {
            "void main(){ ivec2 p = ivec2(gl_FragCoord.xy);\n"
            "  frag = texelFetch(images[0], p, 0) * 0.75 + texelFetch(images[1], p / 4, 0) * 0.5; /* compose */ }\n";
   return kCompose;
+}
+
+// The compose pass as a program pipeline: a separable vertex program and `fs`.
+GLuint compose_pipeline(const char* fs, GLuint* fragment_program) {
+  const char* vs =
+      "#version 450 core\nlayout(location=0) in vec2 pos;\nout gl_PerVertex { vec4 gl_Position; };\n"
+      "void main(){ gl_Position = vec4(pos, 0.0, 1.0); }\n";
+  const GLuint vertex = glCreateShaderProgramv(GL_VERTEX_SHADER, 1, &vs);
+  *fragment_program = glCreateShaderProgramv(GL_FRAGMENT_SHADER, 1, &fs);
+  GLint ok_v = 0, ok_f = 0;
+  glGetProgramiv(vertex, GL_LINK_STATUS, &ok_v);
+  glGetProgramiv(*fragment_program, GL_LINK_STATUS, &ok_f);
+  if (!ok_v || !ok_f) return 0;
+  GLuint pipeline = 0;
+  glGenProgramPipelines(1, &pipeline);
+  glUseProgramStages(pipeline, GL_VERTEX_SHADER_BIT, vertex);
+  glUseProgramStages(pipeline, GL_FRAGMENT_SHADER_BIT, *fragment_program);
+  return pipeline;
 }
 
 GLuint program(const char* vs, const char* fs) {
@@ -203,7 +223,9 @@ int main(int argc, char** argv) {
   bool compat = false;
   Format format = Format::kSized;
   std::string read_fbo_path, compose = "uv";
+  bool pipeline = false;
   for (int i = 1; i + 1 < argc; ++i) {
+    if (!strcmp(argv[i], "--pipeline")) pipeline = !strcmp(argv[i + 1], "1");
     if (!strcmp(argv[i], "--compose")) compose = argv[i + 1];
     if (!strcmp(argv[i], "--read-fbo")) read_fbo_path = argv[i + 1];
     if (!strcmp(argv[i], "--profile")) compat = !strcmp(argv[i + 1], "compat");
@@ -274,12 +296,17 @@ int main(int argc, char** argv) {
     fprintf(stderr, "probe_offscreen: framebuffer incomplete\n");
     return 2;
   }
-  glUseProgram(compose_program);
-  glUniform1i(glGetUniformLocation(compose_program, "scene"), 0);
-  glUniform1i(glGetUniformLocation(compose_program, "quarter"), 1);
+  GLuint compose_stages = 0, compose_fragment = compose_program;
+  if (pipeline && !(compose_stages = compose_pipeline(compose_source(compose), &compose_fragment))) {
+    fprintf(stderr, "probe_offscreen: the compose pipeline's programs do not link\n");
+    return 2;
+  }
+  glProgramUniform1i(compose_fragment, glGetUniformLocation(compose_fragment, "scene"), 0);
+  glProgramUniform1i(compose_fragment, glGetUniformLocation(compose_fragment, "quarter"), 1);
   const GLint images[2] = {0, 1};
-  glUniform1iv(glGetUniformLocation(compose_program, "images"), 2, images);
-  glUniform2f(glGetUniformLocation(compose_program, "u_resolution"), static_cast<float>(w), static_cast<float>(h));
+  glProgramUniform1iv(compose_fragment, glGetUniformLocation(compose_fragment, "images"), 2, images);
+  glProgramUniform2f(compose_fragment, glGetUniformLocation(compose_fragment, "u_resolution"), static_cast<float>(w),
+                     static_cast<float>(h));
 
   std::vector<uint8_t> image;
   GLenum error = glGetError();
@@ -303,8 +330,14 @@ int main(int argc, char** argv) {
     glViewport(0, 0, w, h);
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, quarter_color);
-    glUseProgram(compose_program);
+    if (compose_stages) {
+      glUseProgram(0);
+      glBindProgramPipeline(compose_stages);
+    } else {
+      glUseProgram(compose_program);
+    }
     glDrawArrays(GL_TRIANGLES, 0, 6);
+    glBindProgramPipeline(0);
     if (f + 1 == args.frames) image = scene.read_rgba();
     if (f + 1 == args.frames && !read_fbo_path.empty()) read_scene_framebuffer(fbo[0], w, h, read_fbo_path);
     eglSwapBuffers(win.display, win.surface);

@@ -231,10 +231,20 @@ TEST_CASE("a pass that finds its texels from gl_FragCoord sees the app's pixels 
   // quarter-sized (unscaled) texture at the wrong place. Rewritten (manifest
   // shader_coordinates = "app", the default) each looks like the unscaled image; at 100 % it
   // is the unscaled image, bit for bit.
+  // Drawn by a program, or by a program pipeline of separable programs.
   const std::string mode = GENERATE("fragcoord", "fetch", "size");
-  INFO("compose: " << mode);
-  const std::vector<std::string> args = {
-      probe_path("probe_offscreen"), "--frames", "3", "--size", "128", "--compose", mode, "--out"};
+  const std::string pipeline = GENERATE("0", "1");
+  INFO("compose: " << mode << ", pipeline " << pipeline);
+  const std::vector<std::string> args = {probe_path("probe_offscreen"),
+                                         "--frames",
+                                         "3",
+                                         "--size",
+                                         "128",
+                                         "--compose",
+                                         mode,
+                                         "--pipeline",
+                                         pipeline,
+                                         "--out"};
   const std::string manifest = temp_path("coordinates_scaled.toml");
   {
     std::ofstream m(manifest);
@@ -279,16 +289,17 @@ TEST_CASE("a pass that finds its texels from gl_FragCoord sees the app's pixels 
                     img = temp_path("coordinates_probed.ppm");
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
-  REQUIRE(run_process(
-              {probe_path("probe_offscreen"), "--frames", "4", "--size", "128", "--compose", mode, "--out", plain4}, {})
+  REQUIRE(run_process({probe_path("probe_offscreen"), "--frames", "4", "--size", "128", "--compose", mode, "--pipeline",
+                       pipeline, "--out", plain4},
+                      {})
               .exit_code == 0);
-  const ProcessResult probed =
-      run_process({probe_path("probe_offscreen"), "--frames", "5", "--size", "128", "--compose", mode, "--out", img},
-                  {{"LD_PRELOAD", shim_path()},
-                   {"GLBUDGET_SENSOR", "cpu"},
-                   {"GLBUDGET_FORCE", "2"},
-                   {"GLBUDGET_PROBE_PERIOD", "2"},
-                   {"GLBUDGET_DUMP_PROBES", dir}});
+  const ProcessResult probed = run_process({probe_path("probe_offscreen"), "--frames", "5", "--size", "128",
+                                            "--compose", mode, "--pipeline", pipeline, "--out", img},
+                                           {{"LD_PRELOAD", shim_path()},
+                                            {"GLBUDGET_SENSOR", "cpu"},
+                                            {"GLBUDGET_FORCE", "2"},
+                                            {"GLBUDGET_PROBE_PERIOD", "2"},
+                                            {"GLBUDGET_DUMP_PROBES", dir}});
   INFO(probed.err);
   REQUIRE(probed.exit_code == 0);
   const Ppm best = read_ppm(dir + "/probe_c0_f4_s1_0.ppm"), unscaled = read_ppm(plain4);
