@@ -83,7 +83,15 @@ bool is_sampler_type(std::string_view t) {
 struct UniformSampler {
   std::string_view type;
   bool array = false;
+  std::string size;              // an array's size, as declared
+  std::size_t declared_end = 0;  // after the `;` of its declaration
+  bool typed_array = false;      // `sampler2D[2] t`: not followed
 };
+
+// The text from token `first` to the end of token `last - 1`.
+std::string_view text_of(const std::vector<Token>& t, std::size_t first, std::size_t last) {
+  return std::string_view(t[first].text.data(), t[last - 1].end - t[first].begin);
+}
 
 // Uniform declarations of opaque types at global scope: name -> type.
 std::map<std::string_view, UniformSampler> uniform_samplers(const std::vector<Token>& t) {
@@ -105,9 +113,20 @@ std::map<std::string_view, UniformSampler> uniform_samplers(const std::vector<To
         if (is_sampler_type(x)) type = x;
         continue;
       }
-      const bool array = j + 1 < t.size() && t[j + 1].text == "[";
-      out[x] = {type, array};
+      UniformSampler u;
+      u.type = type;
+      u.typed_array = t[j - 1].text == "]";
+      if (j + 1 < t.size() && t[j + 1].text == "[") {
+        u.array = true;
+        std::size_t close = j + 1;
+        while (close < t.size() && t[close].text != "]") ++close;
+        if (close < t.size() && close > j + 2) u.size = std::string(text_of(t, j + 2, close));
+      }
+      out[x] = u;
     }
+    if (j < t.size())
+      for (auto& [name, u] : out)
+        if (u.declared_end == 0) u.declared_end = t[j].end;
     i = j;
   }
   return out;
@@ -143,7 +162,8 @@ struct Edit {
 };
 
 std::string declarations(const LanguageVersion& language, bool frag_coord,
-                         const std::map<std::string, std::string_view>& used) {
+                         const std::map<std::string, std::string_view>& used,
+                         const std::map<std::string, std::string>& array_size) {
   std::string out;
   if (frag_coord) {
     if (language.es && language.version < 300)
@@ -155,7 +175,9 @@ std::string declarations(const LanguageVersion& language, bool frag_coord,
   }
   if (used.empty()) return out;
   // texelFetch and textureSize need GLSL 1.30 or ES 3.00, which have precision qualifiers.
-  for (const auto& [name, type] : used) out += std::string("uniform highp ivec3 ") + kSamplerSizePrefix + name + ";\n";
+  // An array's sizes are declared after it (its size may name a constant declared before it).
+  for (const auto& [name, type] : used)
+    if (!array_size.count(name)) out += std::string("uniform highp ivec3 ") + kSamplerSizePrefix + name + ";\n";
   out +=
       "highp ivec2 glbudget_app_size(highp ivec2 stored, highp ivec3 app, int lod) {\n"
       "  return app.z == 0 ? stored : max(ivec2(1), app.xy >> lod);\n"
@@ -181,6 +203,22 @@ std::string declarations(const LanguageVersion& language, bool frag_coord,
            "  return glbudget_texelFetch(s, p + offset, lod, app);\n}\n";
   }
   return out;
+}
+
+// An argument `name[i]` (tokens [first, last)): true, with "[i]" in `index`, when the brackets
+// close at its end and `i` changes nothing (it is written twice: for the sampler and its size).
+bool element_index(const std::vector<Token>& t, std::size_t first, std::size_t last, std::string* index) {
+  if (last - first < 4 || t[first + 1].text != "[" || t[last - 1].text != "]") return false;
+  int depth = 0;
+  for (std::size_t k = first + 1; k < last; ++k) {
+    const std::string_view x = t[k].text;
+    if (x == "[") ++depth;
+    if (x == "]" && --depth == 0 && k + 1 != last) return false;
+    if (x == "=") return false;
+    if ((x == "+" || x == "-") && t[k + 1].text == x && t[k + 1].begin == t[k].end) return false;  // ++, --
+  }
+  *index = "[" + std::string(text_of(t, first + 2, last - 1)) + "]";
+  return true;
 }
 
 // `#version 300 es`, `#version 330 core`; 110 without one.
@@ -224,7 +262,8 @@ AppSpaceResult to_app_space(const std::string& app_source,
     const std::vector<Token> t = tokenize(text);
     const auto samplers = uniform_samplers(t);
     std::vector<Edit> edits;
-    std::map<std::string, std::string_view> used;  // sampler name -> type (a static string)
+    std::map<std::string, std::string_view> used;   // sampler name -> type (a static string)
+    std::map<std::string, std::string> array_size;  // of the arrays among them
     for (std::size_t i = 0; i < t.size(); ++i) {
       if (!t[i].identifier) continue;
       const std::string_view x = t[i].text;
@@ -240,22 +279,33 @@ AppSpaceResult to_app_space(const std::string& app_source,
       std::size_t close = 0;
       const auto args = call_arguments(t, i + 1, &close);
       if (args.empty()) continue;
-      const bool named = args[0].second - args[0].first == 1 && t[args[0].first].identifier;
-      auto declared = named ? samplers.find(t[args[0].first].text) : samplers.end();
-      if (declared == samplers.end() || declared->second.array) {
+      const auto [first, last] = args[0];
+      auto declared = t[first].identifier ? samplers.find(t[first].text) : samplers.end();
+      std::string index;  // "[i]" of an array's element
+      bool followed = declared != samplers.end() && !declared->second.typed_array;
+      if (followed && declared->second.array) {
+        followed = !declared->second.size.empty() && element_index(t, first, last, &index);
+      } else if (followed) {
+        followed = last - first == 1;
+      }
+      if (!followed) {
         // Which texture this reads is known only at run time, and then not here.
-        std::string arg(text.substr(t[args[0].first].begin, t[args[0].second - 1].end - t[args[0].first].begin));
         result.needed = true;
         result.unsupported = true;
-        result.error = std::string(x) + " of '" + arg + "', not a uniform sampler named directly";
+        result.error = std::string(x) + " of '" + std::string(text_of(t, first, last)) +
+                       "', not a uniform sampler or an element of one";
         return result;
       }
       if (!scalable_samplers().count(declared->second.type)) continue;  // never stored at another size
       if (x == "textureSize" && args.size() != 2) continue;
-      used[std::string(declared->first)] = scalable_samplers().find(declared->second.type)->first;
+      const std::string name(declared->first);
+      used[name] = scalable_samplers().find(declared->second.type)->first;
+      if (declared->second.array && array_size.emplace(name, declared->second.size).second)
+        edits.push_back(
+            {declared->second.declared_end, declared->second.declared_end,
+             std::string(" uniform highp ivec3 ") + kSamplerSizePrefix + name + "[" + declared->second.size + "];"});
       edits.push_back({t[i].begin, t[i].end, "glbudget_" + std::string(x)});
-      edits.push_back(
-          {t[close].begin, t[close].begin, ", " + std::string(kSamplerSizePrefix) + std::string(declared->first)});
+      edits.push_back({t[close].begin, t[close].begin, ", " + std::string(kSamplerSizePrefix) + name + index});
     }
     if (edits.empty()) return result;
     result.needed = true;
@@ -265,13 +315,13 @@ AppSpaceResult to_app_space(const std::string& app_source,
     const LanguageVersion language = language_of(text, unit);
     const HeaderPoints points = header_points(text, unit);
     std::vector<Insertion> insertions;
-    insertions.push_back({points.declaration, declarations(language, result.frag_coord, used) +
+    insertions.push_back({points.declaration, declarations(language, result.frag_coord, used, array_size) +
                                                   line_fixup(text, unit, points.declaration, language)});
     // Edits back to front keep the offsets before them valid; the declarations go before all.
     std::sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) { return a.begin > b.begin; });
     for (const Edit& e : edits) text.replace(e.begin, e.end - e.begin, e.text);
     result.source = apply_insertions(text, std::move(insertions));
-    for (const auto& [name, type] : used) result.samplers.emplace_back(name);
+    for (const auto& [name, type] : used) result.samplers.push_back({name, array_size.count(name) > 0});
     result.ok = true;
   } catch (const std::exception& e) {
     result.needed = true;

@@ -487,8 +487,8 @@ namespace {
 // A shader the rewrite cannot read is left to the driver, whose verdict the app gets anyway.
 std::vector<ShaderSource> in_app_coordinates(std::vector<ShaderSource> sources,
                                              const std::optional<std::vector<std::string>>& extensions,
-                                             std::vector<std::string>* samplers, bool* frag_coord, bool* rewritten,
-                                             std::string* refused) {
+                                             std::vector<instrument::AppSpaceSampler>* samplers, bool* frag_coord,
+                                             bool* rewritten, std::string* refused) {
   *rewritten = false;
   for (ShaderSource& s : sources) {
     if (s.stage != GL_FRAGMENT_SHADER) continue;
@@ -507,18 +507,28 @@ std::vector<ShaderSource> in_app_coordinates(std::vector<ShaderSource> sources,
 }
 
 // The rewritten shader's own uniforms: located, and set to draw as the app's program does.
-void locate_app_space(Variant& v, bool frag_coord, const std::vector<std::string>& samplers) {
+void locate_app_space(Variant& v, bool frag_coord, const std::vector<instrument::AppSpaceSampler>& samplers) {
   const ApplyGl& g = agl();
   if (frag_coord) v.app_space.frag_ratio = g.GetUniformLocation(v.program, instrument::kFragRatioUniform);
   if (v.app_space.frag_ratio >= 0) {
     const GLfloat one[2] = {1.0f, 1.0f};
     g.ProgramUniform2fv(v.program, v.app_space.frag_ratio, 1, one);
   }
-  for (const std::string& name : samplers) {
+  auto locate = [&](const std::string& name) {
     AppSpaceUniforms::Sampler s;
     s.sampler = g.GetUniformLocation(v.program, name.c_str());
     s.size = g.GetUniformLocation(v.program, (instrument::kSamplerSizePrefix + name).c_str());
     if (s.sampler >= 0 && s.size >= 0) v.app_space.samplers.push_back(s);  // else optimised away
+    return s.sampler >= 0 || s.size >= 0;
+  };
+  for (const instrument::AppSpaceSampler& sampler : samplers) {
+    if (!sampler.array) {
+      locate(sampler.name);
+      continue;
+    }
+    // Each element its own (an array's elements beyond the last one used are not active).
+    for (int i = 0; i < 1024 && locate(sampler.name + "[" + std::to_string(i) + "]"); ++i) {
+    }
   }
   v.app_space.given = std::make_shared<AppSpaceUniforms::Given>();
   v.app_space.given->sizes.assign(v.app_space.samplers.size(), {0, 0, 0});
@@ -567,7 +577,7 @@ std::shared_ptr<VariantSet> build_variants(GLuint program, PassId app_hash, int 
         // Its name in the log and the dump: the sources before the app-coordinates rewrite,
         // which only restores what the app drew.
         const PassId variant_hash = program_hash(std::move(hashes));
-        std::vector<std::string> samplers;
+        std::vector<instrument::AppSpaceSampler> samplers;
         bool frag_coord = false, rewritten = false;
         const std::vector<ShaderSource> built =
             app_coordinates

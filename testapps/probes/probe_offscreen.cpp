@@ -22,7 +22,8 @@
 //                        set in a uniform (post-processing written for one resolution);
 //                        "fetch" texelFetch at gl_FragCoord (the quarter at a quarter of it);
 //                        "size" gl_FragCoord divided by textureSize (the quarter's times 4);
-//                        "array" texelFetch at gl_FragCoord of a sampler array's elements
+//                        "array" texelFetch at gl_FragCoord of a sampler array's elements;
+//                        "parameter" texelFetch in a function taking the sampler
 //   --pipeline 1         the compose pass drawn by a program pipeline of separable programs
 //                        (glCreateShaderProgramv), its uniforms set by glProgramUniform*
 // Exits 4 when glGetError reports an error at any frame: none of the app's calls raises one;
@@ -72,6 +73,11 @@ const char* compose_source(const std::string& mode) {
     return "#version 330 core\nuniform sampler2D images[2];\nout vec4 frag;\n"
            "void main(){ ivec2 p = ivec2(gl_FragCoord.xy);\n"
            "  frag = texelFetch(images[0], p, 0) * 0.75 + texelFetch(images[1], p / 4, 0) * 0.5; /* compose */ }\n";
+  if (mode == "parameter")
+    return "#version 330 core\nuniform sampler2D scene;\nuniform sampler2D quarter;\nout vec4 frag;\n"
+           "vec4 at(sampler2D s, ivec2 p) { return texelFetch(s, p, 0); }\n"
+           "void main(){ ivec2 p = ivec2(gl_FragCoord.xy);\n"
+           "  frag = at(scene, p) * 0.75 + at(quarter, p / 4) * 0.5; /* compose */ }\n";
   return kCompose;
 }
 

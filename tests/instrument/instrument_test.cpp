@@ -394,7 +394,7 @@ TEST_CASE("texelFetch and textureSize of uniform 2D samplers take and give the a
   const AppSpaceResult r = app_space(source);
   REQUIRE(r.ok);
   INFO(r.source);
-  CHECK(r.samplers == std::vector<std::string>{"ids", "mask", "scene", "shadow"});  // not the 3D one
+  CHECK(r.samplers == std::vector<AppSpaceSampler>{{"ids"}, {"mask"}, {"scene"}, {"shadow"}});  // not the 3D one
   std::string body = r.source.substr(r.source.find("void main"));
   body.erase(std::remove(body.begin(), body.end(), ' '), body.end());
   INFO(body);
@@ -427,10 +427,29 @@ TEST_CASE("the rewrite compiles in GLSL ES and old desktop GLSL", "[app_space]")
   }
 }
 
+TEST_CASE("an element of a sampler array reads the size of its own element", "[app_space]") {
+  const AppSpaceResult r = app_space(
+      "#version 330 core\nconst int N = 3;\nuniform sampler2D layers[N]; uniform sampler2D pair[2]; out vec4 o;\n"
+      "void main() { ivec2 p = ivec2(gl_FragCoord.xy);\n"
+      "  o = texelFetch(layers[1], p, 0) + texelFetch(pair[N - 2], p, 0) + vec4(textureSize(layers[2], 0), 0, 0); }\n");
+  REQUIRE(r.ok);
+  INFO(r.source);
+  CHECK(r.samplers == std::vector<AppSpaceSampler>{{"layers", true}, {"pair", true}});
+  CHECK(r.source.find("uniform sampler2D layers[N]; uniform highp ivec3 glbudget_size_layers[N];") !=
+        std::string::npos);
+  CHECK(r.source.find("uniform highp ivec3 glbudget_size_pair[2];") != std::string::npos);
+  std::string body = r.source.substr(r.source.find("void main"));
+  body.erase(std::remove(body.begin(), body.end(), ' '), body.end());
+  CHECK(body.find("glbudget_texelFetch(layers[1],p,0,glbudget_size_layers[1])") != std::string::npos);
+  CHECK(body.find("glbudget_texelFetch(pair[N-2],p,0,glbudget_size_pair[N-2])") != std::string::npos);
+  CHECK(body.find("glbudget_textureSize(layers[2],0,glbudget_size_layers[2])") != std::string::npos);
+  CHECK(glslang_errors(r.source, Stage::fragment).empty());
+}
+
 TEST_CASE("a sampler known only at run time leaves the shader as it is, saying why", "[app_space]") {
   const char* sources[] = {
-      "#version 330\nuniform sampler2D t[2]; out vec4 o;\n"
-      "void main() { o = texelFetch(t[1], ivec2(gl_FragCoord.xy), 0); }\n",
+      "#version 430\nuniform sampler2D t[2]; out vec4 o;\n"
+      "void main() { int i = 0; o = texelFetch(t[i++], ivec2(gl_FragCoord.xy), 0); }\n",
       "#version 330\nuniform sampler2D t; out vec4 o;\n"
       "vec4 at(sampler2D s, ivec2 p) { return texelFetch(s, p, 0); }\n"
       "void main() { o = at(t, ivec2(gl_FragCoord.xy)); }\n",
@@ -439,10 +458,12 @@ TEST_CASE("a sampler known only at run time leaves the shader as it is, saying w
     const AppSpaceResult r = app_space(source);
     CHECK(r.needed);
     CHECK_FALSE(r.ok);
-    CHECK(r.error.find("not a uniform sampler named directly") != std::string::npos);
+    CHECK(r.unsupported);
+    CHECK(r.error.find("not a uniform sampler or an element of one") != std::string::npos);
   }
   const AppSpaceResult broken = app_space("#version 330\nout vec4 o; void main() { o = gl_FragCoord }\n");
   CHECK(broken.needed);
   CHECK_FALSE(broken.ok);
+  CHECK_FALSE(broken.unsupported);
   CHECK_FALSE(broken.error.empty());
 }
