@@ -3,6 +3,9 @@
 //   --samples N   a multisampled window (as SDL_GL_MULTISAMPLESAMPLES asks); exits 5 when
 //                 GL_SAMPLES of the default framebuffer does not answer N at the end
 //   --slanted 1   after the known scene, a slanted triangle whose edges antialiasing shows
+//   --blit-through 1  after each frame's drawing, the window is blitted into a window-sized
+//                 framebuffer of the app's, the window cleared, and the copy blitted back
+//                 (as a post-process that starts from a copy of the back buffer)
 #include <GL/glx.h>
 #include <X11/Xlib.h>
 
@@ -61,6 +64,58 @@ struct SlantedTriangle {
   }
 };
 
+// The window into a framebuffer of the app's and back, at the same size (as a multisampled
+// window takes blits).
+struct BlitThrough {
+  PFNGLGENFRAMEBUFFERSPROC GenFramebuffers = nullptr;
+  PFNGLBINDFRAMEBUFFERPROC BindFramebuffer = nullptr;
+  PFNGLGENRENDERBUFFERSPROC GenRenderbuffers = nullptr;
+  PFNGLBINDRENDERBUFFERPROC BindRenderbuffer = nullptr;
+  PFNGLRENDERBUFFERSTORAGEPROC RenderbufferStorage = nullptr;
+  PFNGLFRAMEBUFFERRENDERBUFFERPROC FramebufferRenderbuffer = nullptr;
+  PFNGLBLITFRAMEBUFFERPROC BlitFramebuffer = nullptr;
+  unsigned fbo = 0, color = 0;
+  int width = 0, height = 0;
+  template <typename F>
+  static void load(F& f, const char* name) {
+    f = reinterpret_cast<F>(glXGetProcAddressARB(reinterpret_cast<const GLubyte*>(name)));
+  }
+  bool make(int w, int h) {
+    load(GenFramebuffers, "glGenFramebuffers");
+    load(BindFramebuffer, "glBindFramebuffer");
+    load(GenRenderbuffers, "glGenRenderbuffers");
+    load(BindRenderbuffer, "glBindRenderbuffer");
+    load(RenderbufferStorage, "glRenderbufferStorage");
+    load(FramebufferRenderbuffer, "glFramebufferRenderbuffer");
+    load(BlitFramebuffer, "glBlitFramebuffer");
+    if (!GenFramebuffers || !BindFramebuffer || !GenRenderbuffers || !BindRenderbuffer || !RenderbufferStorage ||
+        !FramebufferRenderbuffer || !BlitFramebuffer)
+      return false;
+    width = w;
+    height = h;
+    GenRenderbuffers(1, &color);
+    BindRenderbuffer(GL_RENDERBUFFER, color);
+    RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);
+    GenFramebuffers(1, &fbo);
+    BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color);
+    BindFramebuffer(GL_FRAMEBUFFER, 0);
+    return true;
+  }
+  void run() const {
+    BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+    BlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    BindFramebuffer(GL_FRAMEBUFFER, 0);
+    glClearColor(1.0f, 0.0f, 1.0f, 1.0f);  // what shows if the copy does not come back
+    glClear(GL_COLOR_BUFFER_BIT);
+    BindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+    BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    BlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    BindFramebuffer(GL_FRAMEBUFFER, 0);
+  }
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -71,10 +126,12 @@ int main(int argc, char** argv) {
     return 2;
   }
   int samples = 0;
+  bool want_blit = false;
   bool want_slanted = false;
   for (int i = 1; i + 1 < argc; ++i) {
     if (!strcmp(argv[i], "--samples")) samples = atoi(argv[i + 1]);
     if (!strcmp(argv[i], "--slanted")) want_slanted = atoi(argv[i + 1]) != 0;
+    if (!strcmp(argv[i], "--blit-through")) want_blit = atoi(argv[i + 1]) != 0;
   }
   std::vector<int> fb_attribs = {GLX_X_RENDERABLE,  True,
                                  GLX_DRAWABLE_TYPE, GLX_WINDOW_BIT,
@@ -119,10 +176,16 @@ int main(int argc, char** argv) {
     fprintf(stderr, "probe_glx: the triangle's program does not link\n");
     return 2;
   }
+  BlitThrough blit;
+  if (want_blit && !blit.make(args.width, args.height)) {
+    fprintf(stderr, "probe_glx: no framebuffer objects\n");
+    return 2;
+  }
   int rc = run_known_scene(
       gl, ShaderDialect::kGlsl330Core, args, [&] { glXSwapBuffers(dpy, win); },
       [&] {
         if (slanted) triangle.draw(gl);
+        if (want_blit) blit.run();
       });
   GLint window_samples = -1;
   glGetIntegerv(GL_SAMPLES, &window_samples);
