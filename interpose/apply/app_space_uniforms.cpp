@@ -37,13 +37,13 @@ void give_app_space_for_draw(ContextState& c, const VariantSet& set) {
   TargetScaler& t = *c.targets;
   double sx = 1.0, sy = 1.0;
   t.stored_scale(t.app_draw_framebuffer(), &sx, &sy);
-  give_frag_ratio(v, static_cast<float>(1.0 / sx), static_cast<float>(1.0 / sy));
-  if (v.app_space.samplers.empty()) return;
-  if (!t.active()) {  // no app texture is stored at another size
+  const float ratio_x = static_cast<float>(1.0 / sx), ratio_y = static_cast<float>(1.0 / sy);
+  if (!t.active()) {  // no app texture is stored at another size: no unit to ask about
+    give_frag_ratio(v, ratio_x, ratio_y);
     for (size_t i = 0; i < v.app_space.samplers.size(); ++i) give_sampler_size(v, i, {0, 0, 0});
     return;
   }
-  give_app_space(v, static_cast<float>(1.0 / sx), static_cast<float>(1.0 / sy), [&](GLint unit) -> SamplerSize {
+  give_app_space(v, ratio_x, ratio_y, [&](GLint unit) -> SamplerSize {
     GLint w = 0, h = 0;
     bool scaled = false;
     if (!t.app_texture_size(t.texture_at_unit(unit), &w, &h, &scaled) || !scaled) return {0, 0, 0};
