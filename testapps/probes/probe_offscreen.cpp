@@ -2,7 +2,8 @@
 // and depth renderbuffer), a quarter-sized copy of it (a bloom-like chain, never the window's
 // size), then both composed into the window by a full-screen pass that samples them with
 // normalised coordinates. The window is read back at the last frame.
-//   --profile compat     a compatibility-profile context (as GLX apps and glmark2 get)
+//   --profile compat     a compatibility-profile context (as GLX apps and glmark2 get);
+//   --profile gles3      an OpenGL ES 3 context, its shaders in GLSL ES 3.00
 //   --format unsized     colour textures specified as GL_RGBA (GLES 2-era code), not GL_RGBA8
 //   --format immutable   colour textures and a depth-stencil texture made by glTexStorage2D
 //                        (GL 4.2+ engines), not glTexImage2D and a renderbuffer
@@ -99,10 +100,19 @@ GLuint compose_pipeline(const char* fs, GLuint* fragment_program) {
   return pipeline;
 }
 
-GLuint program(const char* vs, const char* fs) {
+// A shader in GLSL ES 3.00 when `es`: its "#version 330 core" line replaced.
+std::string in_dialect(const char* source, bool es) {
+  std::string s = source;
+  const std::string desktop = "#version 330 core\n";
+  if (es && s.rfind(desktop, 0) == 0) s.replace(0, desktop.size(), "#version 300 es\nprecision highp float;\n");
+  return s;
+}
+
+GLuint program(const char* vs, const char* fs, bool es = false) {
   GLuint p = glCreateProgram();
-  for (auto [stage, src] : {std::pair{GL_VERTEX_SHADER, vs}, std::pair{GL_FRAGMENT_SHADER, fs}}) {
-    const GLuint s = compile_shader(stage, src);
+  for (auto [stage, text] : {std::pair{GL_VERTEX_SHADER, vs}, std::pair{GL_FRAGMENT_SHADER, fs}}) {
+    const std::string src = in_dialect(text, es);
+    const GLuint s = compile_shader(stage, src.c_str());
     if (!s) return 0;
     glAttachShader(p, s);
   }
@@ -226,7 +236,7 @@ void read_scene_framebuffer(GLuint fbo, int w, int h, const std::string& path) {
 
 int main(int argc, char** argv) {
   ProbeArgs args = parse_probe_args(argc, argv);
-  bool compat = false;
+  bool compat = false, es = false;
   Format format = Format::kSized;
   std::string read_fbo_path, compose = "uv";
   bool pipeline = false;
@@ -234,7 +244,10 @@ int main(int argc, char** argv) {
     if (!strcmp(argv[i], "--pipeline")) pipeline = !strcmp(argv[i + 1], "1");
     if (!strcmp(argv[i], "--compose")) compose = argv[i + 1];
     if (!strcmp(argv[i], "--read-fbo")) read_fbo_path = argv[i + 1];
-    if (!strcmp(argv[i], "--profile")) compat = !strcmp(argv[i + 1], "compat");
+    if (!strcmp(argv[i], "--profile")) {
+      compat = !strcmp(argv[i + 1], "compat");
+      es = !strcmp(argv[i + 1], "gles3");
+    }
     if (!strcmp(argv[i], "--format"))
       format = !strcmp(argv[i + 1], "unsized")     ? Format::kUnsized
                : !strcmp(argv[i + 1], "immutable") ? Format::kImmutable
@@ -247,15 +260,19 @@ int main(int argc, char** argv) {
   const int w = args.width, h = args.height;
   EglFns egl;
   EglWindow win;
-  if (!open_current_window("probe_offscreen", egl, compat ? ContextKind::kCompat : ContextKind::kCore45, w, h, &win))
+  if (!open_current_window("probe_offscreen", egl,
+                           es       ? ContextKind::kGles3
+                           : compat ? ContextKind::kCompat
+                                    : ContextKind::kCore45,
+                           w, h, &win))
     return 2;
   GlFns gl;
 #define DIRECT(type, name) gl.name = &::gl##name;
   PROBE_GL_FUNCTIONS(DIRECT)
 #undef DIRECT
-  KnownScene scene(gl, ShaderDialect::kGlsl330Core, w, h);
-  const GLuint quarter_program = program(kVertex, kQuarter),
-               compose_program = program(kVertex, compose_source(compose));
+  KnownScene scene(gl, es ? ShaderDialect::kEssl300 : ShaderDialect::kGlsl330Core, w, h);
+  const GLuint quarter_program = program(kVertex, kQuarter, es),
+               compose_program = program(kVertex, compose_source(compose), es);
   if (!scene.ok() || !quarter_program || !compose_program) {
     fprintf(stderr, "probe_offscreen: %s\n", scene.ok() ? "a program does not link" : scene.error().c_str());
     return 2;

@@ -253,20 +253,29 @@ TEST_CASE("a pass that finds its texels from gl_FragCoord sees the app's pixels 
   // elements). Rewritten (manifest
   // shader_coordinates = "app", the default) each looks like the unscaled image; at 100 % it
   // is the unscaled image, bit for bit.
-  // Drawn by a program, or by a program pipeline of separable programs.
+  // Drawn by a program, or by a program pipeline of separable programs; in GLSL 3.30 or in an
+  // OpenGL ES 3 context, GLSL ES 3.00.
   const std::string mode = GENERATE("fragcoord", "fetch", "size", "array");
   const std::string pipeline = GENERATE("0", "1");
-  INFO("compose: " << mode << ", pipeline " << pipeline);
-  const std::vector<std::string> args = {probe_path("probe_offscreen"),
-                                         "--frames",
-                                         "3",
-                                         "--size",
-                                         "128",
-                                         "--compose",
-                                         mode,
-                                         "--pipeline",
-                                         pipeline,
-                                         "--out"};
+  const std::string profile = GENERATE("core", "gles3");
+  if (profile == "gles3" && pipeline == "1") return;  // the probe's pipeline is desktop GLSL 4.50
+  INFO("compose: " << mode << ", pipeline " << pipeline << ", profile " << profile);
+  // The probe's command for `frames` frames, its image into the path appended last.
+  auto command = [&](const char* frames) {
+    return std::vector<std::string>{probe_path("probe_offscreen"),
+                                    "--frames",
+                                    frames,
+                                    "--size",
+                                    "128",
+                                    "--compose",
+                                    mode,
+                                    "--pipeline",
+                                    pipeline,
+                                    "--profile",
+                                    profile,
+                                    "--out"};
+  };
+  const std::vector<std::string> args = command("3");
   const std::string manifest = temp_path("coordinates_scaled.toml");
   {
     std::ofstream m(manifest);
@@ -311,17 +320,15 @@ TEST_CASE("a pass that finds its texels from gl_FragCoord sees the app's pixels 
                     img = temp_path("coordinates_probed.ppm");
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
-  REQUIRE(run_process({probe_path("probe_offscreen"), "--frames", "4", "--size", "128", "--compose", mode, "--pipeline",
-                       pipeline, "--out", plain4},
-                      {})
-              .exit_code == 0);
-  const ProcessResult probed = run_process({probe_path("probe_offscreen"), "--frames", "5", "--size", "128",
-                                            "--compose", mode, "--pipeline", pipeline, "--out", img},
-                                           {{"LD_PRELOAD", shim_path()},
-                                            {"GLBUDGET_SENSOR", "cpu"},
-                                            {"GLBUDGET_FORCE", "2"},
-                                            {"GLBUDGET_PROBE_PERIOD", "2"},
-                                            {"GLBUDGET_DUMP_PROBES", dir}});
+  std::vector<std::string> plain_command = command("4"), probed_command = command("5");
+  plain_command.push_back(plain4);
+  probed_command.push_back(img);
+  REQUIRE(run_process(plain_command, {}).exit_code == 0);
+  const ProcessResult probed = run_process(probed_command, {{"LD_PRELOAD", shim_path()},
+                                                            {"GLBUDGET_SENSOR", "cpu"},
+                                                            {"GLBUDGET_FORCE", "2"},
+                                                            {"GLBUDGET_PROBE_PERIOD", "2"},
+                                                            {"GLBUDGET_DUMP_PROBES", dir}});
   INFO(probed.err);
   REQUIRE(probed.exit_code == 0);
   const Ppm best = read_ppm(dir + "/probe_c0_f4_s1_0.ppm"), unscaled = read_ppm(plain4);
