@@ -214,7 +214,7 @@ bool element_index(const std::vector<Token>& t, std::size_t first, std::size_t l
     const std::string_view x = t[k].text;
     if (x == "[") ++depth;
     if (x == "]" && --depth == 0 && k + 1 != last) return false;
-    if (x == "=") return false;
+    if (x == "=" || x == "(") return false;  // an assignment, or a call that may have effects
     if ((x == "+" || x == "-") && t[k + 1].text == x && t[k + 1].begin == t[k].end) return false;  // ++, --
   }
   *index = "[" + std::string(text_of(t, first + 2, last - 1)) + "]";
@@ -314,6 +314,8 @@ AppSpaceResult to_app_space(const std::string& app_source,
     // (subroutines), so the language is read from #version alone.
     const LanguageVersion language = language_of(text, unit);
     const HeaderPoints points = header_points(text, unit);
+    for (const Edit& e : edits)
+      if (e.begin < points.declaration) throw std::runtime_error("a declaration glbudget edits precedes an #extension");
     std::vector<Insertion> insertions;
     insertions.push_back({points.declaration, declarations(language, result.frag_coord, used, array_size) +
                                                   line_fixup(text, unit, points.declaration, language)});

@@ -485,25 +485,36 @@ namespace {
 // A level's sources with the fragment stage rewritten to see the app's pixels, when it reads
 // any; `rewritten` says whether it did. Where a use cannot be followed, `refused` says which.
 // A shader the rewrite cannot read is left to the driver, whose verdict the app gets anyway.
-std::vector<ShaderSource> in_app_coordinates(std::vector<ShaderSource> sources,
+std::vector<ShaderSource> in_app_coordinates(std::vector<ShaderSource> sources, bool gles,
                                              const std::optional<std::vector<std::string>>& extensions,
                                              std::vector<instrument::AppSpaceSampler>* samplers, bool* frag_coord,
                                              bool* rewritten, std::string* refused) {
   *rewritten = false;
-  for (ShaderSource& s : sources) {
+  std::vector<ShaderSource> out = sources;
+  int needed = 0;
+  for (ShaderSource& s : out) {
     if (s.stage != GL_FRAGMENT_SHADER) continue;
-    instrument::AppSpaceResult r = instrument::to_app_space(s.source, extensions);
+    // A GLSL ES shader may leave out #version (1.00); glslang would read it as desktop 1.10.
+    std::string source = s.source;
+    if (gles && source.find("#version") == std::string::npos) source = "#version 100\n#line 1\n" + source;
+    instrument::AppSpaceResult r = instrument::to_app_space(source, extensions);
     if (!r.needed) continue;
+    // Fragment shaders of one program would each declare the same helpers.
+    if (++needed > 1) {
+      if (refused->empty()) *refused = "more than one fragment shader object reads pixel coordinates";
+      *rewritten = false;
+      return sources;
+    }
     if (!r.ok) {
       if (r.unsupported && refused->empty()) *refused = r.error;
-      continue;
+      return sources;
     }
     s.source = std::move(r.source);
     *samplers = std::move(r.samplers);
     *frag_coord = r.frag_coord;
     *rewritten = true;
   }
-  return sources;
+  return *rewritten ? out : sources;
 }
 
 // The rewritten shader's own uniforms: located, and set to draw as the app's program does.
@@ -579,10 +590,10 @@ std::shared_ptr<VariantSet> build_variants(GLuint program, PassId app_hash, int 
         const PassId variant_hash = program_hash(std::move(hashes));
         std::vector<instrument::AppSpaceSampler> samplers;
         bool frag_coord = false, rewritten = false;
-        const std::vector<ShaderSource> built =
-            app_coordinates
-                ? in_app_coordinates(modified, driver_extensions, &samplers, &frag_coord, &rewritten, refused)
-                : modified;
+        const std::vector<ShaderSource> built = app_coordinates
+                                                    ? in_app_coordinates(modified, caps.gles, driver_extensions,
+                                                                         &samplers, &frag_coord, &rewritten, refused)
+                                                    : modified;
         if (changes || rewritten) {
           v.dump_name = hash_text(variant_hash);
           if (variant_hash == app_hash && changes) v.dump_name += "-level" + std::to_string(l);

@@ -76,17 +76,22 @@ GlCaps detect_caps() {
 
 void PassCounter::set_pass(PassId pass) {
   pass_ = pass;
-  ready = counting_ && !skipping_ && open_ && seg_.pass == pass_;
+  ready = counting_ && !skipping_ && !every_draw_hooked_ && open_ && seg_.pass == pass_;
 }
 
 void PassCounter::set_counting(bool on) {
   counting_ = on;
-  ready = counting_ && !skipping_ && open_ && seg_.pass == pass_;
+  ready = counting_ && !skipping_ && !every_draw_hooked_ && open_ && seg_.pass == pass_;
+}
+
+void PassCounter::set_every_draw_hooked(bool on) {
+  every_draw_hooked_ = on;
+  ready = counting_ && !skipping_ && !every_draw_hooked_ && open_ && seg_.pass == pass_;
 }
 
 void PassCounter::set_skipping(bool on) {
   skipping_ = on;
-  ready = counting_ && !skipping_ && open_ && seg_.pass == pass_;
+  ready = counting_ && !skipping_ && !every_draw_hooked_ && open_ && seg_.pass == pass_;
 }
 
 bool PassCounter::draw_slow(uint64_t n) {
@@ -96,7 +101,7 @@ bool PassCounter::draw_slow(uint64_t n) {
   if (open_ && seg_.pass != pass_) close_segment();
   if (!open_) open_segment();
   open_batches += n;
-  ready = true;
+  ready = !every_draw_hooked_;
   return true;
 }
 

@@ -34,6 +34,9 @@ class PassCounter : public DrawCounter {
   void set_pass(PassId pass);  // the pass later draws belong to (program change)
   void set_counting(bool on);  // off while a display list is being compiled
   void set_skipping(bool on);  // the configuration skips the current pass: draws are dropped
+  // Every draw takes the slow path while on (the draw hook must run before each: a program in
+  // app coordinates takes the uniforms of the textures bound for that draw).
+  void set_every_draw_hooked(bool on);
   // The next draw takes the slow path (the draw framebuffer changed): `hook` runs there first.
   void invalidate() { ready = false; }
   void set_draw_hook(void (*hook)(void*), void* arg) {
@@ -100,6 +103,7 @@ class PassCounter : public DrawCounter {
   PassId pass_ = kFixedFunctionPass;
   bool counting_ = true;
   bool skipping_ = false;
+  bool every_draw_hooked_ = false;
   void (*draw_hook_)(void*) = nullptr;
   void* draw_hook_arg_ = nullptr;
   std::string configuration_;

@@ -119,6 +119,18 @@ GLuint real_stage_program(ContextState& c, GLuint program) {
   return v ? v->program_for(c.config) : program;
 }
 
+// A program in app coordinates drawing (apply/app_space_uniforms.hpp): every draw is hooked.
+void hook_every_draw_of_copies(ContextState& c) {
+  auto any = [](const std::shared_ptr<const VariantSet>& set) {
+    if (!set) return false;
+    for (const Variant& v : set->levels)
+      if (v.program && v.app_space.any()) return true;
+    return false;
+  };
+  if (c.counter && c.targets)
+    c.counter->set_every_draw_hooked(any(c.program ? c.bound_variants : c.pipeline_fragment_variants));
+}
+
 void update_pipeline_uniforms(ContextState& c) {
   c.pipeline_uniform_variants.reset();
   c.pipeline_fragment_variants.reset();
@@ -127,6 +139,7 @@ void update_pipeline_uniforms(ContextState& c) {
   if (it != c.pipeline_active.end()) c.pipeline_uniform_variants = variants_of(c, it->second);
   auto stages = c.pipeline_stages.find(c.pipeline);
   if (stages != c.pipeline_stages.end()) c.pipeline_fragment_variants = variants_of(c, stages->second[kFragmentSlot]);
+  hook_every_draw_of_copies(c);
 }
 }  // namespace
 
@@ -147,6 +160,7 @@ void bind_program(ContextState& c) {
   }
   c.bound_variants = std::move(variants);
   c.manifest_pass = pass;
+  hook_every_draw_of_copies(c);
   const GLuint wanted = c.bound_variants ? c.bound_variants->program_for(c.config) : c.program;
   if (wanted != c.real_program) {
     agl().UseProgram(wanted);
@@ -241,10 +255,14 @@ void handle_glLinkProgram(pfn_glLinkProgram real, GLuint program) {
     after_link(*c, *c->group, program, p, real);
     shadow_program(*c, *c->group, program, p);
   }
-  if (c->program == program) bind_program(*c);
-  if (!c->pipeline_stages.empty()) {  // the relinked program's new variants into the stages that hold it
-    bind_pipeline_stages(*c);
-    update_pipeline_uniforms(*c);
+  {
+    // A program whose relink failed cannot be bound: what that raises is the shim's, not the app's.
+    const OwnGlWork own(*c);
+    if (c->program == program) bind_program(*c);
+    if (!c->pipeline_stages.empty()) {  // the relinked program's new variants into the stages that hold it
+      bind_pipeline_stages(*c);
+      update_pipeline_uniforms(*c);
+    }
   }
   refresh_if_bound(c);
 }

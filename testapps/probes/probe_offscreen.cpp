@@ -25,6 +25,9 @@
 //                        "size" gl_FragCoord divided by textureSize (the quarter's times 4);
 //                        "array" texelFetch at gl_FragCoord of a sampler array's elements;
 //                        "parameter" texelFetch in a function taking the sampler
+//   --twice 1            the compose pass drawn in two halves (scissored), the left one with the
+//                        scene and quarter textures bound to each other's units: one program
+//                        drawing other textures into the same framebuffer, draw after draw
 //   --pipeline 1         the compose pass drawn by a program pipeline of separable programs
 //                        (glCreateShaderProgramv), its uniforms set by glProgramUniform*
 // Exits 4 when glGetError reports an error at any frame: none of the app's calls raises one;
@@ -239,9 +242,10 @@ int main(int argc, char** argv) {
   bool compat = false, es = false;
   Format format = Format::kSized;
   std::string read_fbo_path, compose = "uv";
-  bool pipeline = false;
+  bool pipeline = false, twice = false;
   for (int i = 1; i + 1 < argc; ++i) {
     if (!strcmp(argv[i], "--pipeline")) pipeline = !strcmp(argv[i + 1], "1");
+    if (!strcmp(argv[i], "--twice")) twice = !strcmp(argv[i + 1], "1");
     if (!strcmp(argv[i], "--compose")) compose = argv[i + 1];
     if (!strcmp(argv[i], "--read-fbo")) read_fbo_path = argv[i + 1];
     if (!strcmp(argv[i], "--profile")) {
@@ -359,7 +363,22 @@ int main(int argc, char** argv) {
     } else {
       glUseProgram(compose_program);
     }
+    if (twice) {
+      glEnable(GL_SCISSOR_TEST);
+      glScissor(0, 0, w / 2, h);
+      glActiveTexture(GL_TEXTURE0);
+      glBindTexture(GL_TEXTURE_2D, quarter_color);
+      glActiveTexture(GL_TEXTURE1);
+      glBindTexture(GL_TEXTURE_2D, scene_color);
+      glDrawArrays(GL_TRIANGLES, 0, 6);
+      glScissor(w / 2, 0, w - w / 2, h);
+      glActiveTexture(GL_TEXTURE0);
+      glBindTexture(GL_TEXTURE_2D, scene_color);
+      glActiveTexture(GL_TEXTURE1);
+      glBindTexture(GL_TEXTURE_2D, quarter_color);
+    }
     glDrawArrays(GL_TRIANGLES, 0, 6);
+    glDisable(GL_SCISSOR_TEST);
     glBindProgramPipeline(0);
     if (f + 1 == args.frames) image = scene.read_rgba();
     if (f + 1 == args.frames && !read_fbo_path.empty()) read_scene_framebuffer(fbo[0], w, h, read_fbo_path);

@@ -369,7 +369,7 @@ TEST_CASE("gl_FragCoord is read in the app's pixels, its redeclaration kept", "[
   CHECK(r.samplers.empty());
   CHECK(r.source.find("in vec4 gl_FragCoord;") != std::string::npos);
   CHECK(r.source.find("uniform highp vec2 glbudget_frag_ratio;") != std::string::npos);
-  // Each read, also those a macro made: two in UV, one for .z.
+  // Each read is rewritten, also one a macro made: UV's and the one for .z.
   std::size_t reads = 0;
   for (std::size_t at = 0; (at = r.source.find("gl_FragCoord.xy * glbudget_frag_ratio", at)) != std::string::npos; ++at)
     ++reads;
@@ -450,6 +450,8 @@ TEST_CASE("a sampler known only at run time leaves the shader as it is, saying w
   const char* sources[] = {
       "#version 430\nuniform sampler2D t[2]; out vec4 o;\n"
       "void main() { int i = 0; o = texelFetch(t[i++], ivec2(gl_FragCoord.xy), 0); }\n",
+      "#version 430\nuniform sampler2D t[2]; out vec4 o; int n = 0; int next() { return n++; }\n"
+      "void main() { o = texelFetch(t[next()], ivec2(gl_FragCoord.xy), 0); }\n",
       "#version 330\nuniform sampler2D t; out vec4 o;\n"
       "vec4 at(sampler2D s, ivec2 p) { return texelFetch(s, p, 0); }\n"
       "void main() { o = at(t, ivec2(gl_FragCoord.xy)); }\n",
