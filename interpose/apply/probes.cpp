@@ -50,12 +50,9 @@ const ProbeSettings& probe_settings() {
 
 namespace {
 
-// Entry points beyond the apply layer's table, resolved to the driver.
+// Entry points beyond the apply layer's table (apply_gl.hpp), resolved to the driver.
 struct ProbeGl {
-  void(APIENTRYP ActiveTexture)(GLenum) = nullptr;
   void(APIENTRYP GetTexLevelParameteriv)(GLenum, GLint, GLenum, GLint*) = nullptr;
-  void(APIENTRYP GetTexParameteriv)(GLenum, GLenum, GLint*) = nullptr;
-  void(APIENTRYP TexParameteri)(GLenum, GLenum, GLint) = nullptr;
   void(APIENTRYP TexStorage2D)(GLenum, GLsizei, GLenum, GLsizei, GLsizei) = nullptr;
   void(APIENTRYP GetRenderbufferParameteriv)(GLenum, GLenum, GLint*) = nullptr;
   void(APIENTRYP DrawBuffers)(GLsizei, const GLenum*) = nullptr;
@@ -82,10 +79,7 @@ const ProbeGl& pgl() {
     auto load = [](auto& fn, const char* name) {
       fn = reinterpret_cast<std::remove_reference_t<decltype(fn)>>(resolve_gl(name));
     };
-    load(p.ActiveTexture, "glActiveTexture");
     load(p.GetTexLevelParameteriv, "glGetTexLevelParameteriv");
-    load(p.GetTexParameteriv, "glGetTexParameteriv");
-    load(p.TexParameteri, "glTexParameteri");
     load(p.TexStorage2D, "glTexStorage2D");
     load(p.GetRenderbufferParameteriv, "glGetRenderbufferParameteriv");
     load(p.DrawBuffers, "glDrawBuffers");
@@ -103,7 +97,8 @@ const ProbeGl& pgl() {
     load(p.PixelStorei, "glPixelStorei");
     load(p.GetIntegeri_v, "glGetIntegeri_v");
     load(p.GenerateMipmap, "glGenerateMipmap");
-    p.complete = p.ActiveTexture && p.GetTexLevelParameteriv && p.GetTexParameteriv && p.TexParameteri &&
+    const ApplyGl& a = agl();
+    p.complete = a.ActiveTexture && a.GetTexParameteriv && a.TexParameteri && p.GetTexLevelParameteriv &&
                  p.TexStorage2D && p.GetRenderbufferParameteriv && p.DrawBuffers && p.GenBuffers && p.DeleteBuffers &&
                  p.BindBuffer && p.BufferData && p.ReadPixels && p.MapBufferRange && p.UnmapBuffer && p.FenceSync &&
                  p.ClientWaitSync && p.DeleteSync && p.PixelStorei;
@@ -345,12 +340,13 @@ struct ProbeFrames::Impl {
   GLsizei texture_levels() {
     const ProbeGl& p = pgl();
     GLint immutable = GL_FALSE, levels = 0, max_level = 1000;
-    p.GetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_IMMUTABLE_FORMAT, &immutable);
+    const ApplyGl& g = agl();
+    g.GetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_IMMUTABLE_FORMAT, &immutable);
     if (immutable) {
-      p.GetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_IMMUTABLE_LEVELS, &levels);
+      g.GetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_IMMUTABLE_LEVELS, &levels);
       return std::max(1, levels);
     }
-    p.GetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, &max_level);
+    g.GetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, &max_level);
     for (levels = 1; levels <= std::min(max_level, 15); ++levels) {
       GLint width = 0;
       p.GetTexLevelParameteriv(GL_TEXTURE_2D, levels, GL_TEXTURE_WIDTH, &width);
@@ -400,9 +396,9 @@ struct ProbeFrames::Impl {
         for (GLenum param : kParams) {
           GLint v = 0;
           g.BindTexture(GL_TEXTURE_2D, im.app);
-          p.GetTexParameteriv(GL_TEXTURE_2D, param, &v);
+          g.GetTexParameteriv(GL_TEXTURE_2D, param, &v);
           g.BindTexture(GL_TEXTURE_2D, im.shadow);
-          p.TexParameteri(GL_TEXTURE_2D, param, v);
+          g.TexParameteri(GL_TEXTURE_2D, param, v);
         }
         g.FramebufferTexture2D(GL_DRAW_FRAMEBUFFER, im.point, GL_TEXTURE_2D, im.shadow, 0);
       }
@@ -600,7 +596,7 @@ struct ProbeFrames::Impl {
       auto t = st.textures.find(static_cast<GLuint>(unit_texture[u]));
       const bool want = t != st.textures.end();
       if (!want && !redirected[u]) continue;
-      pgl().ActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(u));
+      agl().ActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(u));
       g.BindTexture(GL_TEXTURE_2D, want ? t->second : static_cast<GLuint>(unit_texture[u]));
       redirected[u] = want;
     }
@@ -642,7 +638,7 @@ struct ProbeFrames::Impl {
     saved_active = get(GL_ACTIVE_TEXTURE);
     saved_config = c.config;
     for (int u = 0; u < units; ++u) {
-      pgl().ActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(u));
+      agl().ActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(u));
       unit_texture[u] = get(GL_TEXTURE_BINDING_2D);
       redirected[u] = false;
     }
@@ -660,11 +656,11 @@ struct ProbeFrames::Impl {
     const ApplyGl& g = agl();
     for (int u = 0; u < units; ++u) {
       if (!redirected[u]) continue;
-      pgl().ActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(u));
+      agl().ActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(u));
       g.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(unit_texture[u]));
       redirected[u] = false;
     }
-    pgl().ActiveTexture(static_cast<GLenum>(saved_active));
+    agl().ActiveTexture(static_cast<GLenum>(saved_active));
     c.config = saved_config;
     if (c.bound_variants)
       bind_program(c);
@@ -687,7 +683,7 @@ struct ProbeFrames::Impl {
       if (capture_texture[i]) g.DeleteTextures(1, &capture_texture[i]);
     }
     const GLint active = get(GL_ACTIVE_TEXTURE);
-    pgl().ActiveTexture(GL_TEXTURE0);
+    agl().ActiveTexture(GL_TEXTURE0);
     const GLint texture = get(GL_TEXTURE_BINDING_2D);
     for (int i = 0; i <= kMaxStreams; ++i) {
       g.GenFramebuffers(1, &capture_fbo[i]);
@@ -698,7 +694,7 @@ struct ProbeFrames::Impl {
       g.FramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, capture_texture[i], 0);
     }
     g.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(texture));
-    pgl().ActiveTexture(static_cast<GLenum>(active));
+    agl().ActiveTexture(static_cast<GLenum>(active));
     capture_width = width;
     capture_height = height;
   }

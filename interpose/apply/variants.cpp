@@ -485,7 +485,7 @@ namespace {
 // A level's sources with the fragment stage rewritten to see the app's pixels, when it reads
 // any; `rewritten` says whether it did. Where a use cannot be followed, `refused` says which.
 // A shader the rewrite cannot read is left to the driver, whose verdict the app gets anyway.
-std::vector<ShaderSource> in_app_coordinates(std::vector<ShaderSource> sources, bool gles,
+std::vector<ShaderSource> in_app_coordinates(const std::vector<ShaderSource>& sources, bool gles,
                                              const std::optional<std::vector<std::string>>& extensions,
                                              std::vector<instrument::AppSpaceSampler>* samplers, bool* frag_coord,
                                              bool* rewritten, std::string* refused) {

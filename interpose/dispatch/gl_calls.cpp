@@ -45,4 +45,15 @@ bool load_gl_calls() {
   return g.GetString && g.GetIntegerv;
 }
 
+std::vector<std::string> extension_names() {
+  std::vector<std::string> names;
+  if (!g_gl.GetStringi) return names;
+  GLint count = 0;
+  g_gl.GetIntegerv(GL_NUM_EXTENSIONS, &count);
+  for (GLint i = 0; i < count; ++i)
+    if (auto e = reinterpret_cast<const char*>(g_gl.GetStringi(GL_EXTENSIONS, static_cast<GLuint>(i))))
+      names.emplace_back(e);
+  return names;
+}
+
 }  // namespace glbudget

@@ -3,6 +3,9 @@
 // sees one of ours). It calls glGetError only with the app's pending errors moved aside
 // (state/gl_errors.hpp), around work that can fail (building variants).
 #pragma once
+#include <string>
+#include <vector>
+
 #include "gl_types.hpp"
 
 namespace glbudget {
@@ -45,5 +48,8 @@ extern GlCalls g_gl;
 bool load_gl_calls();
 
 inline const GlCalls& gl() { return g_gl; }
+
+// The current context's extensions, by index (glGetStringi: GL 3.0, GLES 3.0; empty before).
+std::vector<std::string> extension_names();
 
 }  // namespace glbudget

@@ -49,16 +49,11 @@ std::unique_ptr<Instrumentation> make_instrumentation(const GlCaps& caps) {
   // Shader storage buffers: GL 4.3, GLES 3.1. Nothing is queried before this is known, so no
   // query can raise GL_INVALID_ENUM.
   if (!(caps.gles ? at_least(3, 1) : at_least(4, 3)) || !has_calls(g)) return nullptr;
-  GLint bindings = 0, count = 0;
+  GLint bindings = 0;
   g.GetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &bindings);
   if (bindings < 1) return nullptr;
-  g.GetIntegerv(GL_NUM_EXTENSIONS, &count);
-  std::vector<std::string> extensions;
-  for (GLint i = 0; i < count; ++i)
-    if (auto e = reinterpret_cast<const char*>(g.GetStringi(GL_EXTENSIONS, static_cast<GLuint>(i))))
-      extensions.emplace_back(e);
   // The highest binding: apps fill bindings from 0, so this one is the least likely in use.
-  return std::make_unique<Instrumentation>(bindings - 1, std::move(extensions));
+  return std::make_unique<Instrumentation>(bindings - 1, extension_names());
 }
 
 void set_driver_source(GLuint shader, const std::string& source) {

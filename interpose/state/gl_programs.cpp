@@ -44,15 +44,7 @@ bool app_coordinate_copies(const ContextState& c) { return c.targets && manifest
 
 // The driver's extensions, for preprocessing as the driver does (read once per context).
 const std::optional<std::vector<std::string>>& driver_extensions(ContextState& c) {
-  if (!c.extensions && gl().GetStringi && c.caps.major >= 3) {
-    GLint count = 0;
-    gl().GetIntegerv(GL_NUM_EXTENSIONS, &count);
-    std::vector<std::string> names;
-    for (GLint i = 0; i < count; ++i)
-      if (auto e = reinterpret_cast<const char*>(gl().GetStringi(GL_EXTENSIONS, static_cast<GLuint>(i))))
-        names.emplace_back(e);
-    c.extensions = std::move(names);
-  }
+  if (!c.extensions && gl().GetStringi && c.caps.major >= 3) c.extensions = extension_names();
   return c.extensions;
 }
 
