@@ -10,6 +10,7 @@
 #include <set>
 
 #include "probe_expectations.hpp"
+#include "xvfb_server.hpp"
 
 namespace {
 
@@ -135,10 +136,9 @@ TEST_CASE("glmark2's terrain with no manifest under a 50 % budget: the window sh
       env["GLBUDGET_POWER"] = "50%";
       env["GLBUDGET_PROFILE"] = kProfile;
     }
-    std::vector<std::string> argv = {"xvfb-run", "-a",
-                                     "-n",       std::to_string(700 + getpid() % 200 + (budget ? 1 : 0)),
-                                     "-s",       "-screen 0 640x480x24",
-                                     "env",      "LD_PRELOAD=" + preload_value(shim_path())};
+    const XvfbServer xvfb(700 + getpid() % 200 + (budget ? 1 : 0), "640x480x24");
+    REQUIRE(xvfb.running());
+    std::vector<std::string> argv = {"env", "DISPLAY=" + xvfb.display(), "LD_PRELOAD=" + preload_value(shim_path())};
     for (const auto& [k, v] : env) argv.push_back(k + "=" + v);
 #ifdef SANITIZER_PRELOAD
     const char* scene = "terrain:duration=20";  // a sanitized shim draws at half the pace or less

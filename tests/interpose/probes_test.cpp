@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "probe_expectations.hpp"
+#include "xvfb_server.hpp"
 
 namespace {
 
@@ -171,18 +172,8 @@ TEST_CASE("contexts current on two threads at once, and a swap with no context",
 }
 
 TEST_CASE("GLX window under Xvfb", "[integration]") {
-  // A private X server for this test; display number from the pid to avoid clashes.
-  std::string display = ":" + std::to_string(100 + getpid() % 400);
-  std::string socket = "/tmp/.X11-unix/X" + display.substr(1);
-  pid_t xvfb = fork();
-  if (xvfb == 0) {
-    execlp("Xvfb", "Xvfb", display.c_str(), "-screen", "0", "128x128x24", "-nolisten", "tcp", (char*)nullptr);
-    _exit(127);
-  }
-  for (int i = 0; i < 100 && !file_exists(socket); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  REQUIRE(file_exists(socket));
-  auto r = run_both("probe_glx", {}, {{"DISPLAY", display}});
+  const XvfbServer xvfb(100 + getpid() % 400, "128x128x24");
+  REQUIRE(xvfb.running());
+  auto r = run_both("probe_glx", {}, {{"DISPLAY", xvfb.display()}});
   require_mostly_measured(check_log(r.log, 6, 1, kKnownScene));
-  kill(xvfb, SIGTERM);
-  waitpid(xvfb, nullptr, 0);
 }

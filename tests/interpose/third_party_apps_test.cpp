@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "probe_expectations.hpp"
+#include "xvfb_server.hpp"
 
 namespace {
 
@@ -30,12 +31,11 @@ struct AppLog {
 // variables given set for it.
 ProcessResult run_under_xvfb(const std::vector<std::string>& wrapper, const std::vector<std::string>& command,
                              const std::map<std::string, std::string>& shim_env) {
-  // -a searches for a free display from -n on; starting from the pid keeps tests run side by
-  // side by ctest -j2 from racing for the same one.
-  std::vector<std::string> argv = {
-      "xvfb-run", "-a", "-n", std::to_string(500 + getpid() % 400), "-s", "-screen 0 320x240x24"};
-  argv.insert(argv.end(), wrapper.begin(), wrapper.end());
-  argv.insert(argv.end(), {"env", "LD_PRELOAD=" + preload_value(shim_path())});
+  // Display numbers from the pid keep tests run side by side by ctest -j2 apart.
+  const XvfbServer xvfb(500 + getpid() % 400, "320x240x24");
+  REQUIRE(xvfb.running());
+  std::vector<std::string> argv = wrapper;
+  argv.insert(argv.end(), {"env", "DISPLAY=" + xvfb.display(), "LD_PRELOAD=" + preload_value(shim_path())});
   for (const auto& [name, value] : shim_env) argv.push_back(name + "=" + value);
   argv.insert(argv.end(), command.begin(), command.end());
   return run_process(argv, {});

@@ -16,6 +16,7 @@
 #include "glbudget/quality/luma_image.hpp"
 #include "glbudget/quality/ssim.hpp"
 #include "probe_expectations.hpp"
+#include "xvfb_server.hpp"
 
 namespace {
 
@@ -142,25 +143,9 @@ TEST_CASE("every level of the built-in render scale", "[integration]") {
 }
 
 TEST_CASE("the window at 60 % through GLX under Xvfb", "[integration]") {
-  const std::string display = ":" + std::to_string(100 + (getpid() + 7) % 400);
-  const std::string socket = "/tmp/.X11-unix/X" + display.substr(1);
-  // Stopped however the test ends (a failed REQUIRE throws): a server left running would hold
-  // the test's output open.
-  struct Server {
-    pid_t pid = -1;
-    ~Server() {
-      if (pid <= 0) return;
-      kill(pid, SIGTERM);
-      waitpid(pid, nullptr, 0);
-    }
-  } xvfb;
-  xvfb.pid = fork();
-  if (xvfb.pid == 0) {
-    execlp("Xvfb", "Xvfb", display.c_str(), "-screen", "0", "256x256x24", "-nolisten", "tcp", (char*)nullptr);
-    _exit(127);
-  }
-  for (int i = 0; i < 100 && !file_exists(socket); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  REQUIRE(file_exists(socket));
+  const XvfbServer xvfb(100 + (getpid() + 7) % 400, "256x256x24");
+  REQUIRE(xvfb.running());
+  const std::string display = xvfb.display();
   check_scaled_probe("probe_glx", {"--size", "128"}, "2", {{"DISPLAY", display}});
   // A multisampled window (4 samples): its stand-in has as many, the app's GL_SAMPLES query
   // answers them (the probe exits 5 if not, 4 on any GL error), and the swap resolves it.
