@@ -311,8 +311,9 @@ std::vector<std::string> power_run_configurations(const manifest::Manifest& m) {
 // The power run's frames as the model sees them, leaving out the first two of each
 // configuration (their power partly belongs to the one before).
 std::vector<model::ConfiguredSample> settled_samples(const model::FrameLog& log, const model::VariantTable& table) {
+  model::PassNames names(table.space);
   const std::vector<model::ConfiguredSample> all =
-      model::configured_samples(model::frames_of_busiest_context(log), table);
+      model::configured_samples(model::frames_of_busiest_context(log), table, names);
   std::vector<model::ConfiguredSample> settled;
   for (std::size_t i = 2; i < all.size(); ++i)
     if (all[i].configuration == all[i - 1].configuration && all[i].configuration == all[i - 2].configuration)

@@ -51,7 +51,8 @@ struct LogInput {
 std::optional<std::vector<ConfiguredSample>> load_samples(const LogInput& input, const VariantTable& table) {
   const auto log = read_frame_log_file(input.log);
   if (!log) return std::nullopt;
-  return configured_samples(frames_of_busiest_context(*log), table);
+  PassNames names(table.space);  // only the samples are kept: the costs are per count, not per pass
+  return configured_samples(frames_of_busiest_context(*log), table, names);
 }
 
 }  // namespace

@@ -148,8 +148,9 @@ int replay_main(std::span<char* const> args) {
     }
   }
   std::printf("\nlast model: per-frame load %.4g; k_b, k_v, k_f per pass\n", report.model.frame_alpha());
-  for (const auto& [pass, k] : report.model.coefficients()) {
-    std::printf("  %-20s %10.4g %10.4g %10.4g\n", pass.c_str(), k.k_b, k.k_v, k.k_f);
+  for (model::PassIndex pass = 0; pass < report.model.coefficients().size(); ++pass) {
+    const model::PassCoefficients* k = report.model.find(pass);
+    if (k) std::printf("  %-20s %10.4g %10.4g %10.4g\n", report.names.name(pass).c_str(), k->k_b, k->k_v, k->k_f);
   }
   std::printf("\nper configuration run: scored frames, mean measured, ours, baseline (W)\n");
   for (const ReplayRun& run : report.runs) {

@@ -81,7 +81,7 @@ Scene make_scene() {
   scene.truth = PowerModel(scene.profile);
   for (int i = 0; i < 6; ++i) {
     const VariantCost& cost = scene.space.passes()[i].levels[1];
-    scene.truth.set(scene.space.passes()[i].pass,
+    scene.truth.set(static_cast<PassIndex>(i),
                     {0.5 + 0.2 * i, 0.02 * cost.ins_v, 0.02 * cost.ins_f + 0.3 * cost.tex_f});
   }
   std::mt19937_64 random(1);
@@ -98,7 +98,7 @@ Scene make_scene() {
         const double other = 1.0 + 0.5 * std::cos(1.7 * phase + 0.3);
         const PassCounts c{300 * wave * jitter(random), 1e6 * other * jitter(random),
                            2e7 * wave * other * jitter(random)};
-        sample.passes.push_back({scene.space.passes()[i].pass, c});
+        sample.passes.push_back({static_cast<PassIndex>(i), c});
       }
       truth.push_back(scene.truth.predict_power(sample.passes));
       sample.power_w = truth.back() + noise(random);

@@ -335,10 +335,12 @@ class GovernorThread {
     });
   }
 
-  std::string pass_name(PassId program) {
+  // The program's pass as the model knows it: its manifest pass's index in the space, else the
+  // "app" pass, the space's last.
+  model::PassIndex pass_index(PassId program) {
     std::lock_guard lock(names_mu_);
     auto it = pass_of_program_.find(program);
-    return it == pass_of_program_.end() ? kAppPass : manifest_.passes[static_cast<size_t>(it->second)].name;
+    return static_cast<model::PassIndex>(it == pass_of_program_.end() ? manifest_.passes.size() - 1 : it->second);
   }
 
   void decide(Frame& f) {
@@ -358,12 +360,12 @@ class GovernorThread {
     }
     record.configuration.resize(manifest_.passes.size(), 0);
     for (const FrameRow& row : f.rows) {
-      const std::string name = pass_name(row.pass);
+      const model::PassIndex index = pass_index(row.pass);
       model::PassFrame* pass = nullptr;
       for (model::PassFrame& p : record.passes)
-        if (p.pass == name) pass = &p;
+        if (p.pass == index) pass = &p;
       if (!pass) {
-        record.passes.push_back({name, {0.0, 0.0, 0.0}});
+        record.passes.push_back({index, {0.0, 0.0, 0.0}});
         pass = &record.passes.back();
       }
       pass->counts.batches += static_cast<double>(row.batches);

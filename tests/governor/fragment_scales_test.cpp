@@ -13,6 +13,7 @@ using namespace glbudget::model::testing;
 namespace {
 
 // A render scale (area 1, 0.64, 0.36) over a scene pass, and a shadow map scaling itself.
+constexpr PassIndex kScene = 1, kShadows = 2;
 ConfigurationSpace fragment_scales_space() {
   std::vector<PassVariants> passes;
   passes.push_back({"resolution", {{0, 0, 0, 1.0}, {0, 0, 0, 0.64}, {0, 0, 0, 0.36}}, {"scene"}});
@@ -22,7 +23,7 @@ ConfigurationSpace fragment_scales_space() {
 }
 
 ConfiguredSample frame(const Configuration& c, double scene_fragments, double shadow_fragments) {
-  return {{15.0, {{"scene", {10, 1000, scene_fragments}}, {"shadows", {5, 500, shadow_fragments}}}}, c};
+  return {{15.0, {{kScene, {10, 1000, scene_fragments}}, {kShadows, {5, 500, shadow_fragments}}}}, c};
 }
 
 }  // namespace
@@ -62,8 +63,8 @@ TEST_CASE("fragment scales ignore frames that cannot tell and passes scaled twic
   const ConfigurationSpace twice(passes);
   std::vector<ConfiguredSample> history;
   for (int t = 0; t < 10; ++t) {
-    history.push_back({{15.0, {{"scene", {1, 1, 1000.0}}}}, {0, 0}});
-    history.push_back({{15.0, {{"scene", {1, 1, 500.0}}}}, {1, 0}});
+    history.push_back({{15.0, {{kScene, {1, 1, 1000.0}}}}, {0, 0}});
+    history.push_back({{15.0, {{kScene, {1, 1, 500.0}}}}, {1, 0}});
   }
   CHECK(!measure_fragment_scales(history, twice, 5).measured(1, 0, 1));
 
@@ -84,21 +85,21 @@ TEST_CASE("fragment scales ignore frames that cannot tell and passes scaled twic
 TEST_CASE("the predictor converts counts between levels with the measured scales", "[model][scales]") {
   const ConfigurationSpace space = fragment_scales_space();
   PowerModel model(synthetic_profile());
-  model.set("scene", {0.0, 0.0, 50.0});
-  model.set("shadows", {0.0, 0.0, 10.0});
+  model.set(kScene, {0.0, 0.0, 50.0});
+  model.set(kShadows, {0.0, 0.0, 10.0});
   ConfigurationPredictor predictor(space, model, {2, 0, 0}, {});
   // A frame at render scale 0.6 drew 480 fragments where full scale draws 1000.
-  const std::vector<PassFrame> counts{{"scene", {10, 1000, 4.8e6}}, {"shadows", {5, 500, 1.0e6}}};
+  const std::vector<PassFrame> counts{{kScene, {10, 1000, 4.8e6}}, {kShadows, {5, 500, 1.0e6}}};
   FragmentScales scales(space);
   scales.set(1, 0, 2, 0.48);
   predictor.set_fragment_scales(scales);
   predictor.set_frame(counts, {2, 0, 0});
   PowerModel full = model;
-  const std::vector<PassFrame> at_full{{"scene", {10, 1000, 1.0e7}}, {"shadows", {5, 500, 1.0e6}}};
+  const std::vector<PassFrame> at_full{{kScene, {10, 1000, 1.0e7}}, {kShadows, {5, 500, 1.0e6}}};
   CHECK(predictor.predict({0, 0, 0}) == Approx(full.predict_power(at_full)).epsilon(1e-12));
   // With the declared area the same frame would claim 4.8e6 / 0.36 fragments at full scale.
   predictor.set_fragment_scales(FragmentScales(space));
   predictor.set_frame(counts, {2, 0, 0});
-  const std::vector<PassFrame> by_area{{"scene", {10, 1000, 4.8e6 / 0.36}}, {"shadows", {5, 500, 1.0e6}}};
+  const std::vector<PassFrame> by_area{{kScene, {10, 1000, 4.8e6 / 0.36}}, {kShadows, {5, 500, 1.0e6}}};
   CHECK(predictor.predict({0, 0, 0}) == Approx(full.predict_power(by_area)).epsilon(1e-12));
 }

@@ -23,7 +23,7 @@ struct Truth {
     for (std::size_t i = 0; i < hidden.space.pass_count(); ++i) {
       PassCoefficients k = hidden.coefficients(i, c[i]);
       k.k_f += 2.0 + 3.0 * static_cast<double>(i % 3);
-      model.set(hidden.space.passes()[i].pass, k);
+      model.set(static_cast<PassIndex>(i), k);
     }
     return model.predict_power(frame);
   }
@@ -138,7 +138,7 @@ TEST_CASE("the history fit ignores broken samples and refuses what it cannot use
   const auto fit = fit_history(history, hidden.space, prior, c, {}, c);
   REQUIRE(fit);
   CHECK(fit->samples_used == 37);
-  for (const auto& [pass, k] : fit->model.coefficients()) {
+  for (const auto& [pass, k] : fitted_of(fit->model)) {
     CHECK(std::isfinite(k.k_b));
     CHECK(k.k_f >= 0.0);
   }
@@ -211,7 +211,7 @@ TEST_CASE("the history fit stays exact for counts near 2^40 and windows of ident
   }
   const auto fit = fit_history(history, hidden.space, PowerModel(huge), a, {}, b);
   REQUIRE(fit);
-  for (const auto& [pass, k] : fit->model.coefficients()) {
+  for (const auto& [pass, k] : fitted_of(fit->model)) {
     CHECK(std::isfinite(k.k_b));
     CHECK(std::isfinite(k.k_v));
     CHECK(std::isfinite(k.k_f));

@@ -883,7 +883,7 @@ TEST_CASE("a governor over a manifest's space with a render scale, driven from i
       }
       const double wave = 1.0 + 0.3 * std::sin(0.01 * static_cast<double>(k) + static_cast<double>(i));
       const model::PassCounts counts{100.0 * wave, 1e6 * wave, 1e8 * scale * wave};
-      record.passes.push_back({space.passes()[i].pass, counts});
+      record.passes.push_back({static_cast<model::PassIndex>(i), counts});
       alpha += 0.4 * counts.fragments / 4e8 + 1.0 * counts.batches / 5000.0;
     }
     record.power_w = model::power_from_alpha(model::testing::synthetic_profile(), alpha) + noise(random);
@@ -920,7 +920,7 @@ struct UnseenKnob {
       s.record.configuration = drawn;
       const double wave = 1.0 + 0.1 * std::sin(0.01 * k);
       const model::PassCounts counts{100.0 * wave, 1e6 * wave, 1e8 * wave};
-      s.record.passes.push_back({space.passes()[0].pass, counts});
+      s.record.passes.push_back({0, counts});
       const double alpha = 0.4 * counts.fragments / 4e8 + 1.0 * counts.batches / 5000.0;
       s.true_power_w = model::power_from_alpha(model::testing::synthetic_profile(), alpha) - saving_w * drawn[0];
       s.record.power_w = s.true_power_w + noise(random);

@@ -50,7 +50,7 @@ std::vector<ConfiguredSample> app_log(const ConfigurationSpace& space, const Pla
     for (int t = 0; t < 40; ++t) {
       ConfiguredSample s{{}, c};
       for (std::size_t i = 0; i < space.pass_count(); ++i) {
-        s.sample.passes.push_back({space.passes()[i].pass,
+        s.sample.passes.push_back({static_cast<PassIndex>(i),
                                    {std::round(200.0 * jitter(random)), std::round(8.0e5 * jitter(random)),
                                     std::round(1.5e7 * jitter(random))}});
       }
@@ -74,11 +74,12 @@ TEST_CASE("a pass's prior coefficients are the platform's costs at its level", "
   std::vector<PassVariants> passes{
       {"reflections", {{12.0, 600.0, 20.0}, {12.0, 180.0, 8.0}, {0, 0, 0, 1.0, false}}, {}}};
   const ConfigurationSpace space(passes);
-  const std::vector<PassFrame> frame{{"reflections", {1, 1, 1}}, {"upscale", {1, 1, 1}}};
+  constexpr PassIndex kReflections = 0, kUpscale = 1;  // the space's one pass, and one outside it
+  const std::vector<PassFrame> frame{{kReflections, {1, 1, 1}}, {kUpscale, {1, 1, 1}}};
   const PowerModel model = prior_model(synthetic_profile(), kHidden, space, {2}, frame);
-  CHECK(model.find("reflections")->k_f == Approx(1.5 + 0.012 * 180.0 + 0.9 * 8.0));
-  CHECK(model.find("upscale")->k_f == Approx(1.5));
-  CHECK(model.find("upscale")->k_v == Approx(0.4));
+  CHECK(model.find(kReflections)->k_f == Approx(1.5 + 0.012 * 180.0 + 0.9 * 8.0));
+  CHECK(model.find(kUpscale)->k_f == Approx(1.5));
+  CHECK(model.find(kUpscale)->k_v == Approx(0.4));
 }
 
 TEST_CASE("the costs fit finds a platform's costs from logs of two apps with loads of their own", "[model][costs]") {

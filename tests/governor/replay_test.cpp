@@ -133,14 +133,8 @@ TEST_CASE("replay without the fit over several configurations follows the paper'
 namespace {
 // The frames of a recording in the configurations they were drawn in.
 std::vector<ConfiguredSample> configured_samples(const Recording& r) {
-  std::vector<ConfiguredSample> samples;
-  Configuration current(r.variants.space.pass_count(), 0);
-  for (const LoggedFrame& frame : frames_of_busiest_context(r.log)) {
-    ResolvedFrame resolved = resolve_frame(frame, r.variants, current);
-    current = resolved.configuration;
-    samples.push_back({resolved.sample, resolved.configuration});
-  }
-  return samples;
+  PassNames names(r.variants.space);
+  return glbudget::model::configured_samples(frames_of_busiest_context(r.log), r.variants, names);
 }
 }  // namespace
 

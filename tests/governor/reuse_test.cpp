@@ -70,9 +70,10 @@ TEST_CASE("reused prediction is exact for the fitted configuration itself", "[mo
   const Configuration fitted{2, 0, 1, 1, 0, 2};
   PowerModel model = hidden.fitted_model_for(fitted);
   // A per-pass cost the instruction model does not explain (e.g. blending) survives reuse.
-  PassCoefficients k = *model.find("metals");
+  constexpr PassIndex kMetals = 4;
+  PassCoefficients k = *model.find(kMetals);
   k.k_f += 0.5;
-  model.set("metals", k);
+  model.set(kMetals, k);
   ConfigurationPredictor predictor(hidden.space, model, fitted, {hidden.chi, hidden.psi});
   const auto frame = scene.counts(5);
   predictor.set_frame(frame);
@@ -82,9 +83,9 @@ TEST_CASE("reused prediction is exact for the fitted configuration itself", "[mo
 TEST_CASE("reuse without texel data keeps the previous psi", "[model][reuse][extremes]") {
   ConfigurationSpace space({{"p", {{10, 100, 0}, {10, 50, 0}}, {}}, {"q", {{10, 80, 0}}, {}}});
   PowerModel model(synthetic_profile());
-  model.set("p", {0.1, 0.2, 2.0});
-  model.set("q", {0.1, 0.2, 1.6});
-  const std::vector<PassFrame> mean{{"p", {10, 1e6, 1e7}}, {"q", {10, 1e6, 1e7}}};
+  model.set(0, {0.1, 0.2, 2.0});
+  model.set(1, {0.1, 0.2, 1.6});
+  const std::vector<PassFrame> mean{{0, {10, 1e6, 1e7}}, {1, {10, 1e6, 1e7}}};
   const ReuseCoefficients reuse = solve_reuse(model, space, {0, 0}, mean, {0.0, 0.25});
   CHECK(reuse.psi == 0.25);
   CHECK(reuse.chi == Approx(0.02).epsilon(1e-3));
@@ -113,7 +114,7 @@ TEST_CASE("predicting all configurations keeps precision for tiny and huge loads
     PowerModel model(zero_floor);
     for (std::size_t i = 0; i < hidden.space.pass_count(); ++i) {
       const PassCoefficients k = hidden.coefficients(i, 0);
-      model.set(hidden.space.passes()[i].pass, {k.k_b * k_scale, k.k_v * k_scale, k.k_f * k_scale});
+      model.set(static_cast<PassIndex>(i), {k.k_b * k_scale, k.k_v * k_scale, k.k_f * k_scale});
     }
     ConfigurationPredictor predictor(hidden.space, model, {0, 0, 0, 0, 0, 0},
                                      {hidden.chi * k_scale, hidden.psi * k_scale});

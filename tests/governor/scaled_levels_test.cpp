@@ -38,23 +38,41 @@ ConfigurationSpace scaled_levels_space() {
   return ConfigurationSpace({resolution, scene, shadows, glass});
 }
 
-PowerModel scaled_model() {
+// The passes the hidden model knows, at their indices in `space`; those it lacks ("ui", a
+// program outside every space here) after its own.
+PassNames hidden_names(const ConfigurationSpace& space) {
+  PassNames names(space);
+  for (const char* name : {"scene", "shadows", "glass", "ui"}) names.index_of(name);
+  return names;
+}
+
+PowerModel scaled_model(const ConfigurationSpace& space) {
+  PassNames names = hidden_names(space);
   PowerModel model(synthetic_profile());
-  model.set("scene", {0.2, 0.3, 2.0});
-  model.set("shadows", {0.4, 0.1, 0.5});
-  model.set("glass", {0.1, 0.2, 3.0});
-  model.set("ui", {0.05, 0.0, 0.4});  // a program outside the space
+  model.set(names.index_of("scene"), {0.2, 0.3, 2.0});
+  model.set(names.index_of("shadows"), {0.4, 0.1, 0.5});
+  model.set(names.index_of("glass"), {0.1, 0.2, 3.0});
+  model.set(names.index_of("ui"), {0.05, 0.0, 0.4});
   return model;
+}
+
+// A frame's counts by pass name, as the model of `space` sees them.
+std::vector<PassFrame> frame_of(const ConfigurationSpace& space,
+                                const std::vector<std::pair<std::string, PassCounts>>& counts) {
+  PassNames names = hidden_names(space);
+  std::vector<PassFrame> frame;
+  for (const auto& [name, c] : counts) frame.push_back({names.index_of(name), c});
+  return frame;
 }
 
 // What the hidden model draws in configuration c for a view whose reference counts are these.
 std::vector<PassFrame> drawn_in(const ConfigurationSpace& space, const Configuration& c) {
   const double res = space.passes()[0].levels[c[0]].fragment_scale;
   const double shadow = space.passes()[2].levels[c[2]].fragment_scale;
-  std::vector<PassFrame> frame{
+  std::vector<std::pair<std::string, PassCounts>> frame{
       {"scene", {120, 3e5, 2e7 * res}}, {"shadows", {60, 2e5, 4e7 * shadow}}, {"ui", {4, 600, 1e6}}};
   if (space.passes()[3].levels[c[3]].draws) frame.push_back({"glass", {8, 2e4, 5e6 * res}});
-  return frame;
+  return frame_of(space, frame);
 }
 
 }  // namespace
@@ -62,7 +80,7 @@ std::vector<PassFrame> drawn_in(const ConfigurationSpace& space, const Configura
 TEST_CASE("render scale and shadow-map size predict every configuration from any other", "[model][reuse][scale]") {
   const ConfigurationSpace space = scaled_levels_space();
   REQUIRE(space.size() == 36);
-  const PowerModel model = scaled_model();
+  const PowerModel model = scaled_model(space);
   // Costs per fragment do not depend on how many are drawn: coefficients fitted in one
   // configuration stand for all levels of the scaling passes (reuse is exact here, chi and
   // psi are not involved because the shader levels are held).
@@ -89,7 +107,7 @@ TEST_CASE("render scale and shadow-map size predict every configuration from any
 TEST_CASE("predict-all agrees with predict for every configuration with shader levels, scales and skips",
           "[model][reuse][scale]") {
   const ConfigurationSpace space = scaled_levels_space();
-  ConfigurationPredictor predictor(space, scaled_model(), {0, 0, 0, 0}, {0.01, 0.2});
+  ConfigurationPredictor predictor(space, scaled_model(space), {0, 0, 0, 0}, {0.01, 0.2});
   predictor.set_frame(drawn_in(space, {1, 1, 1, 0}), {1, 1, 1, 0});
   std::vector<double> all;
   predictor.predict_all(all);
@@ -101,7 +119,7 @@ TEST_CASE("predict-all agrees with predict for every configuration with shader l
 
 TEST_CASE("a skipped pass is predicted from what it drew when it was last on", "[model][reuse][scale]") {
   const ConfigurationSpace space = scaled_levels_space();
-  const PowerModel model = scaled_model();
+  const PowerModel model = scaled_model(space);
   ConfigurationPredictor predictor(space, model, {0, 0, 0, 0}, {});
   // Never seen on: glass adds nothing, whatever its level.
   predictor.set_frame(drawn_in(space, {0, 0, 0, 1}), {0, 0, 0, 1});
@@ -126,11 +144,11 @@ TEST_CASE("a fragment scale of 0 and unknown frame configurations stay finite", 
     scale.levels.push_back(level);
   }
   const ConfigurationSpace space({scale, PassVariants{"scene", {{1, 1, 0}}, {}}});
-  ConfigurationPredictor predictor(space, scaled_model(), {0, 0}, {});
-  predictor.set_frame({{"scene", {10, 100, 0}}}, {1, 0});  // drew no fragments at scale 0
+  ConfigurationPredictor predictor(space, scaled_model(space), {0, 0}, {});
+  predictor.set_frame(frame_of(space, {{"scene", {10, 100, 0}}}), {1, 0});  // drew no fragments at scale 0
   CHECK(std::isfinite(predictor.predict({0, 0})));
   CHECK(predictor.predict({0, 0}) >= synthetic_profile().p_min_w);
-  predictor.set_frame({{"scene", {10, 100, 1e6}}}, {7, 7});  // not a configuration: taken as fitted
+  predictor.set_frame(frame_of(space, {{"scene", {10, 100, 1e6}}}), {7, 7});  // not a configuration: taken as fitted
   CHECK(predictor.predict({1, 0}) < predictor.predict({0, 0}));
   CHECK(std::isnan(predictor.predict({7, 7})));
   CHECK(std::isnan(predictor.predict({0})));
@@ -158,14 +176,15 @@ TEST_CASE("variant tables carry several programs per level, shared programs, sca
   LoggedFrame frame;
   frame.power_w = 30;
   frame.passes = {{"a", {1, 10, 100}, 4}, {"a-skinned", {1, 10, 50}, 4}, {"r", {1, 3, 80}, 1}};
-  ResolvedFrame resolved = resolve_frame(frame, *table, {1, 1, 1});
+  PassNames names(table->space);
+  ResolvedFrame resolved = resolve_frame(frame, *table, {1, 1, 1}, names);
   CHECK(resolved.configuration == Configuration{1, 0, 1});
   REQUIRE(resolved.sample.passes.size() == 2);
   CHECK(resolved.sample.passes[0].counts.fragments == 150);  // two programs, one pass
   CHECK(resolved.primitives[0] == 8);
   // ... and the logged configuration wins where there is one.
   frame.configuration = "0:0:0";
-  resolved = resolve_frame(frame, *table, {1, 1, 1});
+  resolved = resolve_frame(frame, *table, {1, 1, 1}, names);
   CHECK(resolved.configuration == Configuration{0, 0, 0});
   CHECK(resolved.totals.texels == Approx(150 * 2));  // reflections level 0 lists no texels
   // The baseline's totals for another configuration follow scales and skipped passes.
@@ -186,7 +205,8 @@ TEST_CASE("configurations read from the log's column are checked against the spa
   VariantTable table{space, {}, std::nullopt, std::nullopt, {}, {}};
   LoggedFrame frame;
   frame.configuration = "9:9";
-  CHECK(resolve_frame(frame, table, {1, 1}).configuration == Configuration{1, 1});
+  PassNames names(space);
+  CHECK(resolve_frame(frame, table, {1, 1}, names).configuration == Configuration{1, 1});
 }
 
 TEST_CASE("variant-table mistakes are reported and the rest is kept", "[model][variants][extremes]") {
@@ -220,7 +240,7 @@ TEST_CASE("coefficients fitted while a pass was skipped are those of its cheapes
   off.draws = false;
   const ConfigurationSpace space({PassVariants{"glass", {{10, 300, 8}, {10, 200, 5}, off}, {}}});
   PowerModel model(synthetic_profile());
-  model.set("glass", {0.1, 0.2, 3.0});
+  model.set(0, {0.1, 0.2, 3.0});
   const ReuseCoefficients reuse{0.01, 0.2};
   ConfigurationPredictor predictor(space, model, {2}, reuse);
   CHECK(predictor.coefficients(0, 1).k_f == Approx(3.0));
@@ -240,9 +260,10 @@ TEST_CASE("predict-all is right whichever position the scaling pass has in the s
   const ConfigurationSpace space({PassVariants{"scene", {{10, 200, 4}, {10, 120, 2}, {10, 60, 1}}, {}}, resolution,
                                   PassVariants{"glass", {{10, 300, 8}, off}, {}},
                                   PassVariants{"shadows", {{10, 0, 0}}, {}}});
-  ConfigurationPredictor predictor(space, scaled_model(), {0, 0, 0, 0}, {0.01, 0.2});
-  predictor.set_frame({{"scene", {120, 3e5, 2e7}}, {"glass", {8, 2e4, 5e6}}, {"shadows", {60, 2e5, 4e7}}},
-                      {1, 1, 0, 0});
+  ConfigurationPredictor predictor(space, scaled_model(space), {0, 0, 0, 0}, {0.01, 0.2});
+  predictor.set_frame(
+      frame_of(space, {{"scene", {120, 3e5, 2e7}}, {"glass", {8, 2e4, 5e6}}, {"shadows", {60, 2e5, 4e7}}}),
+      {1, 1, 0, 0});
   std::vector<double> all;
   predictor.predict_all(all);
   REQUIRE(all.size() == space.size());

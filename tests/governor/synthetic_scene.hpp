@@ -23,6 +23,14 @@ inline PlatformProfile synthetic_profile() {
   return profile;
 }
 
+// Each pass the model has coefficients for, in index order.
+inline std::vector<std::pair<PassIndex, PassCoefficients>> fitted_of(const PowerModel& model) {
+  std::vector<std::pair<PassIndex, PassCoefficients>> out;
+  for (PassIndex pass = 0; pass < model.coefficients().size(); ++pass)
+    if (const PassCoefficients* k = model.find(pass)) out.emplace_back(pass, *k);
+  return out;
+}
+
 struct HiddenModel {
   double chi = 0.02;
   double psi = 0.3;
@@ -36,7 +44,7 @@ struct HiddenModel {
   PowerModel fitted_model_for(const Configuration& configuration) const {
     PowerModel model(synthetic_profile());
     for (std::size_t i = 0; i < space.pass_count(); ++i) {
-      model.set(space.passes()[i].pass, coefficients(i, configuration[i]));
+      model.set(static_cast<PassIndex>(i), coefficients(i, configuration[i]));
     }
     return model;
   }
@@ -73,7 +81,7 @@ class SceneGenerator {
       const double phase = 0.05 * t * (1.0 + 0.37 * static_cast<double>(i)) + static_cast<double>(i);
       const double wave = 1.0 + 0.6 * std::sin(phase);
       const double other = 1.0 + 0.5 * std::cos(1.7 * phase + 0.3);
-      frame.push_back({hidden_.space.passes()[i].pass,
+      frame.push_back({static_cast<PassIndex>(i),
                        {std::round(300.0 * wave * jitter(random_)), std::round(1.0e6 * other * jitter(random_)),
                         std::round(2.0e7 * wave * other * jitter(random_))}});
     }

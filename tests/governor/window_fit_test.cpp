@@ -13,6 +13,9 @@ using namespace glbudget::model::testing;
 
 namespace {
 
+// Passes of six_pass_hidden_model() by index, and of the small windows built here.
+constexpr PassIndex kShading = 1, kShadows = 3, kA = 0, kB = 1;
+
 const Configuration kMiddle{1, 1, 1, 1, 1, 1};
 
 std::vector<FrameSample> window_of(SceneGenerator& scene, int first_frame, int frames,
@@ -33,8 +36,8 @@ double held_out_error(const PowerModel& model, SceneGenerator& scene, const Conf
 }
 
 void check_same_coefficients(const PowerModel& a, const PowerModel& b, double relative) {
-  REQUIRE(a.coefficients().size() == b.coefficients().size());
-  for (const auto& [pass, k] : a.coefficients()) {
+  REQUIRE(a.fitted_passes() == b.fitted_passes());
+  for (const auto& [pass, k] : fitted_of(a)) {
     const PassCoefficients* other = b.find(pass);
     REQUIRE(other != nullptr);
     CHECK(k.k_b == Approx(other->k_b).epsilon(relative).margin(1e-12));
@@ -61,7 +64,7 @@ TEST_CASE("fit under measurement noise predicts unseen frames of the configurati
   SceneGenerator scene(six_pass_hidden_model(), /*noise_w=*/0.2);
   const WindowFitResult fit = fit_window(window_of(scene, 0, 30, kMiddle), PowerModel(synthetic_profile()));
   CHECK(held_out_error(fit.model, scene, kMiddle) < 0.02);
-  for (const auto& [pass, k] : fit.model.coefficients()) {
+  for (const auto& [pass, k] : fitted_of(fit.model)) {
     CHECK(k.k_b >= 0.0);
     CHECK(k.k_v >= 0.0);
     CHECK(k.k_f >= 0.0);
@@ -72,22 +75,22 @@ TEST_CASE("a pass that drew nothing keeps its coefficients and has no column", "
   SceneGenerator scene(six_pass_hidden_model(), 0.0);
   PowerModel previous(synthetic_profile());
   const PassCoefficients kept{0.7, 0.8, 0.9};
-  previous.set("shadows", kept);
+  previous.set(kShadows, kept);
   auto window = window_of(scene, 0, 30, kMiddle);
   for (FrameSample& sample : window) {
     // The pass is listed but drew nothing; power is what the other five cost.
-    std::erase_if(sample.passes, [](const PassFrame& p) { return p.pass == "shadows"; });
+    std::erase_if(sample.passes, [](const PassFrame& p) { return p.pass == kShadows; });
     sample.power_w = scene.true_power(sample.passes, kMiddle);
-    sample.passes.push_back({"shadows", {}});
+    sample.passes.push_back({kShadows, {}});
   }
   const WindowFitResult fit = fit_window(window, previous);
   CHECK(fit.columns == 15);
-  const PassCoefficients* shadows = fit.model.find("shadows");
+  const PassCoefficients* shadows = fit.model.find(kShadows);
   REQUIRE(shadows != nullptr);
   CHECK(shadows->k_b == kept.k_b);
   CHECK(shadows->k_v == kept.k_v);
   CHECK(shadows->k_f == kept.k_f);
-  CHECK(fit.model.find("shading")->k_f == Approx(scene.hidden().coefficients(1, 1).k_f).epsilon(2e-3));
+  CHECK(fit.model.find(kShading)->k_f == Approx(scene.hidden().coefficients(1, 1).k_f).epsilon(2e-3));
 }
 
 TEST_CASE("a window of identical frames holds what it cannot identify", "[model][fit][extremes]") {
@@ -103,10 +106,10 @@ TEST_CASE("a window of identical frames holds what it cannot identify", "[model]
   }
   SECTION("starting from a wrong model, only the identified combination moves") {
     PowerModel wrong(synthetic_profile());
-    for (const auto& [pass, k] : truth.coefficients()) wrong.set(pass, {k.k_b * 1.5, k.k_v * 1.5, k.k_f * 1.5});
+    for (const auto& [pass, k] : fitted_of(truth)) wrong.set(pass, {k.k_b * 1.5, k.k_v * 1.5, k.k_f * 1.5});
     const WindowFitResult fit = fit_window(window, wrong);
     CHECK(fit.model.predict_power(frame.passes) == Approx(frame.power_w).epsilon(1e-4));
-    for (const auto& [pass, k] : fit.model.coefficients()) {
+    for (const auto& [pass, k] : fitted_of(fit.model)) {
       CHECK(std::isfinite(k.k_b));
       CHECK(k.k_f > 0.0);
       CHECK(k.k_f < 1.5 * truth.find(pass)->k_f);  // no blow-up along unidentified directions
@@ -117,19 +120,19 @@ TEST_CASE("a window of identical frames holds what it cannot identify", "[model]
 TEST_CASE("collinear passes are fitted as a sum, not as garbage", "[model][fit][extremes]") {
   // Two passes whose counts are always equal: only the sum of their coefficients is known.
   PowerModel truth(synthetic_profile());
-  truth.set("a", {0.5, 0.4, 3.0});
-  truth.set("b", {0.5, 0.4, 1.0});
+  truth.set(kA, {0.5, 0.4, 3.0});
+  truth.set(kB, {0.5, 0.4, 1.0});
   std::vector<FrameSample> window;
   for (int t = 0; t < 30; ++t) {
     const PassCounts c{100.0 + 10 * t, 5e5 + 3e4 * (t % 7), 1e7 + 4e6 * std::sin(t)};
-    FrameSample sample{0.0, {{"a", c}, {"b", c}}};
+    FrameSample sample{0.0, {{kA, c}, {kB, c}}};
     sample.power_w = truth.predict_power(sample.passes);
     window.push_back(sample);
   }
   const WindowFitResult fit = fit_window(window, PowerModel(synthetic_profile()));
   CHECK(fit.held_terms >= 3);
-  const PassCoefficients a = *fit.model.find("a");
-  const PassCoefficients b = *fit.model.find("b");
+  const PassCoefficients a = *fit.model.find(kA);
+  const PassCoefficients b = *fit.model.find(kB);
   CHECK(a.k_f + b.k_f == Approx(4.0).epsilon(1e-3));
   CHECK(a.k_f == Approx(b.k_f).epsilon(1e-6));  // split evenly from a zero start
   CHECK(fit.model.predict_power(window[4].passes) == Approx(window[4].power_w).epsilon(1e-5));
@@ -139,7 +142,7 @@ TEST_CASE("fewer samples than unknowns still improves the model without garbage"
   SceneGenerator scene(six_pass_hidden_model(), 0.0);
   const PowerModel truth = scene.hidden().fitted_model_for(kMiddle);
   PowerModel off(synthetic_profile());
-  for (const auto& [pass, k] : truth.coefficients()) off.set(pass, {k.k_b * 1.2, k.k_v * 1.2, k.k_f * 1.2});
+  for (const auto& [pass, k] : fitted_of(truth)) off.set(pass, {k.k_b * 1.2, k.k_v * 1.2, k.k_f * 1.2});
   const auto window = window_of(scene, 0, 5, kMiddle);  // 5 samples, 18 unknowns
   const WindowFitResult fit = fit_window(window, off);
   CHECK(fit.held_terms > 0);
@@ -150,7 +153,7 @@ TEST_CASE("fewer samples than unknowns still improves the model without garbage"
   }
   CHECK(error_after < 0.5 * error_before);
   CHECK(held_out_error(fit.model, scene, kMiddle) < held_out_error(off, scene, kMiddle));
-  for (const auto& [pass, k] : fit.model.coefficients()) {
+  for (const auto& [pass, k] : fitted_of(fit.model)) {
     const PassCoefficients& start = *off.find(pass);
     CHECK(k.k_f == Approx(start.k_f).epsilon(0.5));  // moved, but not off to garbage
   }
@@ -178,12 +181,12 @@ TEST_CASE("NaN and infinite samples are rejected, the rest is fitted as if they 
 
 TEST_CASE("zero counts: an empty window or all-zero frames change nothing", "[model][fit][extremes]") {
   PowerModel previous(synthetic_profile());
-  previous.set("p", {1.0, 2.0, 3.0});
-  CHECK(fit_window({}, previous).model.find("p")->k_f == 3.0);
-  const std::vector<FrameSample> idle(30, FrameSample{20.0, {{"p", {0.0, 0.0, 0.0}}}});
+  previous.set(0, {1.0, 2.0, 3.0});
+  CHECK(fit_window({}, previous).model.find(0)->k_f == 3.0);
+  const std::vector<FrameSample> idle(30, FrameSample{20.0, {{0, {0.0, 0.0, 0.0}}}});
   const WindowFitResult fit = fit_window(idle, previous);
   CHECK(fit.columns == 0);
-  CHECK(fit.model.find("p")->k_f == 3.0);
+  CHECK(fit.model.find(0)->k_f == 3.0);
 }
 
 TEST_CASE("counts near 2^40 fit as well as ordinary ones", "[model][fit][extremes]") {
@@ -254,7 +257,7 @@ TEST_CASE("P_M = P_m leaves nothing to fit", "[model][fit][extremes]") {
   flat.p_max_w = flat.p_min_w;
   SceneGenerator scene(six_pass_hidden_model(), 0.0);
   const WindowFitResult fit = fit_window(window_of(scene, 0, 30, kMiddle), PowerModel(flat));
-  CHECK(fit.model.coefficients().empty());
+  CHECK(fit.model.fitted_passes() == 0);
   CHECK(fit.model.predict_power(scene.counts(1)) == flat.p_min_w);
 }
 
@@ -265,11 +268,11 @@ TEST_CASE("a cost that would be negative is fitted as zero", "[model][fit]") {
   for (int t = 0; t < 30; ++t) {
     const double b = 100.0 + 37.0 * (t % 5), v = 1e6 + 2e5 * (t % 7);
     const double alpha = 3.0 * b / 5000.0 - 0.3 * v / 3.0e7;  // > 0 for all these counts
-    window.push_back({20.0 + 40.0 * -std::expm1(-alpha), {{"p", {b, v, 0.0}}}});
+    window.push_back({20.0 + 40.0 * -std::expm1(-alpha), {{0, {b, v, 0.0}}}});
   }
   const WindowFitResult fit = fit_window(window, previous);
-  CHECK(fit.model.find("p")->k_v == 0.0);
-  CHECK(fit.model.find("p")->k_b > 0.0);
+  CHECK(fit.model.find(0)->k_v == 0.0);
+  CHECK(fit.model.find(0)->k_b > 0.0);
 }
 
 TEST_CASE("a window wider than the stack-sized solve (10 passes, 30 columns) is fitted exactly", "[model][fit]") {
@@ -277,7 +280,7 @@ TEST_CASE("a window wider than the stack-sized solve (10 passes, 30 columns) is 
   // dynamic path, which must compute the same regression. Counts drawn independently per
   // pass, term and frame keep all 30 columns identifiable from 60 noiseless frames.
   PowerModel truth(synthetic_profile());
-  for (int i = 0; i < 10; ++i) truth.set("p" + std::to_string(i), {0.3 + 0.1 * i, 0.2 + 0.05 * i, 1.0 + 0.2 * i});
+  for (int i = 0; i < 10; ++i) truth.set(static_cast<PassIndex>(i), {0.3 + 0.1 * i, 0.2 + 0.05 * i, 1.0 + 0.2 * i});
   std::mt19937_64 random(3);
   std::uniform_real_distribution<double> load(0.5, 1.5);
   std::vector<FrameSample> window;
@@ -285,7 +288,7 @@ TEST_CASE("a window wider than the stack-sized solve (10 passes, 30 columns) is 
     FrameSample sample;
     for (int i = 0; i < 10; ++i) {
       const double b = 100.0 * load(random), v = 3e5 * load(random), f = 4e6 * load(random);
-      sample.passes.push_back({"p" + std::to_string(i), {b, v, f}});
+      sample.passes.push_back({static_cast<PassIndex>(i), {b, v, f}});
     }
     sample.power_w = truth.predict_power(sample.passes);
     window.push_back(sample);

@@ -35,8 +35,8 @@ XvfbServer::XvfbServer(int first_display, const std::string& screen) {
   for (int n = first_display; n < first_display + 40; ++n) {
     const std::string number = std::to_string(n);
     if (file_exists("/tmp/.X" + number + "-lock") || file_exists("/tmp/.X11-unix/X" + number)) continue;
-    const pid_t pid = spawn_process({"Xvfb", ":" + number, "-screen", "0", screen, "-nolisten", "tcp"}, {},
-                                    "/dev/null", "/dev/null");
+    const pid_t pid =
+        spawn_process({"Xvfb", ":" + number, "-screen", "0", screen, "-nolisten", "tcp"}, {}, "/dev/null", "/dev/null");
     if (pid < 0) return;
     const Start start = wait_for_socket(pid, "/tmp/.X11-unix/X" + number);
     if (start == Start::listening) {

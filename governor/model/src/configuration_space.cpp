@@ -1,5 +1,7 @@
 #include "glbudget/model/configuration_space.hpp"
 
+#include <algorithm>
+
 namespace glbudget::model {
 
 ConfigurationSpace::ConfigurationSpace(std::vector<PassVariants> passes) : passes_(std::move(passes)) {
@@ -8,6 +10,16 @@ ConfigurationSpace::ConfigurationSpace(std::vector<PassVariants> passes) : passe
     if (passes_[i].levels.empty()) passes_[i].levels.push_back({});
     strides_[i] = size_;
     size_ *= passes_[i].levels.size();
+  }
+  scaled_by_.resize(passes_.size());
+  scalers_of_.resize(passes_.size());
+  for (std::size_t p = 0; p < passes_.size(); ++p) {
+    for (std::size_t j = 0; j < passes_.size(); ++j) {
+      if (std::find(passes_[p].scales.begin(), passes_[p].scales.end(), passes_[j].pass) == passes_[p].scales.end())
+        continue;
+      scaled_by_[p].push_back(j);
+      scalers_of_[j].push_back(p);
+    }
   }
 }
 

@@ -6,14 +6,10 @@ namespace glbudget::model {
 
 FragmentScales::FragmentScales(const ConfigurationSpace& space) : scales_(space.pass_count()) {
   for (std::size_t p = 0; p < space.pass_count(); ++p) {
-    const PassVariants& scaler = space.passes()[p];
-    for (const std::string& name : scaler.scales) {
-      for (std::size_t j = 0; j < space.pass_count(); ++j) {
-        if (space.passes()[j].pass != name) continue;
-        Levels& levels = scales_[j][p];
-        for (const VariantCost& level : scaler.levels) levels.scale.push_back(level.fragment_scale);
-        levels.measured.assign(levels.scale.size(), false);
-      }
+    for (std::size_t j : space.scaled_by(p)) {
+      Levels& levels = scales_[j][p];
+      for (const VariantCost& level : space.passes()[p].levels) levels.scale.push_back(level.fragment_scale);
+      levels.measured.assign(levels.scale.size(), false);
     }
   }
 }
@@ -45,12 +41,7 @@ FragmentScales measure_fragment_scales(std::span<const ConfiguredSample> history
                                        std::size_t min_frames) {
   FragmentScales scales(space);
   for (std::size_t j = 0; j < space.pass_count(); ++j) {
-    std::vector<std::size_t> scalers;
-    for (std::size_t p = 0; p < space.pass_count(); ++p) {
-      for (const std::string& name : space.passes()[p].scales) {
-        if (name == space.passes()[j].pass) scalers.push_back(p);
-      }
-    }
+    const std::vector<std::size_t>& scalers = space.scalers_of(j);
     // With two scalers a level's frames mix the other's levels: keep the declared scales.
     if (scalers.size() != 1) continue;
     const std::size_t p = scalers.front();
@@ -62,7 +53,7 @@ FragmentScales measure_fragment_scales(std::span<const ConfiguredSample> history
       if (!space.passes()[j].levels[static_cast<std::size_t>(s.configuration[j])].draws) continue;
       for (const PassFrame& pass : s.sample.passes) {
         const double f = pass.counts.fragments;
-        if (pass.pass != space.passes()[j].pass || !std::isfinite(f) || !(f > 0.0)) continue;
+        if (pass.pass != j || !std::isfinite(f) || !(f > 0.0)) continue;
         const auto l = static_cast<std::size_t>(s.configuration[p]);
         sum[l] += f;
         ++frames[l];

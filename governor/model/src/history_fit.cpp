@@ -3,9 +3,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
-#include <map>
 #include <set>
-#include <string>
 #include <utility>
 
 #include "glbudget/model/nonnegative_least_squares.hpp"
@@ -32,13 +30,6 @@ std::vector<std::vector<Excess>> level_excess(const ConfigurationSpace& space) {
   return excess;
 }
 
-std::size_t index_in_space(const ConfigurationSpace& space, const std::string& pass) {
-  for (std::size_t i = 0; i < space.pass_count(); ++i) {
-    if (space.passes()[i].pass == pass) return i;
-  }
-  return space.pass_count();
-}
-
 }  // namespace
 
 std::optional<HistoryFit> fit_history(std::span<const ConfiguredSample> samples, const ConfigurationSpace& space,
@@ -57,34 +48,34 @@ std::optional<HistoryFit> fit_history(std::span<const ConfiguredSample> samples,
   if (usable.empty()) return std::nullopt;
   const std::vector<std::vector<Excess>> excess = level_excess(space);
 
-  // Columns: (pass, term) for every pass that drew something, then chi and psi. Each pass's
-  // place in the space is looked up once here, not per frame.
+  // Columns: (pass, term) for every pass that drew something, then chi and psi, in order of
+  // pass index.
   struct PassColumns {
+    bool seen = false;
     std::array<int, 3> column{-1, -1, -1};
-    std::size_t space_index = 0;  // space.pass_count(): not in the space
   };
-  std::map<std::string, PassColumns> column_of;
+  std::vector<PassColumns> column_of;  // [PassIndex]
   for (const ConfiguredSample* s : usable) {
     for (const PassFrame& p : s->sample.passes) {
-      auto [it, inserted] = column_of.try_emplace(p.pass);
-      if (inserted) it->second.space_index = index_in_space(space, p.pass);
+      if (column_of.size() <= p.pass) column_of.resize(static_cast<std::size_t>(p.pass) + 1);
+      PassColumns& entry = column_of[p.pass];
+      entry.seen = true;
       const double counts[3] = {p.counts.batches, p.counts.vertices, p.counts.fragments};
       for (int t = 0; t < 3; ++t) {
-        if (counts[t] > 0.0) it->second.column[t] = 0;
+        if (counts[t] > 0.0) entry.column[t] = 0;
       }
     }
   }
   struct Column {
-    const std::string* pass;
+    PassIndex pass;
     int term;
-    std::size_t space_index;
   };
   std::vector<Column> columns;
-  for (auto& [pass, entry] : column_of) {
+  for (std::size_t pass = 0; pass < column_of.size(); ++pass) {
     for (int t = 0; t < 3; ++t) {
-      if (entry.column[t] >= 0) {
-        entry.column[t] = static_cast<int>(columns.size());
-        columns.push_back({&pass, t, entry.space_index});
+      if (column_of[pass].column[t] >= 0) {
+        column_of[pass].column[t] = static_cast<int>(columns.size());
+        columns.push_back({static_cast<PassIndex>(pass), t});
       }
     }
   }
@@ -105,12 +96,12 @@ std::optional<HistoryFit> fit_history(std::span<const ConfiguredSample> samples,
       const double x[3] = {p.counts.batches / profile.saturation_batches,
                            p.counts.vertices / profile.saturation_vertices,
                            p.counts.fragments / profile.saturation_fragments};
-      const PassColumns& entry = column_of.at(p.pass);
+      const PassColumns& entry = column_of[p.pass];
       for (int t = 0; t < 3; ++t) {
         if (entry.column[t] >= 0) a(r, entry.column[t]) += target.weight * x[t];
       }
-      const std::size_t i = entry.space_index;
-      if (i == space.pass_count()) continue;
+      const std::size_t i = p.pass;
+      if (i >= space.pass_count()) continue;  // outside the space: no levels
       const Excess& d = excess[i][static_cast<std::size_t>(s.configuration[i])];
       a(r, chi_column) += target.weight * (d.ins_v * x[1] + d.ins_f * x[2]);
       a(r, psi_column) += target.weight * d.tex_f * x[2];
@@ -121,8 +112,9 @@ std::optional<HistoryFit> fit_history(std::span<const ConfiguredSample> samples,
   const bool prior_levels = space.contains(prior_configuration);
   Eigen::VectorXd z_prior(cols);
   for (Eigen::Index c = 0; c < chi_column; ++c) {
-    const auto& [pass, term, i] = columns[static_cast<std::size_t>(c)];
-    const PassCoefficients* k = prior.find(*pass);
+    const auto& [pass, term] = columns[static_cast<std::size_t>(c)];
+    const std::size_t i = pass;
+    const PassCoefficients* k = prior.find(pass);
     double value = k ? (term == 0 ? k->k_b : term == 1 ? k->k_v : k->k_f) : 0.0;
     if (k && prior_levels && i < space.pass_count()) {
       const Excess& d = excess[i][static_cast<std::size_t>(prior_configuration[i])];
@@ -149,19 +141,21 @@ std::optional<HistoryFit> fit_history(std::span<const ConfiguredSample> samples,
                  usable.size(),
                  configurations.size(),
                  static_cast<std::size_t>(cols)};
-  for (const auto& [pass, entry] : column_of) {
+  for (std::size_t pass = 0; pass < column_of.size(); ++pass) {
+    const PassColumns& entry = column_of[pass];
+    if (!entry.seen) continue;
+    const auto index = static_cast<PassIndex>(pass);
     PassCoefficients k;
-    if (const PassCoefficients* previous = prior.find(pass)) k = *previous;
+    if (const PassCoefficients* previous = prior.find(index)) k = *previous;
     double* terms[3] = {&k.k_b, &k.k_v, &k.k_f};
-    const std::size_t i = entry.space_index;
-    const Excess d = i < space.pass_count() ? excess[i][static_cast<std::size_t>(express_at[i])] : Excess{};
+    const Excess d = pass < space.pass_count() ? excess[pass][static_cast<std::size_t>(express_at[pass])] : Excess{};
     for (int t = 0; t < 3; ++t) {
       if (entry.column[t] < 0) continue;  // no data for this term: the prior's value stands
       *terms[t] = unknowns(entry.column[t]);
     }
     if (entry.column[1] >= 0) k.k_v += fit.reuse.chi * d.ins_v;
     if (entry.column[2] >= 0) k.k_f += fit.reuse.chi * d.ins_f + fit.reuse.psi * d.tex_f;
-    fit.model.set(pass, k);
+    fit.model.set(index, k);
   }
   fit.model.set_frame_alpha(unknowns(frame_column));
   return fit;

@@ -2,16 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 
 namespace glbudget::model {
 namespace {
 
 std::vector<PassFrame> mean_counts(const std::vector<FrameSample>& window) {
-  std::map<std::string, PassCounts> sums;
+  std::vector<PassCounts> sums;
+  std::vector<bool> seen;
   for (const FrameSample& sample : window) {
     for (const PassFrame& pass : sample.passes) {
+      if (sums.size() <= pass.pass) {
+        sums.resize(static_cast<std::size_t>(pass.pass) + 1);
+        seen.resize(sums.size(), false);
+      }
       PassCounts& sum = sums[pass.pass];
+      seen[pass.pass] = true;
       sum.batches += pass.counts.batches;
       sum.vertices += pass.counts.vertices;
       sum.fragments += pass.counts.fragments;
@@ -19,8 +24,10 @@ std::vector<PassFrame> mean_counts(const std::vector<FrameSample>& window) {
   }
   std::vector<PassFrame> mean;
   const double n = static_cast<double>(std::max<std::size_t>(window.size(), 1));
-  for (const auto& [pass, sum] : sums) {
-    mean.push_back({pass, {sum.batches / n, sum.vertices / n, sum.fragments / n}});
+  for (std::size_t pass = 0; pass < sums.size(); ++pass) {
+    if (!seen[pass]) continue;
+    const PassCounts& sum = sums[pass];
+    mean.push_back({static_cast<PassIndex>(pass), {sum.batches / n, sum.vertices / n, sum.fragments / n}});
   }
   return mean;
 }

@@ -11,14 +11,9 @@ namespace glbudget::model {
 namespace {
 
 // The level a pass of `space` is drawn at, or nullptr for a pass outside it.
-const VariantCost* level_of(const ConfigurationSpace& space, const Configuration& configuration,
-                            const std::string& pass) {
-  for (std::size_t i = 0; i < space.pass_count(); ++i) {
-    if (space.passes()[i].pass == pass) {
-      return &space.passes()[i].levels[static_cast<std::size_t>(configuration[i])];
-    }
-  }
-  return nullptr;
+const VariantCost* level_of(const ConfigurationSpace& space, const Configuration& configuration, PassIndex pass) {
+  if (pass >= space.pass_count()) return nullptr;
+  return &space.passes()[pass].levels[static_cast<std::size_t>(configuration[pass])];
 }
 
 constexpr Eigen::Index kCostColumns = 5;  // batch, vertex, fragment, instruction, texel
@@ -58,11 +53,7 @@ PowerModel prior_model(const PlatformProfile& profile, const PlatformCosts& cost
     const VariantCost* level = in_space ? level_of(space, configuration, p.pass) : nullptr;
     // A skipped level draws nothing: a pass at it is costed as its cheapest drawing level.
     VariantCost cost = level ? *level : VariantCost{};
-    if (level && !level->draws) {
-      for (const PassVariants& pass : space.passes()) {
-        if (pass.pass == p.pass) cost = cheapest_drawing_level(pass);
-      }
-    }
+    if (level && !level->draws) cost = cheapest_drawing_level(space.passes()[p.pass]);
     model.set(p.pass, prior_coefficients(costs, cost));
   }
   return model;

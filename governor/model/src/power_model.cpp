@@ -21,9 +21,15 @@ double pass_alpha(const PlatformProfile& profile, const PassCoefficients& k, con
          k.k_f * (c.fragments / profile.saturation_fragments);
 }
 
-const PassCoefficients* PowerModel::find(const std::string& pass) const {
-  const auto it = coefficients_.find(pass);
-  return it == coefficients_.end() ? nullptr : &it->second;
+void PowerModel::set(PassIndex pass, const PassCoefficients& k) {
+  if (coefficients_.size() <= pass) coefficients_.resize(static_cast<std::size_t>(pass) + 1);
+  coefficients_[pass] = k;
+}
+
+std::size_t PowerModel::fitted_passes() const {
+  std::size_t n = 0;
+  for (const auto& k : coefficients_) n += k.has_value();
+  return n;
 }
 
 double PowerModel::alpha(const std::vector<PassFrame>& passes) const {

@@ -53,6 +53,7 @@ ReplayReport replay_frames(const std::vector<LoggedFrame>& frames, const Platfor
   }
   report.ours_switch = report.baseline_switch = report.unchanged_switch = PredictionError(range);
   report.frames = frames.size();
+  report.names = PassNames(variants.space);
 
   // Resolve every frame first: the runs of one configuration, and which comes next, are
   // known before the replay reaches them (the switch predictions need the next one).
@@ -61,7 +62,7 @@ ReplayReport replay_frames(const std::vector<LoggedFrame>& frames, const Platfor
   std::vector<std::size_t> run_start{0};
   Configuration current(variants.space.pass_count(), 0);
   for (std::size_t t = 0; t < frames.size(); ++t) {
-    resolved.push_back(resolve_frame(frames[t], variants, current));
+    resolved.push_back(resolve_frame(frames[t], variants, current, report.names));
     if (t > 0 && resolved[t].configuration != current) run_start.push_back(t);
     current = resolved[t].configuration;
     run_of.push_back(run_start.size() - 1);

@@ -13,7 +13,7 @@
 namespace glbudget::model {
 namespace {
 
-const PassCounts* find_counts(const std::vector<PassFrame>& frame, const std::string& pass) {
+const PassCounts* find_counts(const std::vector<PassFrame>& frame, PassIndex pass) {
   for (const PassFrame& p : frame) {
     if (p.pass == pass) return &p.counts;
   }
@@ -44,8 +44,8 @@ ReuseCoefficients solve_reuse(const PowerModel& fitted, const ConfigurationSpace
   std::vector<std::array<double, 3>> rows;
   for (std::size_t i = 0; i < space.pass_count(); ++i) {
     const PassVariants& pass = space.passes()[i];
-    const PassCoefficients* k = fitted.find(pass.pass);
-    const PassCounts* mean = find_counts(window_mean, pass.pass);
+    const PassCoefficients* k = fitted.find(static_cast<PassIndex>(i));
+    const PassCounts* mean = find_counts(window_mean, static_cast<PassIndex>(i));
     if (k == nullptr || mean == nullptr) continue;  // pass drew nothing: says nothing
     const VariantCost& cost = pass.levels[static_cast<std::size_t>(fitted_configuration[i])];
     const double vertex_weight = mean->vertices / profile.saturation_vertices;
@@ -76,16 +76,10 @@ ConfigurationPredictor::ConfigurationPredictor(const ConfigurationSpace& space, 
     : space_(space), fitted_(fitted), scales_(space) {
   const std::size_t passes = space.pass_count();
   scalers_of_.resize(passes);
+  for (std::size_t j = 0; j < passes; ++j) scalers_of_[j] = space.scalers_of(j);
   for (std::size_t p = 0; p < passes; ++p) {
-    bool scales_another = false;
-    for (const std::string& scaled : space.passes()[p].scales) {
-      for (std::size_t j = 0; j < passes; ++j) {
-        if (space.passes()[j].pass != scaled) continue;
-        scalers_of_[j].push_back(p);
-        scales_another = scales_another || j != p;
-      }
-    }
-    if (scales_another) outer_.push_back(p);
+    const std::vector<std::size_t>& scaled = space.scaled_by(p);
+    if (std::any_of(scaled.begin(), scaled.end(), [p](std::size_t j) { return j != p; })) outer_.push_back(p);
   }
   scaled_by_outer_.assign(passes, false);
   for (std::size_t j = 0; j < passes; ++j) {
@@ -113,7 +107,7 @@ void ConfigurationPredictor::refit(const PowerModel& fitted, const Configuration
   coefficients_.assign(space_.pass_count(), {});
   for (std::size_t i = 0; i < space_.pass_count(); ++i) {
     const PassVariants& pass = space_.passes()[i];
-    const PassCoefficients* k = fitted.find(pass.pass);
+    const PassCoefficients* k = fitted.find(static_cast<PassIndex>(i));
     if (k == nullptr) {
       coefficients_[i].assign(pass.levels.size(), PassCoefficients{});  // never drew
       continue;
@@ -160,22 +154,16 @@ void ConfigurationPredictor::set_frame(const std::vector<PassFrame>& frame, cons
   for (ReferenceCounts& r : reference_) r = ReferenceCounts{{}, true};
   alpha_outside_space_ = fitted_.frame_alpha();
   for (const PassFrame& p : frame) {
-    bool in_space = false;
-    for (std::size_t i = 0; i < passes; ++i) {
-      if (space_.passes()[i].pass != p.pass) continue;
-      in_space = true;
+    if (p.pass < passes) {
+      const std::size_t i = p.pass;
       const double scale = fragment_scale(i, drawn);
       PassCounts& counts = reference_[i].counts;
       counts.batches += p.counts.batches;
       counts.vertices += p.counts.vertices;
       // A scale of 0 drew no fragments: nothing to learn about them.
       if (scale > 0.0) counts.fragments += p.counts.fragments / scale;
-      break;
-    }
-    if (!in_space) {
-      if (const PassCoefficients* k = fitted_.find(p.pass)) {
-        alpha_outside_space_ += pass_alpha(profile, *k, p.counts);
-      }
+    } else if (const PassCoefficients* k = fitted_.find(p.pass)) {
+      alpha_outside_space_ += pass_alpha(profile, *k, p.counts);
     }
   }
   for (std::size_t i = 0; i < passes; ++i) {

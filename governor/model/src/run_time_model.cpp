@@ -23,7 +23,8 @@ void RunTimeModel::seed_prior(const FrameSample& frame, const Configuration& con
   if (!profile.costs) return;
   PowerModel prior = fitter_.model();
   const PowerModel costs = prior_model(profile, *profile.costs, space_, configuration, frame.passes);
-  for (const auto& [pass, k] : costs.coefficients()) prior.set(pass, k);
+  for (PassIndex pass = 0; pass < costs.coefficients().size(); ++pass)
+    if (const PassCoefficients* k = costs.find(pass)) prior.set(pass, *k);
   fitter_.adopt(prior);
 }
 

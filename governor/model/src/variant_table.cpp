@@ -195,7 +195,7 @@ std::optional<VariantTable> load_variant_table(const std::string& path) {
 }
 
 ResolvedFrame resolve_frame(const LoggedFrame& frame, const VariantTable& table,
-                            const Configuration& default_configuration) {
+                            const Configuration& default_configuration, PassNames& names) {
   ResolvedFrame resolved;
   resolved.sample.power_w = frame.power_w;
   resolved.configuration = default_configuration;
@@ -206,12 +206,14 @@ ResolvedFrame resolve_frame(const LoggedFrame& frame, const VariantTable& table,
       frame.configuration.empty() ? std::nullopt : parse_configuration(frame.configuration, table.space);
   std::vector<double> texels_per_fragment;
   for (const LoggedPass& logged_pass : frame.passes) {
-    std::string name = logged_pass.pass;
+    PassIndex pass = 0;
     bool in_table = false;
     if (const auto it = table.by_hash.find(logged_pass.pass); it != table.by_hash.end()) {
-      name = table.space.passes()[it->second.pass].pass;
+      pass = static_cast<PassIndex>(it->second.pass);
       if (!logged && it->second.level >= 0) resolved.configuration[it->second.pass] = it->second.level;
       in_table = true;
+    } else {
+      pass = names.index_of(logged_pass.pass);
     }
     resolved.totals.triangles += logged_pass.primitives;
     resolved.totals.batches += logged_pass.counts.batches;
@@ -219,7 +221,7 @@ ResolvedFrame resolve_frame(const LoggedFrame& frame, const VariantTable& table,
     bool merged = false;
     for (std::size_t i = 0; i < resolved.sample.passes.size(); ++i) {
       PassFrame& existing = resolved.sample.passes[i];
-      if (existing.pass != name) continue;
+      if (existing.pass != pass) continue;
       existing.counts.batches += logged_pass.counts.batches;
       existing.counts.vertices += logged_pass.counts.vertices;
       existing.counts.fragments += logged_pass.counts.fragments;
@@ -227,7 +229,7 @@ ResolvedFrame resolve_frame(const LoggedFrame& frame, const VariantTable& table,
       merged = true;
     }
     if (!merged) {
-      resolved.sample.passes.push_back({name, logged_pass.counts});
+      resolved.sample.passes.push_back({pass, logged_pass.counts});
       resolved.primitives.push_back(logged_pass.primitives);
       texels_per_fragment.push_back(in_table ? -1.0 : 1.0);  // -1: from the level, below
     }
@@ -241,25 +243,22 @@ ResolvedFrame resolve_frame(const LoggedFrame& frame, const VariantTable& table,
   return resolved;
 }
 
-std::vector<ConfiguredSample> configured_samples(std::span<const LoggedFrame> frames, const VariantTable& table) {
+std::vector<ConfiguredSample> configured_samples(std::span<const LoggedFrame> frames, const VariantTable& table,
+                                                 PassNames& names) {
   std::vector<ConfiguredSample> samples;
   samples.reserve(frames.size());
   Configuration current(table.space.pass_count(), 0);
   for (const LoggedFrame& frame : frames) {
-    ResolvedFrame resolved = resolve_frame(frame, table, current);
+    ResolvedFrame resolved = resolve_frame(frame, table, current, names);
     current = resolved.configuration;
     samples.push_back({std::move(resolved.sample), std::move(resolved.configuration)});
   }
   return samples;
 }
 
-VariantCost table_level(const VariantTable& table, const std::string& pass, const Configuration& configuration) {
-  for (std::size_t i = 0; i < table.space.pass_count(); ++i) {
-    if (table.space.passes()[i].pass == pass && i < configuration.size()) {
-      return table.space.passes()[i].levels[static_cast<std::size_t>(configuration[i])];
-    }
-  }
-  return {};
+VariantCost table_level(const VariantTable& table, PassIndex pass, const Configuration& configuration) {
+  if (pass >= table.space.pass_count() || pass >= configuration.size()) return {};
+  return table.space.passes()[pass].levels[static_cast<std::size_t>(configuration[pass])];
 }
 
 FrameTotals totals_in(const ResolvedFrame& frame, const VariantTable& table, const Configuration& target) {
@@ -270,13 +269,13 @@ FrameTotals totals_in(const ResolvedFrame& frame, const VariantTable& table, con
     double fragment_ratio = 1.0;
     bool draws = true;
     double tex = 1.0;
-    for (std::size_t i = 0; i < space.pass_count(); ++i) {
-      const PassVariants& pass = space.passes()[i];
-      const VariantCost& from = pass.levels[static_cast<std::size_t>(frame.configuration[i])];
-      const VariantCost& to = pass.levels[static_cast<std::size_t>(target[i])];
-      if (pass.pass == p.pass) draws = to.draws, tex = to.tex_f;
-      if (std::find(pass.scales.begin(), pass.scales.end(), p.pass) != pass.scales.end()) {
-        fragment_ratio *= from.fragment_scale > 0.0 ? to.fragment_scale / from.fragment_scale : 0.0;
+    if (p.pass < space.pass_count()) {
+      const VariantCost& to = space.passes()[p.pass].levels[static_cast<std::size_t>(target[p.pass])];
+      draws = to.draws, tex = to.tex_f;
+      for (std::size_t i : space.scalers_of(p.pass)) {
+        const VariantCost& from_scale = space.passes()[i].levels[static_cast<std::size_t>(frame.configuration[i])];
+        const VariantCost& to_scale = space.passes()[i].levels[static_cast<std::size_t>(target[i])];
+        fragment_ratio *= from_scale.fragment_scale > 0.0 ? to_scale.fragment_scale / from_scale.fragment_scale : 0.0;
       }
     }
     if (!draws) continue;

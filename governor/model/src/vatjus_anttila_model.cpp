@@ -10,7 +10,7 @@ namespace glbudget::model {
 VatjusAnttilaModel::VatjusAnttilaModel(PlatformProfile profile) : model_(profile) {}
 
 std::vector<PassFrame> VatjusAnttilaModel::as_single_pass(const FrameTotals& frame) {
-  return {{"frame", {frame.batches, frame.triangles, frame.texels}}};
+  return {{0, {frame.batches, frame.triangles, frame.texels}}};  // one pass: the whole frame
 }
 
 void VatjusAnttilaModel::fit(std::span<const FrameTotals> frames, std::span<const double> power_w) {

@@ -5,7 +5,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <string>
 #include <vector>
 
 #include "glbudget/model/nonnegative_least_squares.hpp"
@@ -25,7 +24,7 @@ double& term(PassCoefficients& k, int t) { return t == 0 ? k.k_b : t == 1 ? k.k_
 
 // One pass of the window and its columns.
 struct WindowPass {
-  const std::string* name;
+  PassIndex pass = 0;
   std::array<int, kTerms> column{-1, -1, -1};             // -1: no column (the term's count is 0 throughout)
   std::array<bool, kTerms> nonzero{false, false, false};  // any count > 0 in the window
   const PassCoefficients* previous = nullptr;
@@ -153,7 +152,7 @@ void fit_columns(Eigen::MatrixXd a, const Eigen::VectorXd& y, const std::vector<
     for (int t = 0; t < kTerms; ++t) {
       if (pass.column[t] >= 0) term(k, t) = solution.coefficients(pass.column[t]);
     }
-    result.model.set(*pass.name, k);
+    result.model.set(pass.pass, k);
   }
 }
 
@@ -175,47 +174,32 @@ WindowFitResult fit_window(std::span<const FrameSample> window, const PowerModel
   result.samples_used = usable.size();
   if (usable.empty() || !(profile.range_w() > 0.0)) return result;  // nothing to learn
 
-  // The window's distinct passes, and for every (sample, pass entry) which of them it is.
-  // Frames list their passes in much the same order, so the search starts where the same
-  // entry of the previous frame was found (a string map cost a fifth of the fit).
+  // The window's distinct passes, by index.
+  std::vector<int> slot;  // [PassIndex]: its place in `passes`, -1 before it is seen
   std::vector<WindowPass> passes;
-  std::vector<int> pass_of_entry;
-  std::size_t entries = 0;
-  for (const FrameSample* sample : usable) entries += sample->passes.size();
-  pass_of_entry.reserve(entries);
-  std::vector<int> hint;  // per entry position: the pass found there in the last frame
   for (const FrameSample* sample : usable) {
-    for (std::size_t e = 0; e < sample->passes.size(); ++e) {
-      const PassFrame& entry = sample->passes[e];
-      if (hint.size() <= e) hint.push_back(0);
-      int found = -1;
-      for (std::size_t i = 0; i < passes.size() && found < 0; ++i) {
-        const int p = static_cast<int>((static_cast<std::size_t>(hint[e]) + i) % passes.size());
-        if (*passes[p].name == entry.pass) found = p;
+    for (const PassFrame& entry : sample->passes) {
+      if (slot.size() <= entry.pass) slot.resize(static_cast<std::size_t>(entry.pass) + 1, -1);
+      if (slot[entry.pass] < 0) {
+        slot[entry.pass] = static_cast<int>(passes.size());
+        passes.push_back({entry.pass});
       }
-      if (found < 0) {
-        found = static_cast<int>(passes.size());
-        passes.push_back({&entry.pass});
-      }
-      hint[e] = found;
-      pass_of_entry.push_back(found);
       const auto x = normalised_counts(profile, entry.counts);
       for (int t = 0; t < kTerms; ++t) {
-        if (x[t] > 0.0) passes[found].nonzero[t] = true;
+        if (x[t] > 0.0) passes[static_cast<std::size_t>(slot[entry.pass])].nonzero[t] = true;
       }
     }
   }
   // One column per (pass, term) with any non-zero count in the window, numbered in order of
-  // pass name (the order does not change the fit beyond rounding; it keeps it reproducible).
-  std::vector<int> by_name(passes.size());
-  for (std::size_t i = 0; i < by_name.size(); ++i) by_name[i] = static_cast<int>(i);
-  std::sort(by_name.begin(), by_name.end(), [&](int l, int r) { return *passes[l].name < *passes[r].name; });
+  // pass index (the order does not change the fit beyond rounding; it keeps it reproducible).
+  std::sort(passes.begin(), passes.end(), [](const WindowPass& l, const WindowPass& r) { return l.pass < r.pass; });
+  for (std::size_t p = 0; p < passes.size(); ++p) slot[passes[p].pass] = static_cast<int>(p);
   int cols = 0;
-  for (int p : by_name) {
+  for (WindowPass& pass : passes) {
     for (int t = 0; t < kTerms; ++t) {
-      if (passes[p].nonzero[t]) passes[p].column[t] = cols++;
+      if (pass.nonzero[t]) pass.column[t] = cols++;
     }
-    passes[p].previous = previous.find(*passes[p].name);
+    pass.previous = previous.find(pass.pass);
   }
   result.columns = static_cast<std::size_t>(cols);
   if (cols == 0) return result;
@@ -223,12 +207,11 @@ WindowFitResult fit_window(std::span<const FrameSample> window, const PowerModel
   const auto rows = static_cast<Eigen::Index>(usable.size());
   Eigen::MatrixXd a = Eigen::MatrixXd::Zero(rows, cols);
   Eigen::VectorXd y(rows);
-  std::size_t next_entry = 0;
   for (Eigen::Index r = 0; r < rows; ++r) {
     const LinearisedPower target = linearise_power(profile, usable[r]->power_w);
     y(r) = target.weight * target.alpha;
     for (const PassFrame& entry : usable[r]->passes) {
-      const auto& column = passes[pass_of_entry[next_entry++]].column;
+      const auto& column = passes[static_cast<std::size_t>(slot[entry.pass])].column;
       const auto x = normalised_counts(profile, entry.counts);
       for (int t = 0; t < kTerms; ++t) {
         if (column[t] >= 0) a(r, column[t]) += target.weight * x[t];

@@ -60,7 +60,7 @@ struct FrameRecord {
   double power_w = std::numeric_limits<double>::quiet_NaN();  // NaN: no measurement
   model::Configuration configuration;                         // what drew the frame
   bool probe = false;                                         // a quality-probe frame: its power is not the frame's
-  // Counts per manifest pass name; passes outside the space add a fixed load.
+  // Counts per pass, by its index in the space (PassIndex); passes past the space add a fixed load.
   std::vector<model::PassFrame> passes;
 };
 

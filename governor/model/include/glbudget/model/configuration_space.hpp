@@ -40,6 +40,10 @@ class ConfigurationSpace {
 
   const std::vector<PassVariants>& passes() const { return passes_; }
   std::size_t pass_count() const { return passes_.size(); }
+  // PassVariants::scales by index, resolved once: the passes whose fragments pass p's levels
+  // scale, and the passes that scale pass j's (each ascending; names of no pass are dropped).
+  const std::vector<std::size_t>& scaled_by(std::size_t p) const { return scaled_by_[p]; }
+  const std::vector<std::size_t>& scalers_of(std::size_t j) const { return scalers_of_[j]; }
   std::size_t size() const { return size_; }
 
   // Row-major: the last pass changes fastest. index_of(decode(i)) == i.
@@ -51,6 +55,7 @@ class ConfigurationSpace {
 
  private:
   std::vector<PassVariants> passes_;
+  std::vector<std::vector<std::size_t>> scaled_by_, scalers_of_;
   std::vector<std::size_t> strides_;
   std::size_t size_ = 1;
 };

@@ -2,8 +2,9 @@
 // The per-pass power model of paper eq. (3):
 //   P = P_m + (P_M - P_m)(1 - exp(-sum_i alpha_i)),
 //   alpha_i = k_bi b_i/B + k_vi v_i/V + k_fi f_i/F.
-#include <map>
-#include <string>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "glbudget/model/platform_profile.hpp"
@@ -23,8 +24,13 @@ struct PassCoefficients {
   double k_f = 0.0;
 };
 
+// A pass's one identity, from the shim's frame record through every fit: the index of the
+// pass in the ConfigurationSpace, and past its passes, a pass outside it (a program no pass
+// matched, in a replayed log). PassNames gives the names of both.
+using PassIndex = std::uint32_t;
+
 struct PassFrame {
-  std::string pass;  // manifest pass name, or the program's source hash without a manifest
+  PassIndex pass = 0;
   PassCounts counts;
 };
 
@@ -45,10 +51,13 @@ class PowerModel {
   explicit PowerModel(PlatformProfile profile = {}) : profile_(profile) {}
 
   const PlatformProfile& profile() const { return profile_; }
-  // Passes that were never fitted have no entry and contribute nothing.
-  const std::map<std::string, PassCoefficients>& coefficients() const { return coefficients_; }
-  const PassCoefficients* find(const std::string& pass) const;
-  void set(const std::string& pass, const PassCoefficients& k) { coefficients_[pass] = k; }
+  // Passes that were never fitted have no entry and contribute nothing. By PassIndex.
+  const std::vector<std::optional<PassCoefficients>>& coefficients() const { return coefficients_; }
+  const PassCoefficients* find(PassIndex pass) const {
+    return pass < coefficients_.size() && coefficients_[pass] ? &*coefficients_[pass] : nullptr;
+  }
+  void set(PassIndex pass, const PassCoefficients& k);
+  std::size_t fitted_passes() const;
 
   // Beyond the paper: a load every frame carries whatever it draws (the app's and driver's
   // own work per frame, clears, presentation), which P_m, the idle power, does not include.
@@ -62,7 +71,7 @@ class PowerModel {
 
  private:
   PlatformProfile profile_;
-  std::map<std::string, PassCoefficients> coefficients_;
+  std::vector<std::optional<PassCoefficients>> coefficients_;
   double frame_alpha_ = 0.0;
 };
 

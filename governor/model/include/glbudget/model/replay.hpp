@@ -82,6 +82,7 @@ struct ReplayReport {
   std::size_t checks_failed = 0;
   ReuseCoefficients reuse;  // after the last fit
   PowerModel model;         // after the last fit, at the levels of its configuration
+  PassNames names;          // of the model's passes
   Configuration model_configuration;
 };
 
