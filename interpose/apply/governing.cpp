@@ -351,6 +351,7 @@ class GovernorThread {
     record.time_ns = first.time_ns;
     record.power_w = first.energy.valid ? first.energy.mean_power_w : std::nan("");
     record.probe = first.probe;
+    record.probe_period = static_cast<double>(probe_period_in_force());
     // The shim's levels ("0:2:1"), then the "app" pass's only level.
     for (size_t at = 0; at < first.configuration.size();) {
       size_t end = first.configuration.find(':', at);
@@ -373,6 +374,7 @@ class GovernorThread {
       pass->counts.fragments += row.fragments < 0 ? std::nan("") : static_cast<double>(row.fragments);
     }
     const loop::Decision d = governor_.on_frame(record);
+    set_probe_period_wanted(governor_.probe_period_wanted());
     // Observing only for the probes, the governor has nothing to tell.
     if (governor_.governing())
       for (; notes_said_ < governor_.notes().size(); ++notes_said_) say(governor_.notes()[notes_said_]);
@@ -500,6 +502,7 @@ bool governor_start() {
     settings.select_frames = o.select_frames;
     settings.transition_s = o.transition_s;
     settings.feedback.enabled = o.feedback;
+    if (!o.probe_stretch) settings.probe_stretch_gain = 0.0;
     const std::string path = default_profile_path();
     std::optional<model::PlatformProfile> profile;
     // Observing for the probes alone needs no profile of its own (the model is not used).

@@ -1,5 +1,6 @@
 #include "probes.hpp"
 
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -42,11 +43,19 @@ const ProbeSettings& probe_settings() {
       s.period = 3;
     }
     s.settled_factor = o.probe_period >= 0 ? 1 : 6;
+    s.stretchable = o.probe_period < 0;
     s.dump_dir = o.dump_probes;
     return s;
   }();
   return settings;
 }
+
+namespace {
+std::atomic<uint64_t> g_period_wanted{0}, g_period_in_force{0};
+}  // namespace
+
+void set_probe_period_wanted(uint64_t frames) { g_period_wanted.store(frames, std::memory_order_relaxed); }
+uint64_t probe_period_in_force() { return g_period_in_force.load(std::memory_order_relaxed); }
 
 namespace {
 
@@ -1004,6 +1013,7 @@ struct ProbeFrames::Impl {
   // Passes probed at their cheapest level so far; every pass with levels: settled.
   uint64_t passes_probed = 0;
   uint64_t drift_seen = 0;  // probe_drift_count() when last looked at
+  uint64_t last_tried = 0;  // the frame a probe was last planned for (or tried: nothing to probe)
   bool settled() const {
     const manifest::Manifest& m = active_manifest();
     for (size_t i = 0; i < m.passes.size() && i < 64; ++i)
@@ -1063,10 +1073,18 @@ void ProbeFrames::after_swap(uint64_t next) {
     p.drift_seen = drift;
     p.passes_probed = 0;  // the scene moved: every pass's error again, at the first period
   }
-  uint64_t period = probe_settings().period;
-  if (p.settled()) period *= probe_settings().settled_factor;
-  // Not the first frames: the app may still be setting up what it draws.
-  if (period == 0 || next < 3 || next % period != 0) return;
+  const ProbeSettings& settings = probe_settings();
+  uint64_t period = settings.period;
+  if (p.settled()) {
+    period *= settings.settled_factor;
+    if (settings.stretchable) period = std::max(period, g_period_wanted.load(std::memory_order_relaxed));
+  }
+  if (period != g_period_in_force.load(std::memory_order_relaxed))
+    g_period_in_force.store(period, std::memory_order_relaxed);
+  // Not the first frames: the app may still be setting up what it draws. A period just made
+  // longer counts from the last probe tried, not from its next multiple.
+  if (period == 0 || next < 3 || next % period != 0 || next - p.last_tried < period) return;
+  p.last_tried = next;
   p.plan(next);
 }
 

@@ -136,8 +136,17 @@ struct ProbeSettings {
   // By default (GLBUDGET_PROBE_PERIOD not given) probes are that frequent only until every
   // pass has been probed once, then this many times rarer: a probe frame costs several frames.
   uint64_t settled_factor = 1;
+  // The governor may ask for rarer settled probes (set_probe_period_wanted); not when the user
+  // gave GLBUDGET_PROBE_PERIOD.
+  bool stretchable = false;
   std::string dump_dir;  // where probe images go as PPM files ("" : nowhere)
 };
 const ProbeSettings& probe_settings();
+
+// Governor thread: frames between settled probes it asks for at least (0: the settled period
+// of ProbeSettings). Render thread: the period its contexts plan probes at now, for the
+// governor's probe overhead (0: none planned yet).
+void set_probe_period_wanted(uint64_t frames);
+uint64_t probe_period_in_force();
 
 }  // namespace glbudget

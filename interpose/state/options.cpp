@@ -34,6 +34,7 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_SELECT_FRAMES",
     "GLBUDGET_TRANSITION_S",
     "GLBUDGET_FEEDBACK",
+    "GLBUDGET_PROBE_STRETCH",
     "GLBUDGET_DUMP_PROBES",
     "GLBUDGET_PROBE_SCALE",
     "GLBUDGET_PROBE_SSIM",
@@ -150,6 +151,13 @@ Options parse_options(char** env, std::string* warnings) {
         o.feedback = false;
       else
         warn(warnings, "GLBUDGET_FEEDBACK='" + value + "' is not 0/1/on/off; on");
+    } else if (name == "GLBUDGET_PROBE_STRETCH") {
+      if (value == "1" || value == "on")
+        o.probe_stretch = true;
+      else if (value == "0" || value == "off")
+        o.probe_stretch = false;
+      else
+        warn(warnings, "GLBUDGET_PROBE_STRETCH='" + value + "' is not 0/1/on/off; on");
     } else if (name == "GLBUDGET_TEST_HIDE_EXTENSIONS") {
       for (std::string item : comma_items(value)) {
         while (!item.empty() && item.front() == ' ') item.erase(item.begin());

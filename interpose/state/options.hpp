@@ -37,6 +37,9 @@ struct Options {
   // turn, not only its cheapest (`glbudget calibrate --app` measures the ratios k so).
   bool probe_every_level = false;
   bool feedback = true;  // GLBUDGET_FEEDBACK=0: no correction from measured power (the paper's open loop)
+  // GLBUDGET_PROBE_STRETCH=0: the governor never asks for rarer probes (loop/governor.hpp,
+  // probe_stretch_gain)
+  bool probe_stretch = true;
   // GLBUDGET_TEST_HIDE_EXTENSIONS=GL_ARB_timer_query,...: a test switch (tests/interpose/
   // faults_test.cpp); the shim's capability probe (detect_caps) takes these extensions, and the
   // features they name even where the core version includes them, as absent.

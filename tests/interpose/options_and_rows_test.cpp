@@ -148,6 +148,17 @@ TEST_CASE("GLBUDGET_PROBE_SSIM: auto, gpu or cpu; anything else said once, auto"
   }
 }
 
+TEST_CASE("GLBUDGET_PROBE_STRETCH: on unless 0 or off; anything else said once, on", "[unit]") {
+  std::string w;
+  CHECK(parse_env({}, &w).probe_stretch);
+  CHECK(parse_env({"GLBUDGET_PROBE_STRETCH=1"}, &w).probe_stretch);
+  CHECK_FALSE(parse_env({"GLBUDGET_PROBE_STRETCH=0"}, &w).probe_stretch);
+  CHECK_FALSE(parse_env({"GLBUDGET_PROBE_STRETCH=off"}, &w).probe_stretch);
+  CHECK(w.empty());
+  CHECK(parse_env({"GLBUDGET_PROBE_STRETCH=rare"}, &w).probe_stretch);
+  CHECK(w == "glbudget: GLBUDGET_PROBE_STRETCH='rare' is not 0/1/on/off; on\n");
+}
+
 TEST_CASE("GLBUDGET_PROBE_LEVELS: cheapest or all; anything else said once, cheapest", "[unit]") {
   std::string w;
   CHECK_FALSE(parse_env({}, &w).probe_every_level);

@@ -206,6 +206,7 @@ bool Governor::select(const FrameRecord& record) {
                     ? 0.0
                     : feedback_.margin_w() + overshoot_w_ +
                           probe_overhead_.window_margin_w(settings_.feedback.window_s, settings_.feedback.keep_share);
+    if (!whole_range) want_probe_period(budget_w, feedback_.margin_w() + overshoot_w_);
   }
   const model::Selection selection = aim_ == Aim::power
                                          ? model::select_configuration(power_, error_, budget_w, margin_w_)
@@ -378,8 +379,31 @@ void Governor::feed_back(const FrameRecord& record, Decision& decision) {
   if (std::isfinite(decision.predicted_w)) decision.predicted_w += feedback_.bias(record.configuration);
 }
 
+// Probes rare enough that windows keep their mean margin, where the selection would then show
+// a lower error by probe_stretch_gain; the shim's own period where that gain is under half of
+// it (a gap between the two thresholds keeps the period from flapping with the noise).
+void Governor::want_probe_period(double budget_w, double margin_without_probes_w) {
+  const double gap = probe_overhead_.rare_gap(settings_.feedback.window_s, settings_.feedback.keep_share);
+  if (!(settings_.probe_stretch_gain > 0.0) || gap <= 0.0 || probe_overhead_.probes_measured() == 0) {
+    probe_period_wanted_ = 0;
+    return;
+  }
+  const double whole = probe_overhead_.whole_excess_margin_w(settings_.feedback.window_s);
+  const double rare = probe_overhead_.watts_at_gap(gap);
+  const model::Selection with_whole =
+      model::select_configuration(power_, error_, budget_w, margin_without_probes_w + whole);
+  const model::Selection with_rare =
+      model::select_configuration(power_, error_, budget_w, margin_without_probes_w + rare);
+  const double gain = error_[with_whole.index] - error_[with_rare.index];
+  if (gain >= settings_.probe_stretch_gain)
+    probe_period_wanted_ = static_cast<std::uint64_t>(gap);
+  else if (gain < 0.5 * settings_.probe_stretch_gain)
+    probe_period_wanted_ = 0;
+}
+
 Decision Governor::on_frame(const FrameRecord& frame) {
   if (!started_) start(frame);
+  probe_overhead_.set_period_in_force(frame.probe_period);
   probe_overhead_.add(frame.probe, frame.power_w, frame.time_ns);
   // The frame after a probe reads the probe's images back and compares them: part of its power
   // is the probe's (counted by probe_overhead_), so neither the model nor the feedback takes

@@ -11,6 +11,9 @@ constexpr double kShareDecay = 1.0 - 1.0 / 200.0;
 constexpr int kSpanFrames = 2;  // the probe frame and the one that reads its comparison back
 constexpr double kIntervalWeight = 1.0 / 32.0;
 constexpr double kLongestInterval_s = 0.5;
+// Of the windows a budget may leave over it (1 - keep_share), the share left to the probes'
+// windows: the other half is the sensor's scatter's, which the feedback's margin is for.
+constexpr double kProbeShareOfOver = 0.5;
 }  // namespace
 
 void ProbeOverhead::close_span() {
@@ -66,8 +69,9 @@ void ProbeOverhead::add(bool probe, double power_w, std::int64_t time_ns) {
 double ProbeOverhead::watts() const { return measured_ == 0 ? 0.0 : std::max(0.0, excess_w_) * share(); }
 
 double ProbeOverhead::share() const {
-  // Once probes have come twice, one in their mean gap, or in the frames since the last where
-  // that is longer (they slowed down or stopped).
+  // One in the period the shim plans, or once probes have come twice in their mean gap, or in
+  // the frames since the last where that is longer (they slowed down or stopped).
+  if (period_in_force_ > 0.0 && measured_ > 0) return 1.0 / std::max(period_in_force_, since_probe_);
   if (gap_frames_ > 0.0) return 1.0 / std::max(gap_frames_, since_probe_);
   return frames_ > 0.0 ? probes_ / frames_ : 0.0;
 }
@@ -76,12 +80,29 @@ double ProbeOverhead::frames_per_window(double window_s) const {
   return interval_s_ > 0.0 && window_s > 0.0 ? std::max(1.0, window_s / interval_s_) : 0.0;
 }
 
+double ProbeOverhead::whole_excess_margin_w(double window_s) const {
+  const double frames = frames_per_window(window_s);
+  return measured_ == 0 || frames <= 0.0 ? 0.0 : std::max(0.0, excess_w_) / frames;
+}
+
+double ProbeOverhead::rare_gap(double window_s, double keep_share) const {
+  const double frames = frames_per_window(window_s);
+  if (frames <= 0.0 || !(keep_share < 1.0)) return 0.0;
+  // One frame more than the bound: window_margin_w must find it at or under.
+  return std::ceil((frames + kSpanFrames - 1) / (kProbeShareOfOver * (1.0 - std::max(0.0, keep_share)))) + 1.0;
+}
+
+double ProbeOverhead::watts_at_gap(double gap) const {
+  return measured_ == 0 || !(gap > 0.0) ? 0.0 : std::max(0.0, excess_w_) / gap;
+}
+
 double ProbeOverhead::window_margin_w(double window_s, double keep_share) const {
   const double frames = frames_per_window(window_s);
   if (measured_ == 0 || frames <= 0.0) return watts();
-  // Probes per window: under one, that share of windows holds one (and the rest none).
-  const double per_window = share() * frames;
-  if (per_window <= 1.0 - keep_share) return watts();
+  // Probes per window (a probe's span of two frames touches one more window start than the
+  // window has frames): under one, that share of windows holds one (and the rest none).
+  const double per_window = share() * (frames + kSpanFrames - 1);
+  if (per_window <= kProbeShareOfOver * (1.0 - keep_share)) return watts();
   return std::max(watts(), std::max(0.0, excess_w_) / frames);
 }
 

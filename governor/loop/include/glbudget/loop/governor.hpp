@@ -50,6 +50,15 @@ struct GovernorSettings {
   // level's saving, against what was measured, is the feedback's prior for that level
   // (Governor::calibrated_prior). In the space's pass order; passes beyond them at level 0.
   std::vector<std::pair<model::Configuration, double>> calibrated_powers;
+  // Beyond the paper: where more windows hold a quality probe than the budget may leave over,
+  // each must fit a probe's whole excess (probe_overhead.hpp), and at low frame rates that
+  // margin costs the shown image quality. When a selection with the mean margin of probes
+  // rare enough (ProbeOverhead::rare_gap: about 40 s apart for a 95 % share) would show an
+  // estimated error this much lower, the governor asks for probes that rare
+  // (probe_period_wanted); below half of it, it asks for the shim's own period again. The
+  // price is staler estimates: every pass probed a few minutes apart, sooner when a probe
+  // finds the scene changed. 0: never.
+  double probe_stretch_gain = 0.002;
   model::FitSettings fit = {};
   model::HistorySettings history = {};
 };
@@ -60,6 +69,7 @@ struct FrameRecord {
   double power_w = std::numeric_limits<double>::quiet_NaN();  // NaN: no measurement
   model::Configuration configuration;                         // what drew the frame
   bool probe = false;                                         // a quality-probe frame: its power is not the frame's
+  double probe_period = 0.0;                                  // frames between probes the shim plans now; 0: not known
   // Counts per pass, by its index in the space (PassIndex); passes past the space add a fixed load.
   std::vector<model::PassFrame> passes;
 };
@@ -112,6 +122,9 @@ class Governor {
   const model::ConfigurationSpace& space() const { return space_; }
   const PowerFeedback& feedback() const { return feedback_; }
   const ProbeOverhead& probe_overhead() const { return probe_overhead_; }
+  // Frames between quality probes the governor asks the shim to keep at least, once every
+  // pass is probed (GovernorSettings::probe_stretch_gain); 0: the shim's own period.
+  std::uint64_t probe_period_wanted() const { return probe_period_wanted_; }
   // The last selection: every configuration's predicted power (corrected) and estimated
   // error, by ConfigurationSpace index, and the margin kept under the budget.
   struct SelectionTable {
@@ -147,6 +160,7 @@ class Governor {
   void hold(const FrameRecord& record);
   void feed_back(const FrameRecord& record, Decision& decision);
   double initial_budget_w() const;
+  void want_probe_period(double budget_w, double margin_without_probes_w);
   double calibrated_scale(double best_now_w) const;
   double share_of_range_w() const;
   void set_calibrated_prior();
@@ -177,6 +191,7 @@ class Governor {
   bool within_budget_ = true;
   PowerFeedback feedback_;
   ProbeOverhead probe_overhead_;
+  std::uint64_t probe_period_wanted_ = 0;
   FrameRecord after_probe_record_;  // reused: the frame after a probe, its power left out
   bool reselect_now_ = false;       // a window was measured over the budget
   bool exploring_ = false;          // drawing the cheapest configuration until a window measures it

@@ -8,9 +8,12 @@
 // selection keeps it under the budget besides the spread's margin, and windows are held to
 // the budget with it.
 // The mean is what a long meter reading sees; a window of a second sees all of a probe or
-// none of it. Where more windows hold a probe than the share a budget may leave over it
-// (a probe every 60 frames at 10 frames a second: one window in six), each such window must
-// fit its probe's whole excess, and the selection keeps that instead (window_margin_w).
+// none of it. Where more windows hold a probe than the probes' part of the share a budget may
+// leave over it (a probe every 60 frames at 10 frames a second: one window in six), each such
+// window must fit its probe's whole excess, and the selection keeps that instead
+// (window_margin_w).
+// Probed rarely enough that at most that share of windows holds one (rare_gap), each window
+// keeps the mean again: the governor asks for that where it buys quality (governor.hpp).
 #include <cstddef>
 #include <cstdint>
 
@@ -21,6 +24,9 @@ class ProbeOverhead {
   // Every frame, in order; power NaN when not measured; time_ns (when the frame ended, any
   // origin) gives the frame rate, negative when not known.
   void add(bool probe, double power_w, std::int64_t time_ns = -1);
+  // The frames between probes the shim plans now (0: not known; the gaps measured then
+  // tell). Probes may come rarer than planned, never more often.
+  void set_period_in_force(double frames) { period_in_force_ = frames > 0.0 ? frames : 0.0; }
   // The frame last added is a probe's or the one after it: its power is not its
   // configuration's own.
   bool in_span() const { return last_in_span_; }
@@ -32,12 +38,20 @@ class ProbeOverhead {
   double excess_w() const { return excess_w_; }
   double share() const;
   // What a selection keeps under the budget for the probes so that about `keep_share` of the
-  // windows of window_s seconds, probes included, stay within it: watts() where at most
-  // 1 - keep_share of the windows hold a probe (or the frame rate is not known), else a
-  // probe's whole excess spread over one window's frames.
+  // windows of window_s seconds, probes included, stay within it: watts() where at most half
+  // of 1 - keep_share of the windows hold a probe (the other half is left to the sensor's
+  // scatter), or the frame rate is not known; else a probe's whole excess spread over one
+  // window's frames.
   double window_margin_w(double window_s, double keep_share) const;
   // Frames in a window of window_s seconds at the recent frame rate (0: not known).
   double frames_per_window(double window_s) const;
+  // A probe's whole excess spread over one window's frames (0 while unknown).
+  double whole_excess_margin_w(double window_s) const;
+  // The frames between probes from which at most 1 - keep_share of the windows hold one, so
+  // that window_margin_w is the mean (0: the frame rate is not known).
+  double rare_gap(double window_s, double keep_share) const;
+  // What the probes would add to the mean with one every `gap` frames.
+  double watts_at_gap(double gap) const;
   std::size_t probes_measured() const { return measured_; }
 
  private:
@@ -57,6 +71,7 @@ class ProbeOverhead {
   // probes (one every 600 frames) are not a share the decaying counts can hold.
   double gap_frames_ = 0.0;
   double since_probe_ = -1.0;  // -1: no probe yet
+  double period_in_force_ = 0.0;
   std::int64_t last_time_ns_ = -1;
   double interval_s_ = 0.0;  // between frames, exponentially (about 32 frames); 0: not known
 };
