@@ -11,7 +11,7 @@ estimated error of what it drew.
 
 Writes DIR/probe-stretch.md.
 Usage: probe_stretch.py BUILD_DIR --out DIR [--scenes valley,hall] [--budget 50] [--frames 600]
-       [--rounds 2] [--fps 10] [--size 320x180] [--detail 0.2]
+       [--rounds 2] [--fps 10] [--size 320x180] [--detail 0.2] [--keep]
 """
 import argparse
 import csv
@@ -56,6 +56,7 @@ def main():
     ap.add_argument("--size", default="320x180")
     ap.add_argument("--detail", type=float, default=0.2)
     ap.add_argument("--every", type=int, default=10)
+    ap.add_argument("--keep", action="store_true", help="keep the logs and images under --out/runs")
     a = ap.parse_args()
     a.build = os.path.abspath(a.build)
     a.costs, a.feedback, a.select_frames, a.calibrate_frames, a.budgets = "measure", "1", 60, 20, a.budget
@@ -63,7 +64,11 @@ def main():
     command = "python3 bench/evaluation/probe_stretch.py " + " ".join(
         os.path.relpath(x, ROOT) if os.path.isabs(x) and x.startswith(ROOT) else x for x in sys.argv[1:])
     rows = []
-    with tempfile.TemporaryDirectory() as tmp:
+    kept = os.path.join(os.path.abspath(a.out), "runs")
+    if a.keep:
+        os.makedirs(kept, exist_ok=True)
+    with tempfile.TemporaryDirectory() as scratch:
+        tmp = kept if a.keep else scratch
         ev = Evaluation(a, tmp)
         for scene in a.scenes.split(","):
             ev.governed_env["GLBUDGET_COSTS"] = ev.level_costs(scene)

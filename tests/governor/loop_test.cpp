@@ -620,7 +620,7 @@ RareProbeRun run_with_probes_at_ten_fps(double stretch_gain) {
 
 TEST_CASE("at 10 frames a second, probes are asked rarer where a probe's whole excess in a window costs quality",
           "[loop]") {
-  const RareProbeRun every_sixth = run_with_probes_at_ten_fps(0.0), rare = run_with_probes_at_ten_fps(0.002);
+  const RareProbeRun every_sixth = run_with_probes_at_ten_fps(0.0), rare = run_with_probes_at_ten_fps(0.005);
   INFO("estimated error shown: " << every_sixth.mean_error << " with a probe every 60 frames, " << rare.mean_error
                                  << " asked rarer (every " << rare.period_wanted << "); windows within the budget "
                                  << every_sixth.windows_within << " and " << rare.windows_within
@@ -632,7 +632,7 @@ TEST_CASE("at 10 frames a second, probes are asked rarer where a probe's whole e
   CHECK(rare.period_wanted == 441);
   CHECK(rare.probed_windows <= 0.03);
   CHECK(every_sixth.probed_windows >= 0.15);
-  CHECK(rare.mean_error < every_sixth.mean_error - 0.002);
+  CHECK(rare.mean_error < every_sixth.mean_error - 0.005);
   CHECK(rare.windows_within >= 0.9);
 }
 

@@ -57,8 +57,10 @@ struct GovernorSettings {
   // estimated error this much lower, the governor asks for probes that rare
   // (probe_period_wanted); below half of it, it asks for the shim's own period again. The
   // price is staler estimates: every pass probed a few minutes apart, sooner when a probe
-  // finds the scene changed. 0: never.
-  double probe_stretch_gain = 0.002;
+  // finds the scene changed; so only for a gain beyond the selection regret the estimates
+  // are held to (0.005, issue 14; on Hall, whose errors change along its path, the stale
+  // estimates of a 0.002 threshold cost more than the margin gave back). 0: never.
+  double probe_stretch_gain = 0.005;
   model::FitSettings fit = {};
   model::HistorySettings history = {};
 };
