@@ -1082,7 +1082,7 @@ void ProbeFrames::after_swap(uint64_t next) {
   if (period != g_period_in_force.load(std::memory_order_relaxed))
     g_period_in_force.store(period, std::memory_order_relaxed);
   // Not the first frames: the app may still be setting up what it draws. A period just made
-  // longer counts from the last probe tried, not from its next multiple.
+  // longer also waits a whole period after the last probe tried.
   if (period == 0 || next < 3 || next % period != 0 || next - p.last_tried < period) return;
   p.last_tried = next;
   p.plan(next);

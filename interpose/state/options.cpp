@@ -61,6 +61,15 @@ std::vector<std::string> comma_items(const std::string& value) {
   }
   return items;
 }
+// A switch that is on by default: 1/on or 0/off; anything else is said and leaves it on.
+void parse_switch(std::string_view name, const std::string& value, bool& on, std::string* warnings) {
+  if (value == "1" || value == "on")
+    on = true;
+  else if (value == "0" || value == "off")
+    on = false;
+  else
+    warn(warnings, std::string(name) + "='" + value + "' is not 0/1/on/off; on");
+}
 }  // namespace
 
 Options parse_options(char** env, std::string* warnings) {
@@ -145,19 +154,9 @@ Options parse_options(char** env, std::string* warnings) {
       else
         warn(warnings, "GLBUDGET_PROBE_LEVELS='" + value + "' is not cheapest or all; cheapest");
     } else if (name == "GLBUDGET_FEEDBACK") {
-      if (value == "1" || value == "on")
-        o.feedback = true;
-      else if (value == "0" || value == "off")
-        o.feedback = false;
-      else
-        warn(warnings, "GLBUDGET_FEEDBACK='" + value + "' is not 0/1/on/off; on");
+      parse_switch(name, value, o.feedback, warnings);
     } else if (name == "GLBUDGET_PROBE_STRETCH") {
-      if (value == "1" || value == "on")
-        o.probe_stretch = true;
-      else if (value == "0" || value == "off")
-        o.probe_stretch = false;
-      else
-        warn(warnings, "GLBUDGET_PROBE_STRETCH='" + value + "' is not 0/1/on/off; on");
+      parse_switch(name, value, o.probe_stretch, warnings);
     } else if (name == "GLBUDGET_TEST_HIDE_EXTENSIONS") {
       for (std::string item : comma_items(value)) {
         while (!item.empty() && item.front() == ' ') item.erase(item.begin());
