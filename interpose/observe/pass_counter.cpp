@@ -76,22 +76,22 @@ GlCaps detect_caps() {
 
 void PassCounter::set_pass(PassId pass) {
   pass_ = pass;
-  ready = counting_ && !skipping_ && !every_draw_hooked_ && open_ && seg_.pass == pass_;
+  update_ready();
 }
 
 void PassCounter::set_counting(bool on) {
   counting_ = on;
-  ready = counting_ && !skipping_ && !every_draw_hooked_ && open_ && seg_.pass == pass_;
+  update_ready();
 }
 
 void PassCounter::set_every_draw_hooked(bool on) {
   every_draw_hooked_ = on;
-  ready = counting_ && !skipping_ && !every_draw_hooked_ && open_ && seg_.pass == pass_;
+  update_ready();
 }
 
 void PassCounter::set_skipping(bool on) {
   skipping_ = on;
-  ready = counting_ && !skipping_ && !every_draw_hooked_ && open_ && seg_.pass == pass_;
+  update_ready();
 }
 
 bool PassCounter::draw_slow(uint64_t n) {

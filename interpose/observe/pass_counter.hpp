@@ -90,6 +90,9 @@ class PassCounter : public DrawCounter {
     std::vector<Segment> segments;
   };
 
+  // The inline fast path may count a draw: counting, not skipping, no hook wanted before each
+  // draw, and the open segment is the current pass's.
+  void update_ready() { ready = counting_ && !skipping_ && !every_draw_hooked_ && open_ && seg_.pass == pass_; }
   void open_segment();
   void close_segment();
   // A query object keeps the target it was first used with: one pool per target.
