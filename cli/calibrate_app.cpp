@@ -35,7 +35,9 @@
 #include "calibrate_errors.hpp"
 #include "glbudget/manifest/manifest.hpp"
 #include "glbudget/model/configured_sample.hpp"
-#include "glbudget/model/frame_log.hpp"
+#include "glbudget/analysis/frame_log.hpp"
+#include "glbudget/analysis/cost_fit.hpp"
+#include "glbudget/analysis/resolved_frame.hpp"
 #include "glbudget/model/platform_costs.hpp"
 #include "glbudget/model/platform_profile.hpp"
 #include "glbudget/model/variant_table.hpp"
@@ -310,10 +312,10 @@ std::vector<std::string> power_run_configurations(const manifest::Manifest& m) {
 
 // The power run's frames as the model sees them, leaving out the first two of each
 // configuration (their power partly belongs to the one before).
-std::vector<model::ConfiguredSample> settled_samples(const model::FrameLog& log, const model::VariantTable& table) {
+std::vector<model::ConfiguredSample> settled_samples(const analysis::FrameLog& log, const model::VariantTable& table) {
   model::PassNames names(table.space);
   const std::vector<model::ConfiguredSample> all =
-      model::configured_samples(model::frames_of_busiest_context(log), table, names);
+      analysis::configured_samples(analysis::frames_of_busiest_context(log), table, names);
   std::vector<model::ConfiguredSample> settled;
   for (std::size_t i = 2; i < all.size(); ++i)
     if (all[i].configuration == all[i - 1].configuration && all[i].configuration == all[i - 2].configuration)
@@ -361,11 +363,11 @@ bool measure_power(const Options& o, const manifest::Manifest& m,
   const RunResult run = run_app(o, env, log, frames_needed);
   if (!run.started) return false;
   const std::optional<model::VariantTable> variants = model::parse_variant_table(table.dump(), "the measured table");
-  const std::optional<model::FrameLog> frames = model::read_frame_log_file(log);
+  const std::optional<analysis::FrameLog> frames = analysis::read_frame_log_file(log);
   if (!variants || !frames) return false;
   const std::vector<model::ConfiguredSample> samples = settled_samples(*frames, *variants);
-  const model::CostLog logs[] = {{samples, &variants->space}};
-  const std::optional<model::PlatformCostsFit> fit = model::fit_platform_costs(logs, *profile);
+  const analysis::CostLog logs[] = {{samples, &variants->space}};
+  const std::optional<analysis::PlatformCostsFit> fit = analysis::fit_platform_costs(logs, *profile);
   if (!fit) {
     std::fprintf(stderr,
                  "glbudget: calibrate --app: the power run gave no frame with power and counts (is the "

@@ -1,7 +1,7 @@
 // glbudget calibrate: measures this machine's platform profile (P_m, P_M and the saturation
 // counts B, V, F of paper §5.2) with one sensor and writes it where `glbudget run` and the shim
 // look for it. The steps and how they are judged: calibration_session.hpp and
-// governor/model/include/glbudget/model/calibration.hpp.
+// governor/analysis/include/glbudget/analysis/calibration.hpp.
 #include <unistd.h>
 
 #include <algorithm>
@@ -17,7 +17,7 @@
 
 #include "calibration_session.hpp"
 #include "command.hpp"
-#include "glbudget/model/calibration.hpp"
+#include "glbudget/analysis/calibration.hpp"
 #include "glbudget/model/platform_profile.hpp"
 #include "glbudget/sensors/registry.hpp"
 #include "load_runner.hpp"
@@ -164,13 +164,13 @@ void print_sweeps(const CalibrationSession& session) {
   }
 }
 
-void print_result(const model::CalibrationResult& r, const CalibrationSession& session) {
+void print_result(const analysis::CalibrationResult& r, const CalibrationSession& session) {
   auto is_default = [&](const char* field) {
     for (const std::string& d : r.defaults)
       if (d == field) return true;
     return false;
   };
-  const model::Saturation* saturations[3] = {&r.batches, &r.vertices, &r.fragments};
+  const analysis::Saturation* saturations[3] = {&r.batches, &r.vertices, &r.fragments};
   const double values[3] = {r.profile.saturation_batches, r.profile.saturation_vertices,
                             r.profile.saturation_fragments};
   const char* symbols[3] = {"B", "V", "F"};
@@ -184,7 +184,7 @@ void print_result(const model::CalibrationResult& r, const CalibrationSession& s
     const std::size_t steps = i < static_cast<int>(session.sweeps().size()) ? session.sweeps()[i].steps.size() : 0;
     const bool fallback = is_default(field.c_str());
     std::printf("%s   %12.0f    %s per frame: %s%s%s (%zu steps)\n", symbols[i], values[i], names[i],
-                fallback ? "default (measured: " : "", model::to_string(saturations[i]->kind), fallback ? ")" : "",
+                fallback ? "default (measured: " : "", analysis::to_string(saturations[i]->kind), fallback ? ")" : "",
                 steps);
   }
 }
@@ -258,7 +258,7 @@ int calibrate_main(std::span<char* const> args) {
     return 1;
   }
 
-  model::CalibrationResult result = model::calibrate_profile(session.measurements());
+  analysis::CalibrationResult result = analysis::calibrate_profile(session.measurements());
   model::PlatformProfile& profile = result.profile;
   for (double* count : {&profile.saturation_batches, &profile.saturation_vertices, &profile.saturation_fragments})
     *count = std::max(1.0, std::round(*count));

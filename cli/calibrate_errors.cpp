@@ -5,16 +5,16 @@
 #include <cstdlib>
 #include <sstream>
 
-#include "glbudget/model/frame_log.hpp"
+#include "glbudget/analysis/frame_log.hpp"
 #include "glbudget/model/variant_table.hpp"
 
 namespace glbudget::cli {
 
 std::optional<ErrorRatios> error_ratios_from_log(const std::string& log_path, const model::ConfigurationSpace& space) {
-  const std::optional<model::FrameLog> log = model::read_frame_log_file(log_path);  // says why when it fails
+  const std::optional<analysis::FrameLog> log = analysis::read_frame_log_file(log_path);  // says why when it fails
   if (!log) return std::nullopt;
   std::map<std::pair<std::string, int>, std::pair<double, int>> sums;
-  for (const model::LoggedFrame& frame : log->frames) {
+  for (const analysis::LoggedFrame& frame : log->frames) {
     std::istringstream streams(frame.probe_streams);
     for (std::string stream; std::getline(streams, stream, ';');) {
       const std::size_t equals = stream.find('=');

@@ -45,10 +45,10 @@ CalibrationSession::CalibrationSession(LoadRunner& runner, Progress& progress, c
 
 double CalibrationSession::seconds() const { return now_s() - start_s_; }
 
-model::CalibrationMeasurements CalibrationSession::measurements() const {
-  model::CalibrationMeasurements m;
+analysis::CalibrationMeasurements CalibrationSession::measurements() const {
+  analysis::CalibrationMeasurements m;
   m.idle_w = idle_w_;
-  model::SweepMeasurement* targets[3] = {&m.batches, &m.vertices, &m.fragments};
+  analysis::SweepMeasurement* targets[3] = {&m.batches, &m.vertices, &m.fragments};
   for (std::size_t i = 0; i < sweeps_.size() && i < 3; ++i) *targets[i] = sweeps_[i].measurement;
   return m;
 }
@@ -90,7 +90,7 @@ bool CalibrationSession::run_idle(std::string& error) {
   if (run.steps.empty()) return true;  // interrupted before it began
   const LoadStep& step = run.steps.front();
   idle_w_ =
-      model::measure_step(run.frames, static_cast<double>(step.start_ns), static_cast<double>(step.end_ns)).power_w;
+      analysis::measure_step(run.frames, static_cast<double>(step.start_ns), static_cast<double>(step.end_ns)).power_w;
   startup_s_ = std::max(0.0, now_s() - started - static_cast<double>(step.end_ns - step.start_ns) * 1e-9);
   if (!std::isfinite(idle_w_) && !interrupted()) {
     error = "the sensor gave no power readings for the idle frames";
@@ -100,7 +100,7 @@ bool CalibrationSession::run_idle(std::string& error) {
 }
 
 // One calibrate_load process per sweep: it stops on its own two steps after its frames fall
-// under half the paced rate (past the knee, see model/calibration.hpp), or at `steps`.
+// under half the paced rate (past the knee, see analysis/calibration.hpp), or at `steps`.
 bool CalibrationSession::run_sweep(const Quantity& q, std::string& error) {
   SweepRecord& record = sweeps_.emplace_back();
   record.name = q.name;
@@ -157,8 +157,8 @@ bool CalibrationSession::run_sweep(const Quantity& q, std::string& error) {
     startup_s_ = std::max(0.0, now_s() - started - step_time);
   }
   for (const LoadStep& step : run.steps) {
-    const model::StepMeasurement m =
-        model::measure_step(run.frames, static_cast<double>(step.start_ns), static_cast<double>(step.end_ns));
+    const analysis::StepMeasurement m =
+        analysis::measure_step(run.frames, static_cast<double>(step.start_ns), static_cast<double>(step.end_ns));
     // The counts the shim logged are the ones the model will see; what was asked for stands in
     // where the driver reported none.
     const double asked = name == "vertices" ? step.batches * std::ceil(step.vertices / 3.0) * 3.0 : swept(step);

@@ -1,11 +1,11 @@
 #pragma once
 // The measurements of `glbudget calibrate`: the idle step, then the batches, vertices and
-// fragments sweeps (model/calibration.hpp says why and how they are judged), each run as one
+// fragments sweeps (analysis/calibration.hpp says why and how they are judged), each run as one
 // calibrate_load process paced at a fixed frame rate, within a time budget.
 #include <string>
 #include <vector>
 
-#include "glbudget/model/calibration.hpp"
+#include "glbudget/analysis/calibration.hpp"
 #include "load_runner.hpp"
 #include "progress.hpp"
 
@@ -31,7 +31,7 @@ struct MeasuredStep {
 struct SweepRecord {
   const char* name = "";
   std::vector<MeasuredStep> steps;
-  model::SweepMeasurement measurement;
+  analysis::SweepMeasurement measurement;
 };
 
 class CalibrationSession {
@@ -42,7 +42,7 @@ class CalibrationSession {
   // sensor gave nothing.
   bool run(std::string& error);
 
-  model::CalibrationMeasurements measurements() const;
+  analysis::CalibrationMeasurements measurements() const;
   const std::vector<SweepRecord>& sweeps() const { return sweeps_; }
   double seconds() const;
 

@@ -1,7 +1,7 @@
 // glbudget costs: fits the machine's pass-independent costs (a batch, a vertex, a fragment,
 // an instruction, a texel access: PlatformCosts) from frame logs of apps that drew several
 // configurations, and writes the platform profile with them. The run-time model starts every
-// pass from these costs at its level instead of from nothing (platform_costs.hpp).
+// pass from these costs at its level instead of from nothing (analysis/cost_fit.hpp).
 //
 // Usage in print_help().
 #include <cstdio>
@@ -12,7 +12,9 @@
 #include <vector>
 
 #include "command.hpp"
-#include "glbudget/model/frame_log.hpp"
+#include "glbudget/analysis/frame_log.hpp"
+#include "glbudget/analysis/cost_fit.hpp"
+#include "glbudget/analysis/resolved_frame.hpp"
 #include "glbudget/model/platform_costs.hpp"
 #include "glbudget/model/variant_table.hpp"
 
@@ -21,6 +23,7 @@ namespace glbudget::cli {
 namespace {
 
 using namespace glbudget::model;
+using namespace glbudget::analysis;
 
 constexpr const char* kUsage =
     "usage: glbudget costs --profile PROFILE.json --log LOG.csv --variants VARIANTS.json\n"

@@ -173,7 +173,7 @@ LoadRun LoadRunner::run(const std::vector<std::string>& args, const std::functio
     if (!said.empty()) result.failure += ": " + said;
     return result;
   }
-  if (auto frame_log = model::read_frame_log_file(log)) result.frames = std::move(frame_log->frames);
+  if (auto frame_log = analysis::read_frame_log_file(log)) result.frames = std::move(frame_log->frames);
   return result;
 }
 

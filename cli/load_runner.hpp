@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "glbudget/model/frame_log.hpp"
+#include "glbudget/analysis/frame_log.hpp"
 
 namespace glbudget::cli {
 
@@ -21,7 +21,7 @@ struct LoadStep {
 
 struct LoadRun {
   std::vector<LoadStep> steps;
-  std::vector<model::LoggedFrame> frames;  // the log's, in order
+  std::vector<analysis::LoggedFrame> frames;  // the log's, in order
   bool failed = false;
   std::string failure;  // what went wrong, for a `glbudget:` line
 };

@@ -14,13 +14,14 @@
 #include <string>
 
 #include "command.hpp"
-#include "glbudget/model/replay.hpp"
+#include "glbudget/analysis/replay.hpp"
 
 namespace glbudget::cli {
 
 namespace {
 
 using namespace glbudget::model;
+using namespace glbudget::analysis;
 
 void print_row(const char* model, const char* frames, const char* scope, const PredictionError& e) {
   std::printf("%-16s %-8s %-10s %7zu %9.2f %14.2f %13.2f\n", model, frames, scope, e.count(), e.mape_percent(),

@@ -5,17 +5,17 @@
 #include <sstream>
 #include <string>
 
-#include "glbudget/model/frame_log.hpp"
+#include "glbudget/analysis/frame_log.hpp"
 
-namespace model = glbudget::model;
+namespace analysis = glbudget::analysis;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   std::istringstream in(std::string(reinterpret_cast<const char*>(data), size));
-  const std::optional<model::FrameLog> log = model::read_frame_log(in, "fuzz.csv");
+  const std::optional<analysis::FrameLog> log = analysis::read_frame_log(in, "fuzz.csv");
   if (!log) return 0;
   std::size_t passes = 0;
-  for (const model::LoggedFrame& frame : log->frames) passes += frame.passes.size();
+  for (const analysis::LoggedFrame& frame : log->frames) passes += frame.passes.size();
   if (passes + log->rows_skipped != log->rows) std::abort();  // every row is a pass or skipped
-  (void)model::frames_of_busiest_context(*log);
+  (void)analysis::frames_of_busiest_context(*log);
   return 0;
 }

@@ -7,9 +7,10 @@
 #include <limits>
 #include <vector>
 
-#include "glbudget/model/calibration.hpp"
+#include "glbudget/analysis/calibration.hpp"
 
 using namespace glbudget::model;
+using namespace glbudget::analysis;
 
 namespace {
 

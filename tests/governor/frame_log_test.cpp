@@ -3,9 +3,10 @@
 #include <cmath>
 #include <sstream>
 
-#include "glbudget/model/frame_log.hpp"
+#include "glbudget/analysis/frame_log.hpp"
 
 using namespace glbudget::model;
+using namespace glbudget::analysis;
 
 TEST_CASE("frame log groups rows by frame and reads empty fields as not measured", "[model][log]") {
   std::istringstream csv(

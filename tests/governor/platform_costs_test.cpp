@@ -5,12 +5,14 @@
 #include <cmath>
 #include <random>
 
+#include "glbudget/analysis/cost_fit.hpp"
 #include "glbudget/model/platform_costs.hpp"
 #include "glbudget/model/power_curve.hpp"
 #include "glbudget/model/run_time_model.hpp"
 #include "synthetic_scene.hpp"
 
 using namespace glbudget::model;
+using namespace glbudget::analysis;
 using namespace glbudget::model::testing;
 
 namespace {

@@ -1,9 +1,12 @@
 #include <catch2/catch.hpp>
 
+#include "glbudget/analysis/cost_fit.hpp"
+#include "glbudget/analysis/resolved_frame.hpp"
 #include "glbudget/model/platform_costs.hpp"
-#include "glbudget/model/replay.hpp"
+#include "glbudget/analysis/replay.hpp"
 
 using namespace glbudget::model;
+using namespace glbudget::analysis;
 
 namespace {
 const std::string kLogs = GLBUDGET_SOURCE_DIR "/tests/data/logs/";
@@ -134,7 +137,7 @@ namespace {
 // The frames of a recording in the configurations they were drawn in.
 std::vector<ConfiguredSample> configured_samples(const Recording& r) {
   PassNames names(r.variants.space);
-  return glbudget::model::configured_samples(frames_of_busiest_context(r.log), r.variants, names);
+  return glbudget::analysis::configured_samples(frames_of_busiest_context(r.log), r.variants, names);
 }
 }  // namespace
 

@@ -8,11 +8,13 @@
 #include <map>
 #include <sstream>
 
+#include "glbudget/analysis/resolved_frame.hpp"
 #include "glbudget/model/reuse.hpp"
 #include "glbudget/model/variant_table.hpp"
 #include "synthetic_scene.hpp"
 
 using namespace glbudget::model;
+using namespace glbudget::analysis;
 using namespace glbudget::model::testing;
 
 namespace {

@@ -4,10 +4,11 @@
 #include <vector>
 
 #include "glbudget/model/power_curve.hpp"
-#include "glbudget/model/vatjus_anttila_model.hpp"
+#include "glbudget/analysis/vatjus_anttila_model.hpp"
 #include "synthetic_scene.hpp"
 
 using namespace glbudget::model;
+using namespace glbudget::analysis;
 using namespace glbudget::model::testing;
 
 TEST_CASE("baseline fits data that follows its own form", "[model][baseline]") {

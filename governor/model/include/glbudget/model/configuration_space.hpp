@@ -52,6 +52,10 @@ class ConfigurationSpace {
   bool contains(const Configuration& configuration) const;
   // Every pass at its last level.
   Configuration cheapest() const;
+  // The level `configuration` draws pass `pass` at; nullptr for a pass outside the space.
+  const VariantCost* level_of(std::size_t pass, const Configuration& configuration) const {
+    return pass < passes_.size() ? &passes_[pass].levels[static_cast<std::size_t>(configuration[pass])] : nullptr;
+  }
 
  private:
   std::vector<PassVariants> passes_;

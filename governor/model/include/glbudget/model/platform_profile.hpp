@@ -15,7 +15,7 @@ namespace glbudget::model {
 // run-time fit starts from these instead of from nothing: a fitting window of a slow camera
 // cannot tell one pass's cost from another's (their counts barely change), and without a prior
 // the first configuration's coefficients, and every prediction reused from them, are a guess.
-// Fitted from recorded logs by `glbudget costs` (platform_costs.hpp).
+// Fitted from recorded logs by `glbudget costs` (analysis/cost_fit.hpp).
 struct PlatformCosts {
   double batch = 0.0;
   double vertex = 0.0;

@@ -14,18 +14,13 @@
 #include <cstddef>
 #include <map>
 #include <optional>
-#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "glbudget/model/configuration_space.hpp"
-#include "glbudget/model/configured_sample.hpp"
-#include "glbudget/model/frame_log.hpp"
-#include "glbudget/model/pass_names.hpp"
 #include "glbudget/model/platform_profile.hpp"
 #include "glbudget/model/power_model.hpp"
-#include "glbudget/model/vatjus_anttila_model.hpp"
 
 namespace glbudget::model {
 
@@ -64,32 +59,7 @@ std::optional<VariantTable> load_variant_table(const std::string& path);
 // the space's configurations.
 std::optional<Configuration> parse_configuration(std::string_view text, const ConfigurationSpace& space);
 
-// A logged frame as the model sees it. Variants listed in the table become their pass's index
-// in the space and set that pass's level; other hashes are passes of their own outside the
-// search space, indexed by `names` (made from the table's space).
-// Passes of the space that drew nothing keep `default_configuration`'s level.
-struct ResolvedFrame {
-  FrameSample sample;
-  Configuration configuration;
-  // For the baseline; texels are fragments x texel accesses per fragment where the table
-  // knows the variant, else fragments.
-  FrameTotals totals;
-  std::vector<double> primitives;  // per entry of sample.passes
-};
-// The configuration comes from the log's `configuration` column when it has one.
-ResolvedFrame resolve_frame(const LoggedFrame& frame, const VariantTable& table,
-                            const Configuration& default_configuration, PassNames& names);
-
-// A log's frames as the model sees them, each in the configuration it was drawn in (a frame
-// without a configuration column keeps the one before; the first, every pass at level 0).
-std::vector<ConfiguredSample> configured_samples(std::span<const LoggedFrame> frames, const VariantTable& table,
-                                                 PassNames& names);
-
 // The level a configuration gives a pass of the table (a zero-cost level when not in it).
 VariantCost table_level(const VariantTable& table, PassIndex pass, const Configuration& configuration);
-
-// The baseline's totals for the frame's counts drawn in `target` instead: fragments follow the
-// levels' scales, texels the target levels' texel accesses, skipped passes drop out.
-FrameTotals totals_in(const ResolvedFrame& frame, const VariantTable& table, const Configuration& target);
 
 }  // namespace glbudget::model

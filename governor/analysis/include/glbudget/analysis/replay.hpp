@@ -16,22 +16,23 @@
 #include <cstdint>
 #include <vector>
 
-#include "glbudget/model/frame_log.hpp"
+#include "glbudget/analysis/frame_log.hpp"
 #include "glbudget/model/online_fitter.hpp"
-#include "glbudget/model/prediction_error.hpp"
+#include "glbudget/analysis/prediction_error.hpp"
 #include "glbudget/model/reuse.hpp"
 #include "glbudget/model/run_time_model.hpp"
+#include "glbudget/model/pass_names.hpp"
 #include "glbudget/model/variant_table.hpp"
 
-namespace glbudget::model {
+namespace glbudget::analysis {
 
 struct ReplayOptions {
   std::size_t average_frames = 30;  // sliding average length for the averaged errors
   // Frames on each side of a configuration change for the switch error: more average out
   // the sensor's scatter, fewer keep the view on both sides alike.
   std::size_t switch_frames = 5;
-  std::size_t settle_frames = 1;  // frames after a change not counted as its measurement
-  HistorySettings history;        // the fit over several configurations (off: the paper's)
+  std::size_t settle_frames = 1;   // frames after a change not counted as its measurement
+  model::HistorySettings history;  // the fit over several configurations (off: the paper's)
 };
 
 struct ReplayErrors {
@@ -48,7 +49,7 @@ struct ReplayFrame {
 
 // Means over one configuration run's scored frames.
 struct ReplayRun {
-  Configuration configuration;
+  model::Configuration configuration;
   std::size_t scored_frames = 0;
   bool fitted_here = false;  // some of its frames were in the fitted configuration
   double measured_w = 0.0, ours_w = 0.0, baseline_w = 0.0;
@@ -80,14 +81,14 @@ struct ReplayReport {
   std::size_t fits = 0;
   std::size_t history_fits = 0;  // of those, fits over several configurations
   std::size_t checks_failed = 0;
-  ReuseCoefficients reuse;  // after the last fit
-  PowerModel model;         // after the last fit, at the levels of its configuration
-  PassNames names;          // of the model's passes
-  Configuration model_configuration;
+  model::ReuseCoefficients reuse;  // after the last fit
+  model::PowerModel model;         // after the last fit, at the levels of its configuration
+  model::PassNames names;          // of the model's passes
+  model::Configuration model_configuration;
 };
 
-ReplayReport replay_frames(const std::vector<LoggedFrame>& frames, const PlatformProfile& profile,
-                           const VariantTable& variants, const FitSettings& settings = {},
+ReplayReport replay_frames(const std::vector<LoggedFrame>& frames, const model::PlatformProfile& profile,
+                           const model::VariantTable& variants, const model::FitSettings& settings = {},
                            const ReplayOptions& options = {});
 
-}  // namespace glbudget::model
+}  // namespace glbudget::analysis

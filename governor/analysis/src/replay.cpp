@@ -1,13 +1,16 @@
-#include "glbudget/model/replay.hpp"
+#include "glbudget/analysis/replay.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <optional>
 
+#include "glbudget/analysis/resolved_frame.hpp"
 #include "glbudget/model/run_time_model.hpp"
-#include "glbudget/model/vatjus_anttila_model.hpp"
+#include "glbudget/analysis/vatjus_anttila_model.hpp"
 
-namespace glbudget::model {
+namespace glbudget::analysis {
+
+using namespace glbudget::model;
 namespace {
 
 using ScoredFrame = ReplayFrame;
@@ -186,4 +189,4 @@ ReplayReport replay_frames(const std::vector<LoggedFrame>& frames, const Platfor
   return report;
 }
 
-}  // namespace glbudget::model
+}  // namespace glbudget::analysis

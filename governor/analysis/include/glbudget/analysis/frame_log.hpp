@@ -13,11 +13,11 @@
 
 #include "glbudget/model/power_model.hpp"
 
-namespace glbudget::model {
+namespace glbudget::analysis {
 
 struct LoggedPass {
   std::string pass;                                              // 16-hex-digit source hash, or "fixed-function"
-  PassCounts counts;                                             // NaN where not measured
+  model::PassCounts counts;                                      // NaN where not measured
   double primitives = std::numeric_limits<double>::quiet_NaN();  // NaN where not measured
   double gpu_ns = std::numeric_limits<double>::quiet_NaN();
 };
@@ -51,4 +51,4 @@ std::optional<FrameLog> read_frame_log_file(const std::string& path);
 // The frames of the context that logged the most frames (a replay follows one context).
 std::vector<LoggedFrame> frames_of_busiest_context(const FrameLog& log);
 
-}  // namespace glbudget::model
+}  // namespace glbudget::analysis

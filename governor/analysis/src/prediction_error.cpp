@@ -1,10 +1,12 @@
-#include "glbudget/model/prediction_error.hpp"
+#include "glbudget/analysis/prediction_error.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-namespace glbudget::model {
+namespace glbudget::analysis {
+
+using namespace glbudget::model;
 
 void PredictionError::add(double predicted_w, double measured_w) {
   if (!std::isfinite(predicted_w) || !std::isfinite(measured_w)) return;
@@ -33,4 +35,4 @@ double PredictionError::max_share_of_range() const {
   return absolute_max_ / range_w_;
 }
 
-}  // namespace glbudget::model
+}  // namespace glbudget::analysis

@@ -40,10 +40,10 @@
 #include <string>
 #include <vector>
 
-#include "glbudget/model/frame_log.hpp"
+#include "glbudget/analysis/frame_log.hpp"
 #include "glbudget/model/platform_profile.hpp"
 
-namespace glbudget::model {
+namespace glbudget::analysis {
 
 // What one step's frames measured: the frames presented after start_ns up to end_ns.
 struct StepMeasurement {
@@ -116,7 +116,7 @@ struct CalibrationMeasurements {
 };
 
 struct CalibrationResult {
-  PlatformProfile profile;  // unmeasured fields keep PlatformProfile's defaults
+  model::PlatformProfile profile;  // unmeasured fields keep PlatformProfile's defaults
   Saturation batches, vertices, fragments;
   std::string p_max_from;             // the sweep whose plateau gave P_M ("" when none did)
   std::vector<std::string> defaults;  // fields left at their defaults: "p_min_w", "saturation.batches", ...
@@ -127,4 +127,4 @@ struct CalibrationResult {
 // interrupted while still rising or flat (its largest count then says nothing).
 CalibrationResult calibrate_profile(const CalibrationMeasurements& measured, const SaturationRule& rule = {});
 
-}  // namespace glbudget::model
+}  // namespace glbudget::analysis

@@ -1,4 +1,4 @@
-#include "glbudget/model/frame_log.hpp"
+#include "glbudget/analysis/frame_log.hpp"
 
 #include <charconv>
 #include <cmath>
@@ -9,7 +9,9 @@
 #include <string_view>
 #include <utility>
 
-namespace glbudget::model {
+namespace glbudget::analysis {
+
+using namespace glbudget::model;
 namespace {
 
 constexpr double kNotMeasured = std::numeric_limits<double>::quiet_NaN();
@@ -189,4 +191,4 @@ std::vector<LoggedFrame> frames_of_busiest_context(const FrameLog& log) {
   return frames;
 }
 
-}  // namespace glbudget::model
+}  // namespace glbudget::analysis

@@ -9,7 +9,7 @@
 
 #include "glbudget/model/power_model.hpp"
 
-namespace glbudget::model {
+namespace glbudget::analysis {
 
 struct FrameTotals {
   double triangles = 0.0;
@@ -19,7 +19,7 @@ struct FrameTotals {
 
 class VatjusAnttilaModel {
  public:
-  explicit VatjusAnttilaModel(PlatformProfile profile);
+  explicit VatjusAnttilaModel(model::PlatformProfile profile);
 
   // Fits the three weights (non-negative) to frames with measured power.
   void fit(std::span<const FrameTotals> frames, std::span<const double> power_w);
@@ -27,11 +27,11 @@ class VatjusAnttilaModel {
   double predict_power(const FrameTotals& frame) const;
 
  private:
-  // The weighted sum is a one-pass PowerModel whose "batches, vertices, fragments" are the
+  // The weighted sum is a one-pass model::PowerModel whose "batches, vertices, fragments" are the
   // frame's batches, triangles and texels, normalised by B, V and F of the profile.
-  static std::vector<PassFrame> as_single_pass(const FrameTotals& frame);
-  PowerModel model_;
+  static std::vector<model::PassFrame> as_single_pass(const FrameTotals& frame);
+  model::PowerModel model_;
   bool fitted_ = false;
 };
 
-}  // namespace glbudget::model
+}  // namespace glbudget::analysis

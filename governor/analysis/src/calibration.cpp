@@ -1,9 +1,11 @@
-#include "glbudget/model/calibration.hpp"
+#include "glbudget/analysis/calibration.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace glbudget::model {
+namespace glbudget::analysis {
+
+using namespace glbudget::model;
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -211,4 +213,4 @@ CalibrationResult calibrate_profile(const CalibrationMeasurements& measured, con
   return r;
 }
 
-}  // namespace glbudget::model
+}  // namespace glbudget::analysis

@@ -1,11 +1,13 @@
-#include "glbudget/model/vatjus_anttila_model.hpp"
+#include "glbudget/analysis/vatjus_anttila_model.hpp"
 
 #include <algorithm>
 #include <vector>
 
 #include "glbudget/model/window_fit.hpp"
 
-namespace glbudget::model {
+namespace glbudget::analysis {
+
+using namespace glbudget::model;
 
 VatjusAnttilaModel::VatjusAnttilaModel(PlatformProfile profile) : model_(profile) {}
 
@@ -25,4 +27,4 @@ double VatjusAnttilaModel::predict_power(const FrameTotals& frame) const {
   return model_.predict_power(as_single_pass(frame));
 }
 
-}  // namespace glbudget::model
+}  // namespace glbudget::analysis

@@ -3,7 +3,7 @@
 // absolute error as a share of the platform's power range P_M - P_m.
 #include <cstddef>
 
-namespace glbudget::model {
+namespace glbudget::analysis {
 
 class PredictionError {
  public:
@@ -26,4 +26,4 @@ class PredictionError {
   double absolute_max_ = 0.0;
 };
 
-}  // namespace glbudget::model
+}  // namespace glbudget::analysis
