@@ -223,16 +223,12 @@ bool element_index(const std::vector<Token>& t, std::size_t first, std::size_t l
 
 // `#version 300 es`, `#version 330 core`; 110 without one.
 LanguageVersion language_of(std::string_view text, const syntax::Unit& unit) {
-  LanguageVersion language;
   for (const syntax::Directive& d : unit.directives) {
     if (d.name != "version") continue;
-    const std::string line(text.substr(d.whole.begin, d.whole.end - d.whole.begin));
-    const std::size_t digits = line.find_first_of("0123456789");
-    if (digits != std::string::npos) language.version = std::atoi(line.c_str() + digits);
-    language.es = line.find(" es") != std::string::npos || language.version == 100;
-    break;
+    const std::string_view line = text.substr(d.whole.begin, d.whole.end - d.whole.begin);
+    return version_directive_language(line.substr(line.find("version") + 7));
   }
-  return language;
+  return {};
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <string_view>
 
+#include "language_version.hpp"
+
 namespace glbudget::instrument {
 
 namespace {
@@ -74,17 +76,13 @@ bool defines_name(std::string_view line, const std::string& name) {
 }
 
 // 110 for a shader without #version; `es` for `#version 300 es` and ES 1.00.
-void language_of(const std::string& s, const std::vector<Line>& lines, int* version, bool* es) {
-  *version = 110;
-  *es = false;
+LanguageVersion language_of(const std::string& s, const std::vector<Line>& lines) {
   for (const Line& l : lines) {
     std::string_view rest;
-    if (directive(std::string_view(s).substr(l.begin, l.end - l.begin), &rest) != "version") continue;
-    rest = skip_space(rest);
-    *version = std::atoi(std::string(rest).c_str());
-    *es = rest.find("es") != std::string_view::npos || *version == 100;
-    return;
+    if (directive(std::string_view(s).substr(l.begin, l.end - l.begin), &rest) == "version")
+      return version_directive_language(rest);
   }
+  return {};
 }
 
 // Offset where added directives go: after #version and the #extension lines (and blank or
@@ -145,11 +143,8 @@ std::string set_defines(const std::string& source, const Defines& defines) {
   const std::vector<Line> new_lines = split_lines(rewritten);
   long next_line = 1;
   std::size_t point = insertion_point(rewritten, new_lines, &next_line);
-  int version = 110;
-  bool es = false;
-  language_of(rewritten, new_lines, &version, &es);
-  // From desktop 3.30 and in ES the line after `#line L` is L; before, L + 1.
-  const long named = es || version >= 330 ? next_line : next_line - 1;
+  const LanguageVersion language = language_of(rewritten, new_lines);
+  const long named = line_names_next_line(language) ? next_line : next_line - 1;
   std::string prefix = rewritten.substr(0, point);
   if (!prefix.empty() && prefix.back() != '\n') prefix += '\n';
   return prefix + added + "#line " + std::to_string(named) + "\n" + rewritten.substr(point);

@@ -4,17 +4,12 @@
 
 #include "ast_census.hpp"
 #include "glbudget/instrument/instrument.hpp"
+#include "language_version.hpp"
 
 #include <string>
 #include <vector>
 
 namespace glbudget::instrument {
-
-struct LanguageVersion {
-  int version = 110;
-  bool es = false;
-  bool compatibility = false;  // desktop compatibility profile (or no profile below 150)
-};
 
 struct Preprocessed {
   bool ok = false;

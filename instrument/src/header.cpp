@@ -10,10 +10,6 @@ namespace {
 
 using syntax::Directive;
 
-// GLSL changed #line: from desktop 3.30 and in every ES version the line after `#line L`
-// is L; before, it is L + 1.
-bool line_names_next_line(const LanguageVersion& language) { return language.es || language.version >= 330; }
-
 // The line number the driver gives the line starting at `offset`.
 long logical_line(std::string_view text, const std::vector<Directive>& directives, std::size_t offset,
                   const LanguageVersion& language) {
