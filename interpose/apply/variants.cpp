@@ -546,110 +546,183 @@ void locate_app_space(Variant& v, bool frag_coord, const std::vector<instrument:
 }
 }  // namespace
 
+namespace {
+
+// One program's variants, a level at a time: what every level shares (the app's program and
+// sources, the subroutine interface read once) and how one level's program is built.
+class VariantBuilder {
+ public:
+  VariantBuilder(GLuint program, PassId app_hash, int pass, const std::vector<ShaderSource>& sources,
+                 const GlCaps& caps, const NameBindings& bindings, Instrumentation* inst, bool app_coordinates,
+                 const std::optional<std::vector<std::string>>& driver_extensions, std::string* refused)
+      : program_(program),
+        app_hash_(app_hash),
+        pass_(pass),
+        manifest_pass_(pass >= 0 ? active_manifest().passes[static_cast<size_t>(pass)] : kNoPass),
+        sources_(sources),
+        caps_(caps),
+        bindings_(bindings),
+        inst_(inst),
+        app_coordinates_(app_coordinates),
+        driver_extensions_(driver_extensions),
+        refused_(refused),
+        // Subroutine uniforms (GL 4.0): the app's interface, read when the first variant links;
+        // each variant's tables map from it.
+        stages_(has_subroutines(caps) ? program_stages(sources) : std::vector<std::pair<int, GLenum>>{}) {}
+
+  std::shared_ptr<VariantSet> build() {
+    auto set = std::make_shared<VariantSet>();
+    set->app_program = program_;
+    set->pass = pass_;
+    bool any = false;
+    drain_gl_errors();  // raised by the shim's work before this (instrumenting the app's program): not a variant's
+    for (size_t l = 0; l < manifest_pass_.levels.size(); ++l) {
+      Variant v = level_variant(l, *set);
+      any |= v.program != 0 || !v.draws;
+      set->levels.push_back(std::move(v));
+    }
+    if (!any) return nullptr;
+    if (app_stages_read_)
+      for (const auto& [slot, stage] : stages_)
+        set->app_subroutines[static_cast<size_t>(slot)] = app_stages_[static_cast<size_t>(slot)].stage;
+    return set;
+  }
+
+ private:
+  static inline const manifest::Pass kNoPass{.name = "", .match = {}, .levels = {manifest::Level{}}, .scales = {}};
+
+  std::string where(size_t l) const {
+    const manifest::Level& level = manifest_pass_.levels[l];
+    return pass_ < 0 ? "program " + hash_text(app_hash_)
+                     : "pass '" + manifest_pass_.name + "' level " + std::to_string(l) +
+                           (level.name.empty() ? "" : " (" + level.name + ")");
+  }
+
+  // Level l's variant: the app's program where the level changes no shader and no rewrite is
+  // needed, the shared app-coordinates twin where only the rewrite is, else a program of its own.
+  Variant level_variant(size_t l, VariantSet& set) {
+    const manifest::Level& level = manifest_pass_.levels[l];
+    const bool changes = level.changes_program();
+    if (!changes && app_twin_) {
+      Variant v = *app_twin_;
+      v.draws = level.draws;
+      return v;
+    }
+    Variant v = app_variant(level);
+    if (!(changes || app_coordinates_) || g_out_of_memory) return v;
+    if (!apply_gl_has_program_uniforms()) {
+      say_once("no-program-uniform", "variants need glProgramUniform* (GL 4.1, GLES 3.1); " + where(l) +
+                                         " and every other program variant draw with the app's programs");
+      return v;
+    }
+    const std::vector<ShaderSource> modified = changes ? variant_sources(sources_, level) : sources_;
+    std::vector<uint64_t> hashes;
+    for (const ShaderSource& s : modified) hashes.push_back(shader_hash(s.stage, s.source));
+    // Its name in the log and the dump: the sources before the app-coordinates rewrite, which
+    // only restores what the app drew.
+    const PassId variant_hash = program_hash(std::move(hashes));
+    std::vector<instrument::AppSpaceSampler> samplers;
+    bool frag_coord = false, rewritten = false;
+    const std::vector<ShaderSource> built =
+        app_coordinates_
+            ? in_app_coordinates(modified, caps_.gles, driver_extensions_, &samplers, &frag_coord, &rewritten, refused_)
+            : modified;
+    if (!changes && !rewritten) {
+      app_twin_ = v;  // nothing to rewrite: the app's program as it is
+      return v;
+    }
+    v = linked_variant(l, level, built, variant_hash, rewritten, frag_coord, samplers);
+    if (v.program) set.programs.push_back(v.program);
+    if (!changes) app_twin_ = v;  // built or not: the other identity levels share it
+    return v;
+  }
+
+  Variant app_variant(const manifest::Level& level) const {
+    Variant v;
+    v.pass_hash = app_hash_;
+    v.draws = level.draws;
+    return v;
+  }
+
+  // Links `built` as level l's program with the app's interface carried over; the app's program
+  // (an empty variant) where linking fails or raises a GL error, said once.
+  Variant linked_variant(size_t l, const manifest::Level& level, const std::vector<ShaderSource>& built,
+                         PassId variant_hash, bool rewritten, bool frag_coord,
+                         const std::vector<instrument::AppSpaceSampler>& samplers) {
+    const std::string at = where(l);
+    Variant v = app_variant(level);
+    v.dump_name = hash_text(variant_hash);
+    if (variant_hash == app_hash_ && level.changes_program()) v.dump_name += "-level" + std::to_string(l);
+    std::string error;
+    v.program = link_variant(program_, built, caps_, bindings_, rewritten ? nullptr : inst_, v.dump_name, at,
+                             &v.instrumented, &error);
+    if (!v.program) {
+      say_once(at + hash_text(app_hash_), at + ": the variant of program " + hash_text(app_hash_) + " " + error +
+                                              "; this level draws the app's program");
+    } else {
+      v.pass_hash = variant_hash;
+      map_uniforms(program_, v, level);
+      map_blocks(program_, v, caps_);
+      map_subroutines(app_stages(), stages_, v);
+      if (pass_ >= 0) hold_uniforms(manifest_pass_, l, level, v.program);
+      if (rewritten) locate_app_space(v, frag_coord, samplers);
+    }
+    // The app's errors were moved aside by the caller (OwnGlWork): what is pending now, the
+    // variant's build raised. A variant built amid errors is not drawn.
+    if (pass_ >= 0) provoke_out_of_memory_for_test(manifest_pass_.name, l);
+    const std::vector<GLenum> raised = drain_gl_errors();
+    if (raised.empty()) return v;
+    if (v.program) agl().DeleteProgram(v.program);
+    if (std::find(raised.begin(), raised.end(), GL_OUT_OF_MEMORY) != raised.end()) {
+      g_out_of_memory = true;
+      say(at + ": the driver ran out of memory (GL_OUT_OF_MEMORY) building the variant of program " +
+          hash_text(app_hash_) + "; no more variants are built, and levels without one draw the app's programs");
+    } else {
+      say_once(at + hash_text(app_hash_) + "errors", at + ": building the variant of program " + hash_text(app_hash_) +
+                                                         " raised " + error_names(raised) +
+                                                         "; this level draws the app's program");
+    }
+    return app_variant(level);
+  }
+
+  // The app's subroutine interface per stage, read once (when the first variant links).
+  const std::array<StageInterface, kShaderStages>& app_stages() {
+    if (!app_stages_read_) {
+      for (const auto& [slot, stage] : stages_)
+        app_stages_[static_cast<size_t>(slot)] = stage_interface(program_, stage);
+      app_stages_read_ = true;
+    }
+    return app_stages_;
+  }
+
+  GLuint program_;
+  PassId app_hash_;
+  int pass_;
+  const manifest::Pass& manifest_pass_;
+  const std::vector<ShaderSource>& sources_;
+  const GlCaps& caps_;
+  const NameBindings& bindings_;
+  Instrumentation* inst_;
+  bool app_coordinates_;
+  const std::optional<std::vector<std::string>>& driver_extensions_;
+  std::string* refused_;
+  std::vector<std::pair<int, GLenum>> stages_;
+  std::array<StageInterface, kShaderStages> app_stages_;
+  bool app_stages_read_ = false;
+  // The app's program in app coordinates, shared by the levels that otherwise draw it.
+  std::optional<Variant> app_twin_;
+};
+
+}  // namespace
+
 std::shared_ptr<VariantSet> build_variants(GLuint program, PassId app_hash, int pass,
                                            const std::vector<ShaderSource>& sources, const GlCaps& caps,
                                            const NameBindings& bindings, Instrumentation* inst, bool app_coordinates,
                                            const std::optional<std::vector<std::string>>& driver_extensions,
                                            std::string* refused) {
-  static const manifest::Pass kNoPass{.name = "", .match = {}, .levels = {manifest::Level{}}, .scales = {}};
-  const manifest::Pass& mp = pass >= 0 ? active_manifest().passes[static_cast<size_t>(pass)] : kNoPass;
-  auto set = std::make_shared<VariantSet>();
-  set->app_program = program;
-  set->pass = pass;
-  // Subroutine uniforms (GL 4.0): the app's interface, read when the first variant links; each
-  // variant's tables map from it.
-  const auto stages = has_subroutines(caps) ? program_stages(sources) : std::vector<std::pair<int, GLenum>>{};
-  std::array<StageInterface, kShaderStages> app_stages;
-  bool app_stages_read = false;
-  bool any = false;
-  // The app's program in app coordinates, shared by the levels that otherwise draw it.
-  std::optional<Variant> app_twin;
-  drain_gl_errors();  // raised by the shim's work before this (instrumenting the app's program): not a variant's
-  for (size_t l = 0; l < mp.levels.size(); ++l) {
-    const manifest::Level& level = mp.levels[l];
-    Variant v;
-    v.pass_hash = app_hash;
-    v.draws = level.draws;
-    const std::string where = pass < 0 ? "program " + hash_text(app_hash)
-                                       : "pass '" + mp.name + "' level " + std::to_string(l) +
-                                             (level.name.empty() ? "" : " (" + level.name + ")");
-    const bool changes = level.changes_program();
-    if (!changes && app_twin) {
-      v = *app_twin;
-      v.draws = level.draws;
-    } else if ((changes || app_coordinates) && !g_out_of_memory) {
-      if (!apply_gl_has_program_uniforms()) {
-        say_once("no-program-uniform", "variants need glProgramUniform* (GL 4.1, GLES 3.1); " + where +
-                                           " and every other program variant draw with the app's programs");
-      } else {
-        const std::vector<ShaderSource> modified = changes ? variant_sources(sources, level) : sources;
-        std::vector<uint64_t> hashes;
-        for (const ShaderSource& s : modified) hashes.push_back(shader_hash(s.stage, s.source));
-        // Its name in the log and the dump: the sources before the app-coordinates rewrite,
-        // which only restores what the app drew.
-        const PassId variant_hash = program_hash(std::move(hashes));
-        std::vector<instrument::AppSpaceSampler> samplers;
-        bool frag_coord = false, rewritten = false;
-        const std::vector<ShaderSource> built = app_coordinates
-                                                    ? in_app_coordinates(modified, caps.gles, driver_extensions,
-                                                                         &samplers, &frag_coord, &rewritten, refused)
-                                                    : modified;
-        if (changes || rewritten) {
-          v.dump_name = hash_text(variant_hash);
-          if (variant_hash == app_hash && changes) v.dump_name += "-level" + std::to_string(l);
-          std::string error;
-          v.program = link_variant(program, built, caps, bindings, rewritten ? nullptr : inst, v.dump_name, where,
-                                   &v.instrumented, &error);
-          if (!v.program) {
-            say_once(where + hash_text(app_hash), where + ": the variant of program " + hash_text(app_hash) + " " +
-                                                      error + "; this level draws the app's program");
-          } else {
-            v.pass_hash = variant_hash;
-            map_uniforms(program, v, level);
-            map_blocks(program, v, caps);
-            if (!app_stages_read) {
-              for (const auto& [slot, stage] : stages) {
-                app_stages[static_cast<size_t>(slot)] = stage_interface(program, stage);
-                set->app_subroutines[static_cast<size_t>(slot)] = app_stages[static_cast<size_t>(slot)].stage;
-              }
-              app_stages_read = true;
-            }
-            map_subroutines(app_stages, stages, v);
-            if (pass >= 0) hold_uniforms(mp, l, level, v.program);
-            if (rewritten) locate_app_space(v, frag_coord, samplers);
-          }
-          // The app's errors were moved aside by the caller (OwnGlWork): what is pending now,
-          // the variant's build raised. A variant built amid errors is not drawn.
-          if (pass >= 0) provoke_out_of_memory_for_test(mp.name, l);
-          const std::vector<GLenum> raised = drain_gl_errors();
-          const bool out_of_memory = std::find(raised.begin(), raised.end(), GL_OUT_OF_MEMORY) != raised.end();
-          if (!raised.empty()) {
-            if (v.program) agl().DeleteProgram(v.program);
-            v = Variant{};
-            v.pass_hash = app_hash;
-            v.draws = level.draws;
-          }
-          if (out_of_memory) {
-            g_out_of_memory = true;
-            say(where + ": the driver ran out of memory (GL_OUT_OF_MEMORY) building the variant of program " +
-                hash_text(app_hash) + "; no more variants are built, and levels without one draw the app's programs");
-          } else if (!raised.empty()) {
-            say_once(where + hash_text(app_hash) + "errors",
-                     where + ": building the variant of program " + hash_text(app_hash) + " raised " +
-                         error_names(raised) + "; this level draws the app's program");
-          }
-          if (v.program) set->programs.push_back(v.program);
-          if (!changes) app_twin = v;  // built or not: the other identity levels share it
-        } else if (!changes) {
-          app_twin = v;  // nothing to rewrite: the app's program as it is
-        }
-      }
-    }
-    any |= v.program != 0 || !v.draws;
-    set->levels.push_back(std::move(v));
-  }
-  if (!any) return nullptr;
-  return set;
+  return VariantBuilder(program, app_hash, pass, sources, caps, bindings, inst, app_coordinates, driver_extensions,
+                        refused)
+      .build();
 }
 
 void delete_variants(const VariantSet& set) {

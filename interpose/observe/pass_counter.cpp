@@ -1,7 +1,9 @@
 #include "pass_counter.hpp"
 
-#include <cstring>
+#include <algorithm>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "gl_calls.hpp"
 #include "options.hpp"
@@ -29,13 +31,8 @@ bool has_extension(const GlCaps& caps, const char* name) {
   if (extension_hidden(name)) return false;  // GLBUDGET_TEST_HIDE_EXTENSIONS
   const GlCalls& g = gl();
   if (caps.major >= 3 && g.GetStringi) {
-    GLint n = 0;
-    g.GetIntegerv(GL_NUM_EXTENSIONS, &n);
-    for (GLint i = 0; i < n; ++i) {
-      auto e = reinterpret_cast<const char*>(g.GetStringi(GL_EXTENSIONS, i));
-      if (e && std::strcmp(e, name) == 0) return true;
-    }
-    return false;
+    const std::vector<std::string> names = extension_names();
+    return std::find(names.begin(), names.end(), name) != names.end();
   }
   auto all = reinterpret_cast<const char*>(g.GetString(GL_EXTENSIONS));
   if (!all) return false;
