@@ -50,7 +50,10 @@ ResolvedFrame resolve_frame(const LoggedFrame& frame, const VariantTable& table,
   if (logged) resolved.configuration = *logged;
   for (std::size_t i = 0; i < resolved.sample.passes.size(); ++i) {
     double tex = texels_per_fragment[i];
-    if (tex < 0.0) tex = table_level(table, resolved.sample.passes[i].pass, resolved.configuration).tex_f;
+    if (tex < 0.0) {
+      const VariantCost* level = table.space.level_of(resolved.sample.passes[i].pass, resolved.configuration);
+      tex = level ? level->tex_f : 0.0;
+    }
     resolved.totals.texels += resolved.sample.passes[i].counts.fragments * tex;
   }
   return resolved;
@@ -77,12 +80,11 @@ FrameTotals totals_in(const ResolvedFrame& frame, const VariantTable& table, con
     double fragment_ratio = 1.0;
     bool draws = true;
     double tex = 1.0;
-    if (p.pass < space.pass_count()) {
-      const VariantCost& to = space.passes()[p.pass].levels[static_cast<std::size_t>(target[p.pass])];
-      draws = to.draws, tex = to.tex_f;
+    if (const VariantCost* to = space.level_of(p.pass, target)) {
+      draws = to->draws, tex = to->tex_f;
       for (std::size_t i : space.scalers_of(p.pass)) {
-        const VariantCost& from_scale = space.passes()[i].levels[static_cast<std::size_t>(frame.configuration[i])];
-        const VariantCost& to_scale = space.passes()[i].levels[static_cast<std::size_t>(target[i])];
+        const VariantCost& from_scale = *space.level_of(i, frame.configuration);
+        const VariantCost& to_scale = *space.level_of(i, target);
         fragment_ratio *= from_scale.fragment_scale > 0.0 ? to_scale.fragment_scale / from_scale.fragment_scale : 0.0;
       }
     }

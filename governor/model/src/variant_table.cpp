@@ -194,9 +194,4 @@ std::optional<VariantTable> load_variant_table(const std::string& path) {
   return parse_variant_table(text.str(), path);
 }
 
-VariantCost table_level(const VariantTable& table, PassIndex pass, const Configuration& configuration) {
-  if (pass >= table.space.pass_count() || pass >= configuration.size()) return {};
-  return table.space.passes()[pass].levels[static_cast<std::size_t>(configuration[pass])];
-}
-
 }  // namespace glbudget::model

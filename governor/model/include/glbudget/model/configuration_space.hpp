@@ -52,9 +52,11 @@ class ConfigurationSpace {
   bool contains(const Configuration& configuration) const;
   // Every pass at its last level.
   Configuration cheapest() const;
-  // The level `configuration` draws pass `pass` at; nullptr for a pass outside the space.
+  // The level `configuration` draws pass `pass` at; nullptr for a pass outside the space (or
+  // the configuration).
   const VariantCost* level_of(std::size_t pass, const Configuration& configuration) const {
-    return pass < passes_.size() ? &passes_[pass].levels[static_cast<std::size_t>(configuration[pass])] : nullptr;
+    if (pass >= passes_.size() || pass >= configuration.size()) return nullptr;
+    return &passes_[pass].levels[static_cast<std::size_t>(configuration[pass])];
   }
 
  private:

@@ -59,7 +59,4 @@ std::optional<VariantTable> load_variant_table(const std::string& path);
 // the space's configurations.
 std::optional<Configuration> parse_configuration(std::string_view text, const ConfigurationSpace& space);
 
-// The level a configuration gives a pass of the table (a zero-cost level when not in it).
-VariantCost table_level(const VariantTable& table, PassIndex pass, const Configuration& configuration);
-
 }  // namespace glbudget::model
