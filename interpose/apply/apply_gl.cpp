@@ -95,6 +95,7 @@ ApplyGl load_all() {
   load(g.DeleteFramebuffers, "glDeleteFramebuffers");
   load(g.BindFramebuffer, "glBindFramebuffer");
   load(g.FramebufferTexture2D, "glFramebufferTexture2D");
+  load(g.FramebufferTextureLayer, "glFramebufferTextureLayer");
   load(g.FramebufferRenderbuffer, "glFramebufferRenderbuffer");
   load(g.GetFramebufferAttachmentParameteriv, "glGetFramebufferAttachmentParameteriv");
   load(g.BlitFramebuffer, "glBlitFramebuffer");
@@ -107,6 +108,7 @@ ApplyGl load_all() {
   load(g.BindTexture, "glBindTexture");
   load(g.ActiveTexture, "glActiveTexture");
   load(g.TexImage2D, "glTexImage2D");
+  load(g.TexImage3D, "glTexImage3D");
   load(g.TexParameteri, "glTexParameteri");
   load(g.GetTexParameteriv, "glGetTexParameteriv");
   load(g.Viewport, "glViewport");

@@ -93,6 +93,7 @@ struct ApplyGl {
   PFNGLDELETEFRAMEBUFFERSPROC DeleteFramebuffers = nullptr;
   PFNGLBINDFRAMEBUFFERPROC BindFramebuffer = nullptr;
   PFNGLFRAMEBUFFERTEXTURE2DPROC FramebufferTexture2D = nullptr;
+  PFNGLFRAMEBUFFERTEXTURELAYERPROC FramebufferTextureLayer = nullptr;  // GL 3.0, ES 3.0
   PFNGLFRAMEBUFFERRENDERBUFFERPROC FramebufferRenderbuffer = nullptr;
   PFNGLGETFRAMEBUFFERATTACHMENTPARAMETERIVPROC GetFramebufferAttachmentParameteriv = nullptr;
   PFNGLBLITFRAMEBUFFERPROC BlitFramebuffer = nullptr;
@@ -105,6 +106,7 @@ struct ApplyGl {
   void(APIENTRYP BindTexture)(GLenum, GLuint) = nullptr;
   void(APIENTRYP ActiveTexture)(GLenum) = nullptr;
   void(APIENTRYP TexImage2D)(GLenum, GLint, GLint, GLsizei, GLsizei, GLint, GLenum, GLenum, const void*) = nullptr;
+  PFNGLTEXIMAGE3DPROC TexImage3D = nullptr;  // GL 1.2, ES 3.0
   void(APIENTRYP TexParameteri)(GLenum, GLenum, GLint) = nullptr;
   void(APIENTRYP GetTexParameteriv)(GLenum, GLenum, GLint*) = nullptr;
   void(APIENTRYP Viewport)(GLint, GLint, GLsizei, GLsizei) = nullptr;

@@ -87,6 +87,30 @@ void handle_glFramebufferTexture(pfn_glFramebufferTexture real, GLenum target, G
   if (TargetScaler* s = scaler()) s->framebuffer_attachment_changed(target);
 }
 
+void handle_glFramebufferTextureLayer(pfn_glFramebufferTextureLayer real, GLenum target, GLenum attachment,
+                                      GLuint texture, GLint level, GLint layer) {
+  real(target, attachment, texture, level, layer);
+  if (TargetScaler* s = scaler()) s->framebuffer_attachment_changed(target);
+}
+
+void handle_glNamedFramebufferTexture(pfn_glNamedFramebufferTexture real, GLuint framebuffer, GLenum attachment,
+                                      GLuint texture, GLint level) {
+  real(framebuffer, attachment, texture, level);
+  if (TargetScaler* s = scaler()) s->named_framebuffer_attachment_changed(framebuffer);
+}
+
+void handle_glNamedFramebufferTextureLayer(pfn_glNamedFramebufferTextureLayer real, GLuint framebuffer,
+                                           GLenum attachment, GLuint texture, GLint level, GLint layer) {
+  real(framebuffer, attachment, texture, level, layer);
+  if (TargetScaler* s = scaler()) s->named_framebuffer_attachment_changed(framebuffer);
+}
+
+void handle_glNamedFramebufferRenderbuffer(pfn_glNamedFramebufferRenderbuffer real, GLuint framebuffer,
+                                           GLenum attachment, GLenum renderbuffertarget, GLuint renderbuffer) {
+  real(framebuffer, attachment, renderbuffertarget, renderbuffer);
+  if (TargetScaler* s = scaler()) s->named_framebuffer_attachment_changed(framebuffer);
+}
+
 void handle_glFramebufferRenderbuffer(pfn_glFramebufferRenderbuffer real, GLenum target, GLenum attachment,
                                       GLenum renderbuffertarget, GLuint renderbuffer) {
   real(target, attachment, renderbuffertarget, renderbuffer);
@@ -120,23 +144,48 @@ void handle_glScissor(pfn_glScissor real, GLint x, GLint y, GLsizei width, GLsiz
   s->scissor(x, y, width, height);
 }
 
+namespace {
+// With an unpack buffer bound, a glTexImage's `pixels` is an offset into it: data all the same.
+bool uploads_data(const void* pixels) {
+  if (pixels) return true;
+  GLint unpack = 0;
+  static const auto get = reinterpret_cast<pfn_glGetIntegerv>(resolve_real(kHook_glGetIntegerv));
+  if (get) get(GL_PIXEL_UNPACK_BUFFER_BINDING, &unpack);
+  return unpack != 0;
+}
+
+// The kind of a texture named by a DSA call (GL_TEXTURE_TARGET), 0 where not one scaled here.
+GLenum named_texture_kind(GLuint texture) {
+  static const auto get = reinterpret_cast<pfn_glGetTextureParameteriv>(resolve_real(kHook_glGetTextureParameteriv));
+  GLint target = 0;
+  if (get && texture) get(texture, GL_TEXTURE_TARGET, &target);
+  return TargetScaler::texture_kind(static_cast<GLenum>(target));
+}
+}  // namespace
+
 void handle_glTexImage2D(pfn_glTexImage2D real, GLenum target, GLint level, GLint internalformat, GLsizei width,
                          GLsizei height, GLint border, GLenum format, GLenum type, const void* pixels) {
   TargetScaler* s = scaler();
-  if (s && target == GL_TEXTURE_2D && width > 0 && height > 0) {
-    GLint unpack = 0;
-    // With an unpack buffer bound, `pixels` is an offset into it: data all the same.
-    static const auto get = reinterpret_cast<pfn_glGetIntegerv>(resolve_real(kHook_glGetIntegerv));
-    if (get) get(GL_PIXEL_UNPACK_BUFFER_BINDING, &unpack);
-    s->tex_image_2d(level, internalformat, &width, &height, format, type, pixels != nullptr || unpack != 0);
-  }
+  // GL_TEXTURE_2D or a cube map's face (TargetScaler::texture_kind); not a 1D array.
+  if (s && TargetScaler::texture_kind(target) && target != GL_TEXTURE_CUBE_MAP && width > 0 && height > 0)
+    s->tex_image(target, level, internalformat, &width, &height, 1, format, type, uploads_data(pixels));
   real(target, level, internalformat, width, height, border, format, type, pixels);
+}
+
+void handle_glTexImage3D(pfn_glTexImage3D real, GLenum target, GLint level, GLint internalformat, GLsizei width,
+                         GLsizei height, GLsizei depth, GLint border, GLenum format, GLenum type, const void* pixels) {
+  TargetScaler* s = scaler();
+  if (s && (target == GL_TEXTURE_2D_ARRAY || target == GL_TEXTURE_CUBE_MAP_ARRAY) && width > 0 && height > 0 &&
+      depth > 0)
+    s->tex_image(target, level, internalformat, &width, &height, depth, format, type, uploads_data(pixels));
+  real(target, level, internalformat, width, height, depth, border, format, type, pixels);
 }
 
 void handle_glTexStorage2D(pfn_glTexStorage2D real, GLenum target, GLsizei levels, GLenum internalformat, GLsizei width,
                            GLsizei height) {
   TargetScaler* s = scaler();
-  if (s && target == GL_TEXTURE_2D && s->tex_storage_2d(s->bound_texture_2d(), levels, internalformat, width, height))
+  if (s && (target == GL_TEXTURE_2D || target == GL_TEXTURE_CUBE_MAP) &&
+      s->tex_storage(target, s->bound_texture(target), levels, internalformat, width, height, 1))
     return;
   real(target, levels, internalformat, width, height);
 }
@@ -144,19 +193,39 @@ void handle_glTexStorage2D(pfn_glTexStorage2D real, GLenum target, GLsizei level
 void handle_glTextureStorage2D(pfn_glTextureStorage2D real, GLuint texture, GLsizei levels, GLenum internalformat,
                                GLsizei width, GLsizei height) {
   if (TargetScaler* s = scaler()) {
-    // Named, the texture may be of any target that takes 2D storage (arrays of 1D, cube maps).
-    static const auto get = reinterpret_cast<pfn_glGetTextureParameteriv>(resolve_real(kHook_glGetTextureParameteriv));
-    GLint target = 0;
-    if (get && texture) get(texture, GL_TEXTURE_TARGET, &target);
-    if (target == GL_TEXTURE_2D && s->tex_storage_2d(texture, levels, internalformat, width, height)) return;
+    // Named, the texture may be of any target that takes 2D storage (arrays of 1D among them).
+    const GLenum kind = named_texture_kind(texture);
+    if ((kind == GL_TEXTURE_2D || kind == GL_TEXTURE_CUBE_MAP) &&
+        s->tex_storage(kind, texture, levels, internalformat, width, height, 1))
+      return;
   }
   real(texture, levels, internalformat, width, height);
 }
 
+void handle_glTexStorage3D(pfn_glTexStorage3D real, GLenum target, GLsizei levels, GLenum internalformat, GLsizei width,
+                           GLsizei height, GLsizei depth) {
+  TargetScaler* s = scaler();
+  if (s && (target == GL_TEXTURE_2D_ARRAY || target == GL_TEXTURE_CUBE_MAP_ARRAY) &&
+      s->tex_storage(target, s->bound_texture(target), levels, internalformat, width, height, depth))
+    return;
+  real(target, levels, internalformat, width, height, depth);
+}
+
+void handle_glTextureStorage3D(pfn_glTextureStorage3D real, GLuint texture, GLsizei levels, GLenum internalformat,
+                               GLsizei width, GLsizei height, GLsizei depth) {
+  if (TargetScaler* s = scaler()) {
+    const GLenum kind = named_texture_kind(texture);
+    if ((kind == GL_TEXTURE_2D_ARRAY || kind == GL_TEXTURE_CUBE_MAP_ARRAY) &&
+        s->tex_storage(kind, texture, levels, internalformat, width, height, depth))
+      return;
+  }
+  real(texture, levels, internalformat, width, height, depth);
+}
+
 void handle_glGetTexParameteriv(pfn_glGetTexParameteriv real, GLenum target, GLenum pname, GLint* params) {
   TargetScaler* s = scaler();
-  if (s && target == GL_TEXTURE_2D && params && TargetScaler::storage_pname(pname) &&
-      s->storage_parameter(s->bound_texture_2d(), pname, params))
+  if (s && TargetScaler::texture_kind(target) == target && params && TargetScaler::storage_pname(pname) &&
+      s->storage_parameter(s->bound_texture(target), pname, params))
     return;
   real(target, pname, params);
 }
@@ -169,8 +238,8 @@ void handle_glGetTextureParameteriv(pfn_glGetTextureParameteriv real, GLuint tex
 
 void handle_glTexParameteri(pfn_glTexParameteri real, GLenum target, GLenum pname, GLint param) {
   TargetScaler* s = scaler();
-  const bool clamp = s && target == GL_TEXTURE_2D && TargetScaler::level_pname(pname);
-  real(target, pname, clamp ? s->texture_parameter(s->bound_texture_2d(), pname, param) : param);
+  const bool clamp = s && TargetScaler::texture_kind(target) == target && TargetScaler::level_pname(pname);
+  real(target, pname, clamp ? s->texture_parameter(s->bound_texture(target), pname, param) : param);
 }
 
 void handle_glTextureParameteri(pfn_glTextureParameteri real, GLuint texture, GLenum pname, GLint param) {
@@ -180,8 +249,9 @@ void handle_glTextureParameteri(pfn_glTextureParameteri real, GLuint texture, GL
 
 void handle_glTexParameteriv(pfn_glTexParameteriv real, GLenum target, GLenum pname, const GLint* params) {
   TargetScaler* s = scaler();
-  if (!s || target != GL_TEXTURE_2D || !params || !TargetScaler::level_pname(pname)) return real(target, pname, params);
-  const GLint clamped = s->texture_parameter(s->bound_texture_2d(), pname, params[0]);
+  if (!s || TargetScaler::texture_kind(target) != target || !params || !TargetScaler::level_pname(pname))
+    return real(target, pname, params);
+  const GLint clamped = s->texture_parameter(s->bound_texture(target), pname, params[0]);
   if (clamped == params[0]) return real(target, pname, params);
   real(target, pname, &clamped);
 }
@@ -285,7 +355,7 @@ void handle_glCopyTexSubImage2D(pfn_glCopyTexSubImage2D real, GLenum target, GLi
   TargetScaler* s = scaler();
   if (!s) return real(target, level, xoffset, yoffset, x, y, width, height);
   // Depth or colour as the texture copied into is (known where the scaler tracks it).
-  const bool depth = s->active() && target == GL_TEXTURE_2D && s->depth_texture(s->bound_texture_2d());
+  const bool depth = s->active() && s->depth_texture(s->bound_texture(target));
   s->read_app(x, y, width, height, depth, [&] { real(target, level, xoffset, yoffset, x, y, width, height); });
 }
 
@@ -422,11 +492,17 @@ void handle_glClearNamedFramebufferfi(pfn_glClearNamedFramebufferfi real, GLuint
   real(named(framebuffer), buffer, drawbuffer, depth, stencil);
 }
 
+namespace {
+// A target glGetTexLevelParameter takes of a texture the scaler may store at another size: a
+// cube map by its faces.
+bool level_target(GLenum target) { return TargetScaler::texture_kind(target) != 0 && target != GL_TEXTURE_CUBE_MAP; }
+}  // namespace
+
 void handle_glGetTexLevelParameteriv(pfn_glGetTexLevelParameteriv real, GLenum target, GLint level, GLenum pname,
                                      GLint* params) {
   real(target, level, pname, params);
-  if (TargetScaler* s = scaler(); s && target == GL_TEXTURE_2D && params && TargetScaler::size_pname(pname))
-    s->texture_size(s->bound_texture_2d(), level, pname, params);
+  if (TargetScaler* s = scaler(); s && level_target(target) && params && TargetScaler::size_pname(pname))
+    s->texture_size(s->bound_texture(target), level, pname, params);
 }
 
 void handle_glGetTextureLevelParameteriv(pfn_glGetTextureLevelParameteriv real, GLuint texture, GLint level,
@@ -447,8 +523,8 @@ void handle_glGetTexLevelParameterfv(pfn_glGetTexLevelParameterfv real, GLenum t
                                      GLfloat* params) {
   real(target, level, pname, params);
   GLint v = 0;
-  if (TargetScaler* s = scaler(); s && target == GL_TEXTURE_2D && params && TargetScaler::size_pname(pname) &&
-                                  s->texture_size(s->bound_texture_2d(), level, pname, &v))
+  if (TargetScaler* s = scaler(); s && level_target(target) && params && TargetScaler::size_pname(pname) &&
+                                  s->texture_size(s->bound_texture(target), level, pname, &v))
     *params = static_cast<GLfloat>(v);
 }
 

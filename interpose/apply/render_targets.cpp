@@ -105,15 +105,31 @@ bool null_upload(GLenum internal_format, GLenum* format, GLenum* type) {
   return false;
 }
 
-// The real bindings a rescale touches, restored when it ends.
+// The binding query of a texture kind (TargetScaler::texture_kind).
+GLenum binding_of(GLenum kind) {
+  switch (kind) {
+    case GL_TEXTURE_2D_ARRAY:
+      return GL_TEXTURE_BINDING_2D_ARRAY;
+    case GL_TEXTURE_CUBE_MAP:
+      return GL_TEXTURE_BINDING_CUBE_MAP;
+    case GL_TEXTURE_CUBE_MAP_ARRAY:
+      return GL_TEXTURE_BINDING_CUBE_MAP_ARRAY;
+    default:
+      return GL_TEXTURE_BINDING_2D;
+  }
+}
+
+// The real bindings a rescale touches, restored when it ends: the framebuffers, the
+// renderbuffer, the texture of `kind` on the active unit, no pixel-unpack buffer, no scissor.
 struct SavedBindings {
   GLint draw = 0, read = 0, texture = 0, renderbuffer = 0, unpack = 0;
+  GLenum kind = GL_TEXTURE_2D;
   bool scissor = false;
-  SavedBindings() {
+  explicit SavedBindings(GLenum texture_kind = GL_TEXTURE_2D) : kind(texture_kind) {
     const ApplyGl& g = agl();
     g.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
     g.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read);
-    g.GetIntegerv(GL_TEXTURE_BINDING_2D, &texture);
+    g.GetIntegerv(binding_of(kind), &texture);
     g.GetIntegerv(GL_RENDERBUFFER_BINDING, &renderbuffer);
     g.GetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &unpack);
     scissor = g.IsEnabled(GL_SCISSOR_TEST);
@@ -124,7 +140,7 @@ struct SavedBindings {
     const ApplyGl& g = agl();
     g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
     g.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read));
-    g.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(texture));
+    g.BindTexture(kind, static_cast<GLuint>(texture));
     g.BindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(renderbuffer));
     if (unpack)
       reinterpret_cast<PFNGLBINDBUFFERPROC>(bind_buffer())(GL_PIXEL_UNPACK_BUFFER, static_cast<GLuint>(unpack));
@@ -669,10 +685,37 @@ void TargetScaler::ensure_scale(GLuint name, Framebuffer& f, bool carry) {
   any_scaled_ = any_scaled_ || s != 1.0;
 }
 
+namespace {
+// The layers of a texture a framebuffer attaches one at a time: a cube map's faces, an
+// array's layers, a 2D texture's one.
+GLsizei attachable_layers(GLenum kind, GLsizei layers) {
+  return kind == GL_TEXTURE_CUBE_MAP ? 6 : kind == GL_TEXTURE_2D ? 1 : layers;
+}
+}  // namespace
+
+void TargetScaler::specify_level(const Image& image, GLint level, GLsizei width, GLsizei height) {
+  const ApplyGl& g = agl();
+  switch (image.kind) {
+    case GL_TEXTURE_CUBE_MAP:
+      for (GLenum face = 0; face < 6; ++face)
+        g.TexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + face, level, image.internal_format, width, height, 0,
+                     image.format, image.type, nullptr);
+      break;
+    case GL_TEXTURE_2D_ARRAY:
+    case GL_TEXTURE_CUBE_MAP_ARRAY:
+      if (g.TexImage3D)
+        g.TexImage3D(image.kind, level, image.internal_format, width, height, image.layers, 0, image.format, image.type,
+                     nullptr);
+      break;
+    default:
+      g.TexImage2D(GL_TEXTURE_2D, level, image.internal_format, width, height, 0, image.format, image.type, nullptr);
+  }
+}
+
 void TargetScaler::rescale(GLuint name, Image& image, double scale, bool carry_contents) {
   if (image.app_size.empty()) return;
   const ApplyGl& g = agl();
-  SavedBindings saved;
+  SavedBindings saved(image.renderbuffer ? GL_TEXTURE_2D : image.kind);
   const GLsizei old_w = image.stored_width(), old_h = image.stored_height();
   const GLenum point = attachment_point(image.internal_format);
   const GLbitfield mask = buffer_bits(image.internal_format);
@@ -680,14 +723,21 @@ void TargetScaler::rescale(GLuint name, Image& image, double scale, bool carry_c
   // Contents are carried over (a clear made before the first draw that revealed the target,
   // or what a temporal effect keeps), except for multisampled images (blits between
   // multisampled images of different sizes do not exist).
-  const bool carry = carry_contents && image.samples == 0;
+  const GLsizei layers = image.renderbuffer ? 1 : attachable_layers(image.kind, image.layers);
+  const bool carry = carry_contents && image.samples == 0 &&
+                     (layers == 1 || image.kind == GL_TEXTURE_CUBE_MAP || g.FramebufferTextureLayer != nullptr);
   GLuint fbo[2] = {0, 0}, copy = 0;
-  auto attach = [&](GLenum target, GLuint fb, bool rb, GLuint object) {
+  // `object`'s layer `layer` (a cube map's face) attached to `fb` bound to `target`.
+  auto attach = [&](GLenum target, GLuint fb, GLuint object, GLsizei layer) {
     g.BindFramebuffer(target, fb);
-    if (rb)
+    if (image.renderbuffer)
       g.FramebufferRenderbuffer(target, point, GL_RENDERBUFFER, object);
-    else
+    else if (image.kind == GL_TEXTURE_2D)
       g.FramebufferTexture2D(target, point, GL_TEXTURE_2D, object, 0);
+    else if (image.kind == GL_TEXTURE_CUBE_MAP)
+      g.FramebufferTexture2D(target, point, GL_TEXTURE_CUBE_MAP_POSITIVE_X + static_cast<GLenum>(layer), object, 0);
+    else
+      g.FramebufferTextureLayer(target, point, object, 0, layer);
   };
   auto allocate = [&](GLuint object, GLsizei w, GLsizei h, int level) {
     if (image.renderbuffer) {
@@ -695,8 +745,16 @@ void TargetScaler::rescale(GLuint name, Image& image, double scale, bool carry_c
       g.RenderbufferStorageMultisample(GL_RENDERBUFFER, image.samples, static_cast<GLenum>(image.internal_format), w,
                                        h);
     } else {
-      g.BindTexture(GL_TEXTURE_2D, object);
-      g.TexImage2D(GL_TEXTURE_2D, level, image.internal_format, w, h, 0, image.format, image.type, nullptr);
+      g.BindTexture(image.kind, object);
+      specify_level(image, level, w, h);
+    }
+  };
+  // Level 0, layer by layer, from `from` at its size into `to` at its own.
+  auto blit_layers = [&](GLuint from, GLsizei fw, GLsizei fh, GLuint to, GLsizei tw, GLsizei th, GLenum how) {
+    for (GLsizei layer = 0; layer < layers; ++layer) {
+      attach(GL_READ_FRAMEBUFFER, fbo[0], from, layer);
+      attach(GL_DRAW_FRAMEBUFFER, fbo[1], to, layer);
+      g.BlitFramebuffer(0, 0, fw, fh, 0, 0, tw, th, mask, how);
     }
   };
   // The copy is made at the new size, so the larger of the two blits moves the smaller image.
@@ -708,9 +766,7 @@ void TargetScaler::rescale(GLuint name, Image& image, double scale, bool carry_c
     else
       g.GenTextures(1, &copy);
     allocate(copy, new_w, new_h, 0);
-    attach(GL_READ_FRAMEBUFFER, fbo[0], image.renderbuffer, name);
-    attach(GL_DRAW_FRAMEBUFFER, fbo[1], image.renderbuffer, copy);
-    g.BlitFramebuffer(0, 0, old_w, old_h, 0, 0, new_w, new_h, mask, filter);
+    blit_layers(name, old_w, old_h, copy, new_w, new_h, filter);
   }
   image.scale = scale;
   for (size_t level = 0; level < image.app_size.size(); ++level) {
@@ -719,9 +775,7 @@ void TargetScaler::rescale(GLuint name, Image& image, double scale, bool carry_c
     allocate(name, size[0], size[1], static_cast<int>(level));
   }
   if (carry) {
-    attach(GL_READ_FRAMEBUFFER, fbo[0], image.renderbuffer, copy);
-    attach(GL_DRAW_FRAMEBUFFER, fbo[1], image.renderbuffer, name);
-    g.BlitFramebuffer(0, 0, new_w, new_h, 0, 0, new_w, new_h, mask, GL_NEAREST);
+    blit_layers(copy, new_w, new_h, name, new_w, new_h, GL_NEAREST);
     g.DeleteFramebuffers(2, fbo);
     if (image.renderbuffer)
       g.DeleteRenderbuffers(1, &copy);
@@ -790,6 +844,11 @@ void TargetScaler::framebuffer_attachment_changed(GLenum target) {
   if (it != framebuffers_.end()) it->second.attachments_known = false;
 }
 
+void TargetScaler::named_framebuffer_attachment_changed(GLuint framebuffer) {
+  auto it = framebuffers_.find(framebuffer);
+  if (it != framebuffers_.end()) it->second.attachments_known = false;
+}
+
 void TargetScaler::framebuffers_deleted(GLsizei n, const GLuint* names) {
   for (GLsizei i = 0; names && i < n; ++i) {
     framebuffers_.erase(names[i]);
@@ -820,17 +879,32 @@ void TargetScaler::viewport(GLint x, GLint y, GLsizei w, GLsizei h) { set_box(vi
 
 void TargetScaler::scissor(GLint x, GLint y, GLsizei w, GLsizei h) { set_box(scissor_, agl().Scissor, x, y, w, h); }
 
-void TargetScaler::tex_image_2d(GLint level, GLint internal_format, GLsizei* width, GLsizei* height, GLenum format,
-                                GLenum type, bool with_data) {
-  if (level < 0 || level > 16) return;
-  GLint bound = 0;
-  agl().GetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
+GLenum TargetScaler::texture_kind(GLenum target) {
+  switch (target) {
+    case GL_TEXTURE_2D:
+    case GL_TEXTURE_2D_ARRAY:
+    case GL_TEXTURE_CUBE_MAP:
+    case GL_TEXTURE_CUBE_MAP_ARRAY:
+      return target;
+    default:
+      return target >= GL_TEXTURE_CUBE_MAP_POSITIVE_X && target <= GL_TEXTURE_CUBE_MAP_NEGATIVE_Z ? GL_TEXTURE_CUBE_MAP
+                                                                                                  : 0;
+  }
+}
+
+void TargetScaler::tex_image(GLenum target, GLint level, GLint internal_format, GLsizei* width, GLsizei* height,
+                             GLsizei layers, GLenum format, GLenum type, bool with_data) {
+  const GLenum kind = texture_kind(target);
+  if (!kind || level < 0 || level > 16) return;
+  const GLuint bound = bound_texture(kind);
   if (!bound) return;
-  Image& im = textures_[static_cast<GLuint>(bound)];
+  Image& im = textures_[bound];
+  im.kind = kind;
   if (level == 0) {
     im.internal_format = internal_format;
     im.format = format;
     im.type = type;
+    im.layers = std::max<GLsizei>(1, layers);
   }
   if (im.app_size.size() <= static_cast<size_t>(level)) im.app_size.resize(static_cast<size_t>(level) + 1, {0, 0});
   im.app_size[static_cast<size_t>(level)] = {*width, *height};
@@ -840,7 +914,7 @@ void TargetScaler::tex_image_2d(GLint level, GLint internal_format, GLsizei* wid
     im.scale = 1.0;
     for (auto& [name, f] : framebuffers_)
       for (const Attachment& a : f.attachments)
-        if (!a.renderbuffer && a.name == static_cast<GLuint>(bound)) f.scale = -1.0;  // re-check
+        if (!a.renderbuffer && a.name == bound) f.scale = -1.0;  // re-check
     return;
   }
   const auto size = im.stored_level_size(static_cast<size_t>(level));
@@ -848,38 +922,46 @@ void TargetScaler::tex_image_2d(GLint level, GLint internal_format, GLsizei* wid
   *height = size[1];
 }
 
-GLuint TargetScaler::bound_texture_2d() const {
+GLuint TargetScaler::bound_texture(GLenum target) const {
+  const GLenum kind = texture_kind(target);
+  if (!kind) return 0;
   GLint bound = 0;
-  agl().GetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
+  agl().GetIntegerv(binding_of(kind), &bound);
   return static_cast<GLuint>(bound);
 }
 
-bool TargetScaler::tex_storage_2d(GLuint texture, GLsizei levels, GLenum internal_format, GLsizei width,
-                                  GLsizei height) {
+bool TargetScaler::tex_storage(GLenum kind, GLuint texture, GLsizei levels, GLenum internal_format, GLsizei width,
+                               GLsizei height, GLsizei layers) {
   GLenum format = 0, type = 0;
   // Other calls (and the app's mistakes, which must raise the driver's errors) go as they are.
-  if (!texture || levels < 1 || width <= 0 || height <= 0 || !null_upload(internal_format, &format, &type))
+  if (!texture || texture_kind(kind) != kind || levels < 1 || width <= 0 || height <= 0 || layers < 1 ||
+      !null_upload(internal_format, &format, &type))
     return false;
   if (levels > full_mip_levels(width, height)) return false;
+  if ((kind == GL_TEXTURE_CUBE_MAP || kind == GL_TEXTURE_CUBE_MAP_ARRAY) && width != height) return false;
+  if (kind == GL_TEXTURE_CUBE_MAP_ARRAY && layers % 6 != 0) return false;
   if (levels > 1 && !(width == window_width_ && height == window_height_) && !named_by_manifest(texture)) return false;
   if (gles_ && internal_format == GL_RGBA16) return false;  // GLES only with EXT_texture_norm16
   const auto known = textures_.find(texture);
   if (known != textures_.end() && known->second.storage_levels) return false;  // immutable already: the driver's error
   const ApplyGl& g = agl();
-  SavedBindings saved;  // the 2D binding, and no pixel-unpack buffer: no data
-  g.BindTexture(GL_TEXTURE_2D, texture);
+  if (kind != GL_TEXTURE_2D && kind != GL_TEXTURE_CUBE_MAP && !g.TexImage3D) return false;
+  SavedBindings saved(kind);  // the kind's binding, and no pixel-unpack buffer: no data
+  g.BindTexture(kind, texture);
+  // Every face of a cube map is specified through its face's target, which tex_image takes.
+  const GLenum target = kind == GL_TEXTURE_CUBE_MAP ? GL_TEXTURE_CUBE_MAP_POSITIVE_X : kind;
   for (GLsizei level = 0; level < levels; ++level) {
     GLsizei w = std::max(1, width >> level), h = std::max(1, height >> level);
-    tex_image_2d(level, static_cast<GLint>(internal_format), &w, &h, format, type, false);
-    g.TexImage2D(GL_TEXTURE_2D, level, static_cast<GLint>(internal_format), w, h, 0, format, type, nullptr);
+    tex_image(target, level, static_cast<GLint>(internal_format), &w, &h, layers, format, type, false);
+    specify_level(textures_[texture], level, w, h);
   }
   // The levels the app may have set before: they went to the driver as they were.
   GLint base = 0, max = 1000;
-  g.GetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, &base);
-  g.GetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, &max);
+  g.GetTexParameteriv(kind, GL_TEXTURE_BASE_LEVEL, &base);
+  g.GetTexParameteriv(kind, GL_TEXTURE_MAX_LEVEL, &max);
   textures_[texture].storage_levels = levels;
-  g.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, texture_parameter(texture, GL_TEXTURE_BASE_LEVEL, base));
-  g.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, texture_parameter(texture, GL_TEXTURE_MAX_LEVEL, max));
+  g.TexParameteri(kind, GL_TEXTURE_BASE_LEVEL, texture_parameter(texture, GL_TEXTURE_BASE_LEVEL, base));
+  g.TexParameteri(kind, GL_TEXTURE_MAX_LEVEL, texture_parameter(texture, GL_TEXTURE_MAX_LEVEL, max));
   return true;
 }
 

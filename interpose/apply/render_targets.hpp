@@ -10,8 +10,11 @@
 // drawn into the real back buffer at each swap. Reads of the window (glReadPixels,
 // glCopyTex*) see a window-sized image, binding queries answer 0.
 // A multisampled window gets a stand-in of as many samples, resolved and stretched at the swap.
-// Limits: 2D textures and renderbuffers (not arrays, cube maps, nor immutable textures of a
-// format no framebuffer holds, nor mipmapped immutable ones but of the window's size); a
+// Textures of the four kinds a framebuffer draws into a layer or face of (2D, 2D arrays, cube
+// maps, cube-map arrays: cascaded and point-light shadow maps) scale alike, every layer and
+// face together.
+// Limits: not immutable textures of a format no framebuffer holds, nor mipmapped immutable
+// ones but of the window's size or named by the manifest; not 3D or multisample textures; a
 // framebuffer with an image the scaler cannot scale keeps its size; textures are tracked per
 // context; a multisampled GLES window is not scaled.
 #pragma once
@@ -83,24 +86,31 @@ class TargetScaler {
   // Hooks. Each returns what the real call must be given, or handles the call itself.
   void bind_framebuffer(GLenum target, GLuint fbo);
   void framebuffer_attachment_changed(GLenum target);
+  // The same by name (glNamedFramebufferTexture*, glNamedFramebufferRenderbuffer).
+  void named_framebuffer_attachment_changed(GLuint framebuffer);
   void framebuffers_deleted(GLsizei n, const GLuint* names);
   void textures_deleted(GLsizei n, const GLuint* names);
   void renderbuffers_deleted(GLsizei n, const GLuint* names);
   void viewport(GLint x, GLint y, GLsizei w, GLsizei h);
   void scissor(GLint x, GLint y, GLsizei w, GLsizei h);
-  // glTexImage2D of the texture bound to GL_TEXTURE_2D: fills the size to give the driver.
-  void tex_image_2d(GLint level, GLint internal_format, GLsizei* width, GLsizei* height, GLenum format, GLenum type,
-                    bool with_data);
-  // glTexStorage2D of the texture bound to GL_TEXTURE_2D. Immutable storage cannot be
+  // The texture kinds scaled here (GL_TEXTURE_2D, _2D_ARRAY, _CUBE_MAP, _CUBE_MAP_ARRAY), and
+  // the kind a call's target specifies (a cube map's face: GL_TEXTURE_CUBE_MAP); 0 for others.
+  static GLenum texture_kind(GLenum target);
+  // glTexImage2D (GL_TEXTURE_2D, a cube map's face) or glTexImage3D (a 2D or cube-map array,
+  // `layers` deep) of the texture bound to the call's target: fills the size to give the driver.
+  void tex_image(GLenum target, GLint level, GLint internal_format, GLsizei* width, GLsizei* height, GLsizei layers,
+                 GLenum format, GLenum type, bool with_data);
+  // glTex(ture)Storage2D/3D of a texture of a kind above. Immutable storage cannot be
   // respecified at another size, so storage of a format a framebuffer can hold is made as
   // mutable storage of that format instead, every level the app asked for, its levels clamped
   // to those (as an immutable texture clamps them), and scales as glTexImage2D's do; true where
   // it was made here. Several levels only for a texture of the window's size (a render target's
   // mip chain) or one a manifest names: other mipmapped textures are the app's assets, left
   // immutable (glTextureView needs that).
-  // `texture` is the one bound to GL_TEXTURE_2D (bound_texture_2d()), or a GL_TEXTURE_2D texture
-  // named by glTextureStorage2D (bound for the call and restored).
-  bool tex_storage_2d(GLuint texture, GLsizei levels, GLenum internal_format, GLsizei width, GLsizei height);
+  // `texture` is the one bound to `kind` (bound_texture(kind)), or one named by
+  // glTextureStorage2D/3D (bound for the call and restored); `layers`: an array's depth, else 1.
+  bool tex_storage(GLenum kind, GLuint texture, GLsizei levels, GLenum internal_format, GLsizei width, GLsizei height,
+                   GLsizei layers);
   // glGet(Tex|Texture)Parameter of such a texture: GL_TEXTURE_IMMUTABLE_FORMAT,
   // GL_TEXTURE_IMMUTABLE_LEVELS, GL_TEXTURE_BASE_LEVEL and GL_TEXTURE_MAX_LEVEL as the app made
   // and set them; false for other textures and names.
@@ -108,7 +118,8 @@ class TargetScaler {
   // gl(Tex|Texture)Parameter: what the driver gets. Such a texture's base and maximum levels
   // are kept as the app sets them and given clamped to its levels.
   GLint texture_parameter(GLuint texture, GLenum pname, GLint value);
-  GLuint bound_texture_2d() const;
+  // The texture bound to a call's target (a face: the cube map) on the active unit.
+  GLuint bound_texture(GLenum target) const;
   // The pnames the three above answer or clamp: the hooks ask for the binding only for these.
   static bool level_pname(GLenum pname) { return pname == GL_TEXTURE_BASE_LEVEL || pname == GL_TEXTURE_MAX_LEVEL; }
   static bool storage_pname(GLenum pname) {
@@ -150,6 +161,8 @@ class TargetScaler {
  private:
   struct Image {
     bool renderbuffer = false;
+    GLenum kind = GL_TEXTURE_2D;  // of a texture: texture_kind()
+    GLsizei layers = 1;           // of an array: its depth (a cube-map array's: 6 per cube)
     GLint internal_format = 0;
     GLenum format = 0, type = 0;
     GLsizei samples = 0;
@@ -225,6 +238,9 @@ class TargetScaler {
   void learn_attachments(Framebuffer& f);
   void ensure_scale(GLuint name, Framebuffer& f, bool carry = true);
   void rescale(GLuint name, Image& image, double scale, bool carry);
+  // One level of a texture, with no data, at a size: every face of a cube map, every layer of
+  // an array. The texture is bound to its kind.
+  static void specify_level(const Image& image, GLint level, GLsizei width, GLsizei height);
   bool cleared_before_drawn(const Framebuffer& f) const;
   void apply_viewport();
   // Keeps the app's box and gives the driver it scaled to the bound draw framebuffer.

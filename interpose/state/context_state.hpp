@@ -61,6 +61,9 @@ struct ShareGroup {
   std::unordered_map<GLuint, ProgramInfo> programs;
   std::atomic<bool> has_variants{false};  // any program of the group has variants
   std::atomic<bool> has_refused{false};   // any has app_space_refused
+  // Any matched a manifest pass: a pass of scale levels alone has no variants, yet its draws
+  // must be known as its own for the targets it scales ("self", "pass:NAME").
+  std::atomic<bool> has_matched{false};
 };
 
 struct ContextState {

@@ -67,7 +67,10 @@ void shadow_program(ContextState& c, ShareGroup& g, GLuint program, ProgramInfo&
     if (it != g.shaders.end()) sources.push_back({it->second.stage, it->second.source});
   }
   if (manifest_has_programs()) p.manifest_pass = match_pass(p.pass, sources);
-  if (p.manifest_pass >= 0) note_pass_matched(p.manifest_pass);
+  if (p.manifest_pass >= 0) {
+    note_pass_matched(p.manifest_pass);
+    g.has_matched = true;
+  }
   if (p.manifest_pass < 0 && !app_coordinates) return;
   if (!link_succeeded(program)) return;  // the app's own failure: nothing to shadow
   p.variants = build_variants(program, p.pass, p.manifest_pass, sources, c.caps,
@@ -141,7 +144,7 @@ void bind_program(ContextState& c) {
   std::shared_ptr<const VariantSet> variants;
   int pass = -1;
   c.app_space_refused = false;
-  if (c.program && (c.group->has_variants || c.group->has_refused)) {
+  if (c.program && (c.group->has_variants || c.group->has_refused || c.group->has_matched)) {
     std::lock_guard lock(c.group->mu);
     auto it = c.group->programs.find(c.program);
     if (it != c.group->programs.end()) {

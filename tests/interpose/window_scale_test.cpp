@@ -393,3 +393,141 @@ TEST_CASE("an app reading its scaled framebuffer back reads it at its own size: 
   CHECK(scaled.rgb != plain.rgb);  // drawn at 60 %: not the same pixels
   CHECK(ssim_of(plain, scaled) >= 0.95);
 }
+
+namespace {
+// A manifest of one pass, the shadow pass (the occluder's fragment shader), at full size or at
+// half its render targets' width and height.
+std::string shadow_layers_manifest() {
+  const std::string path = temp_path("shadow_layers.toml");
+  std::ofstream m(path);
+  m << "[[pass]]\nname = \"shadow\"\nmatch = { source = \"/* shadow */\" }\n[[pass.level]]\nname = \"full\"\n"
+       "[[pass.level]]\nname = \"half\"\nscale = 0.5\ntargets = [\"self\"]\n";
+  return path;
+}
+}  // namespace
+
+TEST_CASE("shadow maps in the layers of an array or the faces of a cube map scale with their pass", "[integration]") {
+  // probe_shadow_layers draws an occluder into each cascade of a depth 2D array (or each face of
+  // a depth cube map) through one framebuffer re-attached layer by layer, then samples all of
+  // them with a shadow sampler. Its manifest's one pass is the shadow pass, with a level at
+  // half size ("self"): every layer is stored at 64 x 64 instead of 128 x 128 (a quarter of the
+  // shadow fragments), the lit pass is drawn as before, the image keeps its shadows, and the
+  // texture answers as the app made it (size, layers, immutable format and levels: exit 5 if
+  // not; any GL error: exit 4). Made by glTexImage3D / glTexImage2D per face, by glTexStorage*,
+  // or by name (glTextureStorage*, glNamedFramebufferTextureLayer).
+  const std::string layout = GENERATE("array", "cube");
+  const std::string storage = GENERATE("mutable", "immutable", "dsa");
+  INFO(layout << ", " << storage);
+  const std::string manifest = shadow_layers_manifest(), plain_img = temp_path("shadow_layers_plain.ppm");
+  const std::vector<std::string> args = {probe_path("probe_shadow_layers"),
+                                         "--frames",
+                                         "3",
+                                         "--size",
+                                         "96",
+                                         "--layout",
+                                         layout,
+                                         "--storage",
+                                         storage,
+                                         "--out"};
+  auto with_out = [&](const std::string& out) {
+    auto a = args;
+    a.push_back(out);
+    return a;
+  };
+  REQUIRE(run_process(with_out(plain_img), {}).exit_code == 0);
+  std::map<std::string, std::map<std::string, double>> fragments;  // configuration -> pass -> of frame 2
+  std::map<std::string, Ppm> images;
+  for (const std::string config : {"0,0", "0,1"}) {
+    const std::string log = temp_path("shadow_layers.csv"), img = temp_path("shadow_layers.ppm");
+    unlink(log.c_str());
+    const ProcessResult r = run_process(with_out(img), {{"LD_PRELOAD", shim_path()},
+                                                        {"GLBUDGET_CONFIG", manifest},
+                                                        {"GLBUDGET_FORCE", config},
+                                                        {"GLBUDGET_LOG", log},
+                                                        {"GLBUDGET_SENSOR", "cpu"}});
+    INFO(config << "\n" << r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.err.find("glbudget:") == std::string::npos);
+    for (const auto& row : read_csv_rows_by_name(log))
+      if (row.at("frame") == "2") fragments[config][row.at("pass")] = std::stod(row.at("fragments"));
+    images[config] = read_ppm(img);
+    unlink(log.c_str());
+    unlink(img.c_str());
+  }
+  REQUIRE(fragments["0,0"].size() == 2);
+  REQUIRE(fragments["0,1"].size() == 2);
+  int scaled = 0, kept = 0;
+  for (const auto& [pass, full] : fragments["0,0"]) {
+    const double ratio = fragments["0,1"].at(pass) / full;
+    INFO("pass " << pass << ": " << full << " fragments at full size, ratio " << ratio << " at half");
+    if (full == 96.0 * 96.0) {  // the lit pass, one fragment per window pixel
+      CHECK(ratio == 1.0);
+      ++kept;
+    } else {
+      CHECK(ratio > 0.2);
+      CHECK(ratio < 0.32);  // a quarter of the texels; the occluder's edge quads shade helpers
+      ++scaled;
+    }
+  }
+  CHECK(kept == 1);
+  CHECK(scaled == 1);
+  const Ppm plain = read_ppm(plain_img);
+  REQUIRE(!plain.rgb.empty());
+  CHECK(images["0,0"].rgb == plain.rgb);  // at full size nothing the app draws changes
+  REQUIRE(images["0,1"].width == plain.width);
+  CHECK(images["0,1"].rgb != plain.rgb);
+  CHECK(ssim_of(plain, images["0,1"]) >= 0.9);
+  unlink(plain_img.c_str());
+  unlink(manifest.c_str());
+}
+
+TEST_CASE("a cached shadow map keeps its contents across switches of its scale at run time", "[integration]") {
+  // probe_shadow_layers --static 1 draws its shadow map at the first frame only (static geometry's
+  // shadows, cached) and samples it every frame. The configuration switches every two frames,
+  // full size to half and back: each switch respecifies every layer or face at the new size and
+  // carries its depths over, so the shadows stay (a layer respecified empty would shade every
+  // pixel as shadowed).
+  const std::string layout = GENERATE("array", "cube");
+  INFO(layout);
+  const std::string manifest = shadow_layers_manifest(), dir = temp_path("shadow_layers_switch");
+  std::filesystem::create_directories(dir);
+  auto command = [&](const std::string& each) {
+    return std::vector<std::string>{probe_path("probe_shadow_layers"),
+                                    "--frames",
+                                    "6",
+                                    "--size",
+                                    "96",
+                                    "--layout",
+                                    layout,
+                                    "--static",
+                                    "1",
+                                    "--each",
+                                    dir + "/" + each,
+                                    "--out",
+                                    dir + "/" + each + "_last.ppm"};
+  };
+  REQUIRE(run_process(command("plain"), {}).exit_code == 0);
+  const ProcessResult r = run_process(command("shim"), {{"LD_PRELOAD", shim_path()},
+                                                        {"GLBUDGET_CONFIG", manifest},
+                                                        {"GLBUDGET_FORCE", "0,0;0,1"},
+                                                        {"GLBUDGET_FORCE_EVERY", "2"}});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.err.find("glbudget:") == std::string::npos);
+  for (int f = 0; f < 6; ++f) {
+    const Ppm plain = read_ppm(dir + "/plain" + std::to_string(f) + ".ppm"),
+              shim = read_ppm(dir + "/shim" + std::to_string(f) + ".ppm");
+    REQUIRE(!plain.rgb.empty());
+    REQUIRE(shim.width == plain.width);
+    INFO("frame " << f);
+    if (f < 2) {
+      CHECK(shim.rgb == plain.rgb);  // drawn at full size
+    } else {
+      // Frames 2-3 read the depths carried down to 64 x 64; frames 4-5 the same carried back up.
+      CHECK(shim.rgb != plain.rgb);
+      CHECK(ssim_of(plain, shim) >= 0.9);
+    }
+  }
+  std::filesystem::remove_all(dir);
+  unlink(manifest.c_str());
+}

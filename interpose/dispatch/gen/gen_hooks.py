@@ -45,6 +45,8 @@ CUSTOM = [
     'glTexStorage2D', 'glGetTexParameteriv', 'glTexParameteri', 'glTexParameteriv',
     'glTextureStorage2D', 'glGetTextureParameteriv', 'glTextureParameteri', 'glTextureParameteriv',
     'glGetTextureLevelParameteriv', 'glGetTextureLevelParameterfv',
+    'glTexImage3D', 'glTexStorage3D', 'glTextureStorage3D', 'glFramebufferTextureLayer',  # arrays, cube maps
+    'glNamedFramebufferTexture', 'glNamedFramebufferTextureLayer', 'glNamedFramebufferRenderbuffer',
     'glGenerateMipmap', 'glGenerateTextureMipmap',  # apply/probes.cpp: shadows' levels too
     # apply/: the default framebuffer's stand-in
     'glReadPixels', 'glCopyTexImage2D', 'glCopyTexSubImage2D', 'glDrawBuffer', 'glDrawBuffers', 'glReadBuffer',
@@ -77,7 +79,8 @@ ALIASES_OF_CUSTOM = {
     'glGetFramebufferAttachmentParameterivEXT': 'glGetFramebufferAttachmentParameteriv',
     'glDrawBuffersARB': 'glDrawBuffers', 'glDrawBuffersEXT': 'glDrawBuffers',
     'glBindAttribLocationARB': 'glBindAttribLocation', 'glBindFragDataLocationEXT': 'glBindFragDataLocation',
-    'glTexStorage2DEXT': 'glTexStorage2D',
+    'glTexStorage2DEXT': 'glTexStorage2D', 'glTexStorage3DEXT': 'glTexStorage3D',
+    'glFramebufferTextureLayerEXT': 'glFramebufferTextureLayer', 'glFramebufferTextureLayerARB': 'glFramebufferTextureLayer',
     'glGenerateMipmapEXT': 'glGenerateMipmap',
 }
 
