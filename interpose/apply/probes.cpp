@@ -63,6 +63,7 @@ namespace {
 struct ProbeGl {
   void(APIENTRYP GetTexLevelParameteriv)(GLenum, GLint, GLenum, GLint*) = nullptr;
   void(APIENTRYP TexStorage2D)(GLenum, GLsizei, GLenum, GLsizei, GLsizei) = nullptr;
+  void(APIENTRYP TexStorage3D)(GLenum, GLsizei, GLenum, GLsizei, GLsizei, GLsizei) = nullptr;
   void(APIENTRYP GetRenderbufferParameteriv)(GLenum, GLenum, GLint*) = nullptr;
   void(APIENTRYP DrawBuffers)(GLsizei, const GLenum*) = nullptr;
   void(APIENTRYP GetQueryiv)(GLenum, GLenum, GLint*) = nullptr;
@@ -90,6 +91,7 @@ const ProbeGl& pgl() {
     };
     load(p.GetTexLevelParameteriv, "glGetTexLevelParameteriv");
     load(p.TexStorage2D, "glTexStorage2D");
+    load(p.TexStorage3D, "glTexStorage3D");
     load(p.GetRenderbufferParameteriv, "glGetRenderbufferParameteriv");
     load(p.DrawBuffers, "glDrawBuffers");
     load(p.GetQueryiv, "glGetQueryiv");
@@ -127,6 +129,18 @@ GLint get(GLenum pname) {
   return v;
 }
 
+// The texture kinds a framebuffer draws into (TargetScaler::texture_kind): index 0 is 2D, the
+// others are layered (a layer or a cube map's face attached).
+constexpr GLenum kKinds[] = {GL_TEXTURE_2D, GL_TEXTURE_2D_ARRAY, GL_TEXTURE_CUBE_MAP, GL_TEXTURE_CUBE_MAP_ARRAY};
+constexpr int kKindCount = 4;
+constexpr GLenum kKindBindings[] = {GL_TEXTURE_BINDING_2D, GL_TEXTURE_BINDING_2D_ARRAY, GL_TEXTURE_BINDING_CUBE_MAP,
+                                    GL_TEXTURE_BINDING_CUBE_MAP_ARRAY};
+int kind_index(GLenum kind) {
+  for (int k = 0; k < kKindCount; ++k)
+    if (kKinds[k] == kind) return k;
+  return -1;
+}
+
 struct ShadowImage {
   GLenum point = 0;
   bool renderbuffer = false;
@@ -135,6 +149,29 @@ struct ShadowImage {
   GLint format = 0;
   GLsizei samples = 0;
   GLsizei levels = 1;  // a texture's mip levels, as many as the app's (its glGenerateMipmap is repeated)
+  // A layered texture's: its kind, its layers (a cube map's six faces), the one attached. Its
+  // shadow is the stream's (Stream::layered), shared by every framebuffer drawing a layer.
+  GLenum kind = GL_TEXTURE_2D;
+  GLsizei layers = 1;
+  GLint layer = 0;
+  bool layered() const { return !renderbuffer && kind != GL_TEXTURE_2D; }
+};
+
+// A stream's shadow of an app texture drawn layer by layer: every layer at the stream's scale,
+// each filled with the app's content at its first use in a probe frame.
+struct LayeredShadow {
+  GLuint texture = 0;
+  GLenum kind = 0;
+  GLint format = 0;
+  int width = 0, height = 0;
+  GLsizei layers = 0;
+  std::vector<uint64_t> copied_frame;  // per layer
+};
+
+// A shadow texture standing in for the app's in a stream's draws, and its kind.
+struct StandIn {
+  GLuint texture = 0;
+  GLenum kind = GL_TEXTURE_2D;
 };
 
 struct Shadow {
@@ -143,13 +180,15 @@ struct Shadow {
   int width = 0, height = 0;          // the shadow's
   std::vector<ShadowImage> images;
   uint64_t initialized_frame = 0;  // content copied from the app's this frame
+  uint64_t described_changes = 0;  // TargetScaler::attachment_changes() when described
   bool usable = false;
 };
 
 struct Stream {
   Levels config;
-  std::unordered_map<GLuint, Shadow> shadows;   // by the app's framebuffer (0: the window)
-  std::unordered_map<GLuint, GLuint> textures;  // drawn this frame: app texture -> shadow
+  std::unordered_map<GLuint, Shadow> shadows;         // by the app's framebuffer (0: the window)
+  std::unordered_map<GLuint, StandIn> textures;       // drawn this frame: app texture -> shadow
+  std::unordered_map<GLuint, LayeredShadow> layered;  // by the app's texture
   bool complete = true;
 };
 
@@ -205,9 +244,12 @@ struct ProbeFrames::Impl {
   GLint saved_draw_fbo = 0, saved_read_fbo = 0, saved_active = 0;
   GLint saved_viewport[4] = {}, saved_scissor[4] = {};
   Levels saved_config;
-  GLint unit_texture[kMaxUnits] = {};
+  // The app's textures on each unit, by kind (kKinds); only the kinds some stream has a
+  // shadow of are asked (bit k of `kinds`).
+  GLint unit_texture[kMaxUnits][kKindCount] = {};
+  unsigned kinds = 1;
   int units = 0;
-  bool redirected[kMaxUnits] = {};
+  bool redirected[kMaxUnits][kKindCount] = {};
 
   // Capture targets: 0 the app's image, then one per stream, window-sized textures (the GPU
   // SSIM samples them).
@@ -233,7 +275,7 @@ struct ProbeFrames::Impl {
     for (ShadowImage& im : s.images) {
       if (im.renderbuffer)
         g.DeleteRenderbuffers(1, &im.shadow);
-      else
+      else if (!im.layered())  // the stream's, shared
         g.DeleteTextures(1, &im.shadow);
     }
     if (s.fbo) g.DeleteFramebuffers(1, &s.fbo);
@@ -289,7 +331,8 @@ struct ProbeFrames::Impl {
           p.GetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_SAMPLES, &im.samples);
           g.BindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(bound));
         } else {
-          // Only 2D textures, level 0.
+          // Level 0 of a 2D texture, or a layer of an array or a cube map's face; not layered
+          // attachments (a geometry shader choosing the layer).
           GLint level = 0, layered = GL_FALSE, face = 0, layer = 0;
           g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL,
                                                 &level);
@@ -300,34 +343,49 @@ struct ProbeFrames::Impl {
           if (at_least(3, 2, 3, 2))
             g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_LAYERED,
                                                   &layered);
-          if (level != 0 || layered || face != 0 || layer != 0) return false;
-          // A texture of another target cannot be bound to GL_TEXTURE_2D: the error says so
-          // (GL_TEXTURE_TARGET, the direct question, is not answered in compatibility
-          // profiles). Called within the shim's own GL work (prepare): errors here are its own.
-          const GLint bound = get(GL_TEXTURE_BINDING_2D);
+          if (level != 0 || layered) return false;
+          // The kind the scaler saw the texture made as, else taken to be 2D; a texture of
+          // another kind cannot be bound to it: the error says so (GL_TEXTURE_TARGET, the direct
+          // question, is not answered in compatibility profiles). Called within the shim's own
+          // GL work (prepare): errors here are its own.
+          const GLenum known = t.kind_of(im.app);
+          im.kind = known ? known : GL_TEXTURE_2D;
+          const int k = kind_index(im.kind);
+          if (k < 0 || (im.kind != GL_TEXTURE_2D && (!p.TexStorage3D || !g.FramebufferTextureLayer))) return false;
+          if (im.kind == GL_TEXTURE_2D && (face != 0 || layer != 0)) return false;
+          im.layer = im.kind == GL_TEXTURE_CUBE_MAP && face != 0 ? face - GL_TEXTURE_CUBE_MAP_POSITIVE_X : layer;
+          const GLint bound = get(kKindBindings[k]);
           drain_gl_errors();
-          g.BindTexture(GL_TEXTURE_2D, im.app);
+          g.BindTexture(im.kind, im.app);
           if (!drain_gl_errors().empty()) {  // a texture of another target: GL_INVALID_OPERATION
-            g.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(bound));
+            g.BindTexture(im.kind, static_cast<GLuint>(bound));
             return false;
           }
-          p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &im.format);
+          // Level queries of a cube map go to a face.
+          const GLenum of = im.kind == GL_TEXTURE_CUBE_MAP ? GL_TEXTURE_CUBE_MAP_POSITIVE_X : im.kind;
+          p.GetTexLevelParameteriv(of, 0, GL_TEXTURE_INTERNAL_FORMAT, &im.format);
           if (im.format == GL_DEPTH_COMPONENT || im.format == GL_DEPTH_STENCIL) {
             GLint depth_bits = 0, stencil_bits = 0, depth_type = GL_NONE;
-            p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_DEPTH_SIZE, &depth_bits);
-            p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_STENCIL_SIZE, &stencil_bits);
-            p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_DEPTH_TYPE, &depth_type);
+            p.GetTexLevelParameteriv(of, 0, GL_TEXTURE_DEPTH_SIZE, &depth_bits);
+            p.GetTexLevelParameteriv(of, 0, GL_TEXTURE_STENCIL_SIZE, &stencil_bits);
+            p.GetTexLevelParameteriv(of, 0, GL_TEXTURE_DEPTH_TYPE, &depth_type);
             im.format = sized_depth_format(depth_bits, stencil_bits, depth_type == GL_FLOAT);
           } else {
             im.format = sized_internal_format(im.format);
           }
-          p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &w);
-          p.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &h);
+          p.GetTexLevelParameteriv(of, 0, GL_TEXTURE_WIDTH, &w);
+          p.GetTexLevelParameteriv(of, 0, GL_TEXTURE_HEIGHT, &h);
+          if (im.kind == GL_TEXTURE_CUBE_MAP) {
+            im.layers = 6;
+          } else if (im.kind != GL_TEXTURE_2D) {
+            p.GetTexLevelParameteriv(of, 0, GL_TEXTURE_DEPTH, &im.layers);
+          }
           // Its levels only where the app fills them by glGenerateMipmap, which the duplicate
           // repeats; levels it draws one by one (framebuffers of level > 0 are not shadowed)
           // would stay undefined in the shadow, where level 0 alone stands for them.
-          im.levels = generated_mipmaps.count(im.app) ? texture_levels() : 1;
-          g.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(bound));
+          im.levels = im.kind == GL_TEXTURE_2D && generated_mipmaps.count(im.app) ? texture_levels() : 1;
+          g.BindTexture(im.kind, static_cast<GLuint>(bound));
+          if (im.layer < 0 || im.layer >= im.layers) return false;
         }
         if (w <= 0 || h <= 0 || im.format == 0) return false;
         if (stored_w == 0) stored_w = w, stored_h = h;
@@ -370,8 +428,52 @@ struct ProbeFrames::Impl {
     return c.caps.gles ? have >= es_major * 10 + es_minor : have >= major * 10 + minor;
   }
 
+  // `to` (bound to `kind`) sampled as the app's `from` is: its filtering, wrapping, depth
+  // comparison and levels. Leaves `to` bound.
+  static void copy_sampling(GLenum kind, GLuint from, GLuint to) {
+    const ApplyGl& g = agl();
+    static const GLenum kParams[] = {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER,   GL_TEXTURE_WRAP_S,
+                                     GL_TEXTURE_WRAP_T,     GL_TEXTURE_COMPARE_MODE, GL_TEXTURE_COMPARE_FUNC,
+                                     GL_TEXTURE_BASE_LEVEL, GL_TEXTURE_MAX_LEVEL};
+    for (GLenum param : kParams) {
+      GLint v = 0;
+      g.BindTexture(kind, from);
+      g.GetTexParameteriv(kind, param, &v);
+      g.BindTexture(kind, to);
+      g.TexParameteri(kind, param, v);
+    }
+  }
+
+  // The stream's shadow of a layered app texture at the shadow's size, made (again, where the
+  // stream's scale or the app's texture changed) if needed.
+  LayeredShadow& layered_shadow(Stream& st, const ShadowImage& im, int width, int height) {
+    LayeredShadow& l = st.layered[im.app];
+    if (l.texture && l.kind == im.kind && l.format == im.format && l.width == width && l.height == height &&
+        l.layers == im.layers)
+      return l;
+    const ApplyGl& g = agl();
+    if (l.texture) g.DeleteTextures(1, &l.texture);
+    const GLint bound = get(kKindBindings[kind_index(im.kind)]);
+    l = LayeredShadow{};
+    g.GenTextures(1, &l.texture);
+    g.BindTexture(im.kind, l.texture);
+    if (im.kind == GL_TEXTURE_CUBE_MAP)
+      pgl().TexStorage2D(GL_TEXTURE_CUBE_MAP, 1, static_cast<GLenum>(im.format), width, height);
+    else
+      pgl().TexStorage3D(im.kind, 1, static_cast<GLenum>(im.format), width, height, im.layers);
+    copy_sampling(im.kind, im.app, l.texture);
+    g.BindTexture(im.kind, static_cast<GLuint>(bound));
+    l.kind = im.kind;
+    l.format = im.format;
+    l.width = width;
+    l.height = height;
+    l.layers = im.layers;
+    l.copied_frame.assign(static_cast<size_t>(im.layers), 0);
+    return l;
+  }
+
   // Creates the shadow's images and framebuffer (the app's framebuffer is bound for drawing).
-  bool build(GLuint app, Shadow& s) {
+  bool build(Stream& st, Shadow& s, GLuint app) {
     const ApplyGl& g = agl();
     const ProbeGl& p = pgl();
     const GLint texture = get(GL_TEXTURE_BINDING_2D), renderbuffer = get(GL_RENDERBUFFER_BINDING);
@@ -392,23 +494,20 @@ struct ProbeFrames::Impl {
         g.RenderbufferStorageMultisample(GL_RENDERBUFFER, im.samples, static_cast<GLenum>(im.format), s.width,
                                          s.height);
         g.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, im.point, GL_RENDERBUFFER, im.shadow);
+      } else if (im.layered()) {
+        im.shadow = layered_shadow(st, im, s.width, s.height).texture;
+        if (im.kind == GL_TEXTURE_CUBE_MAP)
+          g.FramebufferTexture2D(GL_DRAW_FRAMEBUFFER, im.point,
+                                 GL_TEXTURE_CUBE_MAP_POSITIVE_X + static_cast<GLenum>(im.layer), im.shadow, 0);
+        else
+          g.FramebufferTextureLayer(GL_DRAW_FRAMEBUFFER, im.point, im.shadow, 0, im.layer);
       } else {
         g.GenTextures(1, &im.shadow);
         g.BindTexture(GL_TEXTURE_2D, im.shadow);
         // The shadow's size may hold fewer levels than the app's.
         p.TexStorage2D(GL_TEXTURE_2D, std::min(im.levels, full_mip_levels(s.width, s.height)),
                        static_cast<GLenum>(im.format), s.width, s.height);
-        // Sampled as the app's texture is: its filtering, wrapping, depth comparison and levels.
-        static const GLenum kParams[] = {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER,   GL_TEXTURE_WRAP_S,
-                                         GL_TEXTURE_WRAP_T,     GL_TEXTURE_COMPARE_MODE, GL_TEXTURE_COMPARE_FUNC,
-                                         GL_TEXTURE_BASE_LEVEL, GL_TEXTURE_MAX_LEVEL};
-        for (GLenum param : kParams) {
-          GLint v = 0;
-          g.BindTexture(GL_TEXTURE_2D, im.app);
-          g.GetTexParameteriv(GL_TEXTURE_2D, param, &v);
-          g.BindTexture(GL_TEXTURE_2D, im.shadow);
-          g.TexParameteri(GL_TEXTURE_2D, param, v);
-        }
+        copy_sampling(GL_TEXTURE_2D, im.app, im.shadow);
         g.FramebufferTexture2D(GL_DRAW_FRAMEBUFFER, im.point, GL_TEXTURE_2D, im.shadow, 0);
       }
     }
@@ -421,7 +520,9 @@ struct ProbeFrames::Impl {
 
   // The app's framebuffer's content now, before this frame's first draw to it, into the
   // shadow: what the app kept from before (or cleared to) is where both streams start.
-  void copy_in(GLuint app, Shadow& s) {
+  // `whole`: every image; else only layers of layered images not yet copied this frame (the
+  // framebuffer was described again after the app re-attached its images).
+  void copy_in(Stream& st, GLuint app, Shadow& s, bool whole) {
     const ApplyGl& g = agl();
     const ProbeGl& p = pgl();
     const GLuint real = targets()->real_framebuffer(app);
@@ -440,6 +541,14 @@ struct ProbeFrames::Impl {
     const GLint read_buffer = get(GL_READ_BUFFER);
     GLbitfield depth_stencil = 0;
     for (const ShadowImage& im : s.images) {
+      if (im.layered()) {
+        // A layer the stream drew earlier in the frame keeps what it drew.
+        uint64_t& copied = st.layered[im.app].copied_frame[static_cast<size_t>(im.layer)];
+        if (copied == frame) continue;
+        copied = frame;
+      } else if (!whole) {
+        continue;
+      }
       if (im.point == GL_DEPTH_ATTACHMENT)
         depth_stencil |= GL_DEPTH_BUFFER_BIT;
       else if (im.point == GL_STENCIL_ATTACHMENT)
@@ -486,36 +595,49 @@ struct ProbeFrames::Impl {
 
   // The stream's shadow of the app's framebuffer, made and filled for this frame if needed.
   // The caller saved the draw and read bindings; both may change.
+  // Whether the stream's shadow of the app's framebuffer is filled for this frame and still
+  // attached as the app's framebuffer is.
+  bool current(const Shadow& s) const {
+    return s.initialized_frame == frame && s.described_changes == targets()->attachment_changes();
+  }
+
   Shadow* shadow(Stream& st, GLuint app) {
     auto [it, fresh] = st.shadows.try_emplace(app);
     Shadow& s = it->second;
-    if (s.initialized_frame == frame) return s.usable ? &s : nullptr;
+    if (current(s)) return s.usable ? &s : nullptr;
+    // Described already this frame, before the app attached other images (or layers) to some
+    // framebuffer: what it drew into the shadow's images this frame is kept where they stay.
+    const bool again = s.initialized_frame == frame;
     // The app's framebuffer must be bound for drawing to be described.
     agl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, targets()->real_framebuffer(app));
     Shadow wanted;
     const bool ok = describe(app, targets()->scale_for(app, st.config), wanted);
     bool same = !fresh && ok && s.usable && wanted.width == s.width && wanted.height == s.height &&
                 wanted.images.size() == s.images.size();
-    for (size_t i = 0; same && i < wanted.images.size(); ++i)
-      same = wanted.images[i].app == s.images[i].app && wanted.images[i].format == s.images[i].format &&
-             wanted.images[i].point == s.images[i].point && wanted.images[i].levels == s.images[i].levels &&
-             wanted.images[i].samples == s.images[i].samples;
+    for (size_t i = 0; same && i < wanted.images.size(); ++i) {
+      const ShadowImage &a = wanted.images[i], &b = s.images[i];
+      same = a.app == b.app && a.format == b.format && a.point == b.point && a.levels == b.levels &&
+             a.samples == b.samples && a.kind == b.kind && a.layer == b.layer && a.layers == b.layers;
+      // A layered shadow remade for another framebuffer of the stream (its scale changed).
+      if (same && b.layered()) same = st.layered[b.app].texture == b.shadow;
+    }
     if (!same) {
       release_shadow(s);
       if (ok) {
         s = wanted;
-        build(app, s);
+        build(st, s, app);
         agl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, targets()->real_framebuffer(app));
       }
     }
     s.initialized_frame = frame;
+    s.described_changes = targets()->attachment_changes();
     if (!ok) {
       st.complete = app != 0 && st.complete;  // the window matters; other targets: drawn as the app's
       return nullptr;
     }
-    copy_in(app, s);
+    copy_in(st, app, s, !again || !same);
     for (const ShadowImage& im : s.images)
-      if (!im.renderbuffer) st.textures[im.app] = im.shadow;
+      if (!im.renderbuffer) st.textures[im.app] = {im.shadow, im.kind};
     return &s;
   }
 
@@ -528,7 +650,7 @@ struct ProbeFrames::Impl {
     bool touched = false;
     for (int s = 0; s < stream_count; ++s) {
       auto it = streams[s].shadows.find(app);
-      if (it != streams[s].shadows.end() && it->second.initialized_frame == frame) continue;
+      if (it != streams[s].shadows.end() && current(it->second)) continue;
       shadow(streams[s], app);
       touched = true;
     }
@@ -601,14 +723,16 @@ struct ProbeFrames::Impl {
     scale_box(b, sx, sy, scissor);
     g.Viewport(viewport[0], viewport[1], viewport[2], viewport[3]);
     g.Scissor(scissor[0], scissor[1], scissor[2], scissor[3]);
-    for (int u = 0; u < units; ++u) {
-      auto t = st.textures.find(static_cast<GLuint>(unit_texture[u]));
-      const bool want = t != st.textures.end();
-      if (!want && !redirected[u]) continue;
-      agl().ActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(u));
-      g.BindTexture(GL_TEXTURE_2D, want ? t->second : static_cast<GLuint>(unit_texture[u]));
-      redirected[u] = want;
-    }
+    for (int u = 0; u < units; ++u)
+      for (int k = 0; k < kKindCount; ++k) {
+        if (!((kinds >> k) & 1)) continue;
+        auto t = st.textures.find(static_cast<GLuint>(unit_texture[u][k]));
+        const bool want = t != st.textures.end() && t->second.kind == kKinds[k];
+        if (!want && !redirected[u][k]) continue;
+        agl().ActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(u));
+        g.BindTexture(kKinds[k], want ? t->second.texture : static_cast<GLuint>(unit_texture[u][k]));
+        redirected[u][k] = want;
+      }
     if (c.bound_variants)
       give_app_space_for_stream(c.bound_variants->at(st.config), sh);
     else if (c.pipeline_fragment_variants)
@@ -624,11 +748,11 @@ struct ProbeFrames::Impl {
     const float ry = static_cast<float>(sh.app_height) / static_cast<float>(sh.height);
     give_app_space(v, rx, ry, [&](GLint unit) -> SamplerSize {
       const bool tracked = unit >= 0 && unit < units;
-      const GLuint app = tracked ? static_cast<GLuint>(unit_texture[unit]) : targets()->texture_at_unit(unit);
+      const GLuint app = tracked ? static_cast<GLuint>(unit_texture[unit][0]) : targets()->texture_at_unit(unit);
       GLint w = 0, h = 0;
       bool scaled = false;
       if (!targets()->app_texture_size(app, &w, &h, &scaled)) return {0, 0, 0};
-      return scaled || (tracked && redirected[unit]) ? SamplerSize{w, h, 1} : SamplerSize{0, 0, 0};
+      return scaled || (tracked && redirected[unit][0]) ? SamplerSize{w, h, 1} : SamplerSize{0, 0, 0};
     });
   }
 
@@ -646,10 +770,16 @@ struct ProbeFrames::Impl {
     agl().GetIntegerv(GL_SCISSOR_BOX, saved_scissor);
     saved_active = get(GL_ACTIVE_TEXTURE);
     saved_config = c.config;
+    kinds = 1;
+    for (int s = 0; s < stream_count; ++s)
+      for (const auto& [app, stand_in] : streams[s].textures) kinds |= 1u << kind_index(stand_in.kind);
     for (int u = 0; u < units; ++u) {
       agl().ActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(u));
-      unit_texture[u] = get(GL_TEXTURE_BINDING_2D);
-      redirected[u] = false;
+      for (int k = 0; k < kKindCount; ++k) {
+        if (!((kinds >> k) & 1)) continue;
+        unit_texture[u][k] = get(kKindBindings[k]);
+        redirected[u][k] = false;
+      }
     }
     stream = -1;
     return true;
@@ -663,12 +793,13 @@ struct ProbeFrames::Impl {
 
   void end_duplicate() {
     const ApplyGl& g = agl();
-    for (int u = 0; u < units; ++u) {
-      if (!redirected[u]) continue;
-      agl().ActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(u));
-      g.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(unit_texture[u]));
-      redirected[u] = false;
-    }
+    for (int u = 0; u < units; ++u)
+      for (int k = 0; k < kKindCount; ++k) {
+        if (!redirected[u][k]) continue;
+        agl().ActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(u));
+        g.BindTexture(kKinds[k], static_cast<GLuint>(unit_texture[u][k]));
+        redirected[u][k] = false;
+      }
     agl().ActiveTexture(static_cast<GLenum>(saved_active));
     c.config = saved_config;
     if (c.bound_variants)
@@ -1126,8 +1257,8 @@ void ProbeFrames::generate_mipmap(GLuint texture) {
   bool rebound = false;
   for (int s = 0; s < p.stream_count; ++s) {
     const auto shadow = p.streams[s].textures.find(texture);
-    if (shadow == p.streams[s].textures.end()) continue;
-    g.BindTexture(GL_TEXTURE_2D, shadow->second);
+    if (shadow == p.streams[s].textures.end() || shadow->second.kind != GL_TEXTURE_2D) continue;
+    g.BindTexture(GL_TEXTURE_2D, shadow->second.texture);
     pgl().GenerateMipmap(GL_TEXTURE_2D);
     rebound = true;
   }

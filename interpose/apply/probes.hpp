@@ -15,8 +15,11 @@
 // Left out of the duplicate (the probe still runs; what they draw is the app's): draws with
 // transform feedback active, draws of programs with storage blocks or atomic counters (side
 // effects), draws inside the app's occlusion queries, compute dispatches, glCopyTex*.
-// Framebuffers with layered, cube-map or array attachments are not
-// shadowed; contexts before GL 4.2 / GLES 3.1 are not probed.
+// A layer of an array texture or a cube map's face (a shadow renderer's cascades and faces,
+// re-attached one after another) is drawn into the stream's own copy of the whole texture at
+// the stream's scale, which the stream's draws then sample; layered attachments (a geometry
+// shader choosing the layer) and levels above 0 are not shadowed; contexts before GL 4.2 /
+// GLES 3.1 are not probed.
 #pragma once
 #include <cstdint>
 #include <memory>

@@ -440,6 +440,11 @@ bool TargetScaler::depth_texture(GLuint texture) const {
   return it != textures_.end() && depth_format(it->second.internal_format);
 }
 
+GLenum TargetScaler::kind_of(GLuint texture) const {
+  const auto it = textures_.find(texture);
+  return it == textures_.end() || it->second.app_size.empty() ? 0 : it->second.kind;
+}
+
 int full_mip_levels(int width, int height) {
   int levels = 1;
   while ((std::max(width, height) >> levels) > 0) ++levels;
@@ -839,12 +844,14 @@ void TargetScaler::bind_framebuffer(GLenum target, GLuint fbo) {
 }
 
 void TargetScaler::framebuffer_attachment_changed(GLenum target) {
+  ++attachment_changes_;
   const GLuint fbo = target == GL_READ_FRAMEBUFFER ? read_fbo_ : draw_fbo_;
   auto it = framebuffers_.find(fbo);
   if (it != framebuffers_.end()) it->second.attachments_known = false;
 }
 
 void TargetScaler::named_framebuffer_attachment_changed(GLuint framebuffer) {
+  ++attachment_changes_;
   auto it = framebuffers_.find(framebuffer);
   if (it != framebuffers_.end()) it->second.attachments_known = false;
 }

@@ -88,6 +88,9 @@ class TargetScaler {
   void framebuffer_attachment_changed(GLenum target);
   // The same by name (glNamedFramebufferTexture*, glNamedFramebufferRenderbuffer).
   void named_framebuffer_attachment_changed(GLuint framebuffer);
+  // Counts the app's attachment changes to any framebuffer: quality probes describe a
+  // framebuffer again when it moved (a shadow renderer re-attaching layer after layer).
+  uint64_t attachment_changes() const { return attachment_changes_; }
   void framebuffers_deleted(GLsizei n, const GLuint* names);
   void textures_deleted(GLsizei n, const GLuint* names);
   void renderbuffers_deleted(GLsizei n, const GLuint* names);
@@ -129,6 +132,8 @@ class TargetScaler {
   // A depth, depth-stencil or stencil internal format; a 2D texture the scaler knows made of one.
   static bool depth_format(GLint format);
   bool depth_texture(GLuint texture) const;
+  // The kind (texture_kind) of a texture the scaler saw specified; 0 for one it did not.
+  GLenum kind_of(GLuint texture) const;
   void renderbuffer_storage(GLsizei samples, GLenum internal_format, GLsizei* width, GLsizei* height);
   // x0, y0, x1, y1 each, by the scales of the app's framebuffers `read` and `draw`.
   void blit_rectangles(GLuint read, GLuint draw, GLint* src, GLint* dst) const;
@@ -258,6 +263,7 @@ class TargetScaler {
   bool any_scaled_ = false;
   bool gles_ = false;
   uint64_t frame_ = 1;
+  uint64_t attachment_changes_ = 0;
   GLint texture_units_ = -1;  // GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, once asked
 };
 

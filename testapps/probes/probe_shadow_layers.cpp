@@ -9,6 +9,8 @@
 //             dsa           glCreateTextures, glTextureStorage*, glNamedFramebufferTextureLayer
 //   --static 1              the shadow map drawn at the first frame only and sampled ever after
 //                           (a cached shadow map of static geometry)
+//   --moving 1              the occluders move from frame to frame (by 0.1 of a layer, back
+//                           and forth): a layer's content from the frame before is stale
 //   --each PREFIX           every frame's image also into PREFIX<frame>.ppm
 // The shadow map is 128 x 128 whatever the window's size. Exits 4 when glGetError reports an
 // error at any frame, 5 when the shadow map does not answer as the app made it (its size, its
@@ -146,12 +148,13 @@ bool answers_as_made(GLuint t, bool cube, Storage storage) {
 
 int main(int argc, char** argv) {
   ProbeArgs args = parse_probe_args(argc, argv);
-  bool cube = false, cached = false;
+  bool cube = false, cached = false, moving = false;
   Storage storage = Storage::kMutable;
   std::string each;
   for (int i = 1; i + 1 < argc; ++i) {
     if (!strcmp(argv[i], "--layout")) cube = !strcmp(argv[i + 1], "cube");
     if (!strcmp(argv[i], "--static")) cached = !strcmp(argv[i + 1], "1");
+    if (!strcmp(argv[i], "--moving")) moving = !strcmp(argv[i + 1], "1");
     if (!strcmp(argv[i], "--each")) each = argv[i + 1];
     if (!strcmp(argv[i], "--storage"))
       storage = !strcmp(argv[i + 1], "immutable") ? Storage::kImmutable
@@ -213,7 +216,8 @@ int main(int argc, char** argv) {
       for (int layer = 0; layer < layers; ++layer) {
         attach(layer);
         glClear(GL_DEPTH_BUFFER_BIT);
-        glUniform2f(offset, 0.35f * ((layer % 3) - 1), 0.25f * ((layer % 2) ? 1.0f : -1.0f));
+        const float shift = moving && f % 2 ? 0.2f : 0.0f;
+        glUniform2f(offset, 0.35f * ((layer % 3) - 1) + shift, 0.25f * ((layer % 2) ? 1.0f : -1.0f));
         glDrawArrays(GL_TRIANGLES, 0, 6);
       }
       glDisable(GL_DEPTH_TEST);

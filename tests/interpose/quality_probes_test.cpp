@@ -476,6 +476,92 @@ TEST_CASE("the best stream draws an app's mip chains as the app does: its glGene
   fs::remove_all(dir);
 }
 
+TEST_CASE("probes draw shadow maps in array layers and cube-map faces at each stream's scale") {
+  // probe_shadow_layers draws a depth 2D array's cascades (or a cube map's faces) through one
+  // framebuffer re-attached layer by layer, then samples them all. Shown at its shadow pass's
+  // half level, a probe frame's best stream must draw the shadow map at full size into its own
+  // shadow of the array and sample that: its image is the app's own at full size.
+  // (Left to the app's texture, the best stream sampled the half-size shadows the app drew, and
+  // the probe error read 1e-6.) Shown at full size, the stream with the shadow pass at half draws
+  // what the app draws forced to half. Probes every second frame.
+  const std::string layout = GENERATE("array", "cube");
+  INFO(layout);
+  const std::string dir = temp_path("probes_shadow_layers"), manifest = dir + "/shadow.toml";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  {
+    std::ofstream m(manifest);
+    m << "[[pass]]\nname = \"shadow\"\nmatch = { source = \"/* shadow */\" }\n[[pass.level]]\nname = \"full\"\n"
+         "[[pass.level]]\nname = \"half\"\nscale = 0.5\ntargets = [\"self\"]\n";
+  }
+  const std::vector<std::string> args = {probe_path("probe_shadow_layers"), "--size", "96", "--layout", layout};
+  auto run = [&](const std::string& config, const std::string& out, bool probes) {
+    auto a = args;
+    a.insert(a.end(), {"--frames", probes ? "8" : "6", "--out", out});
+    std::map<std::string, std::string> env = {{"LD_PRELOAD", shim_path()},
+                                              {"GLBUDGET_CONFIG", manifest},
+                                              {"GLBUDGET_SENSOR", "cpu"},
+                                              {"GLBUDGET_FORCE", config},
+                                              {"GLBUDGET_LOG", dir + "/log_" + config + ".csv"}};
+    if (probes) env.insert({{"GLBUDGET_PROBE_PERIOD", "2"}, {"GLBUDGET_DUMP_PROBES", dir + "/" + config}});
+    fs::create_directories(dir + "/" + config);
+    const ProcessResult r = run_process(a, env);
+    INFO(config << (probes ? " probed\n" : "\n") << r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.err.find("glbudget:") == std::string::npos);
+  };
+  run("0,0", dir + "/full.ppm", false);
+  run("0,1", dir + "/half.ppm", false);
+  run("0,1", dir + "/probed_half.ppm", true);
+  run("0,0", dir + "/probed_full.ppm", true);
+  // The probe wrote its window bottom-up (glReadPixels), the dump is top-down: the largest
+  // difference of a value, and how many values differ.
+  auto compare_flipped = [](const Image& bottom_up, const Image& top_down) {
+    std::pair<int, size_t> out{0, 0};
+    const size_t row = static_cast<size_t>(bottom_up.width) * 3;
+    for (int y = 0; y < bottom_up.height; ++y)
+      for (size_t x = 0; x < row; ++x) {
+        const int d = std::abs(bottom_up.pixels[static_cast<size_t>(bottom_up.height - 1 - y) * row + x] -
+                               top_down.pixels[y * row + x]);
+        out.first = std::max(out.first, d);
+        out.second += d != 0;
+      }
+    return out;
+  };
+  const Image full = read_image(dir + "/full.ppm"), half = read_image(dir + "/half.ppm");
+  REQUIRE(!full.pixels.empty());
+  REQUIRE(full.pixels != half.pixels);
+  // Not bit for bit: llvmpipe rasterizes the window y-flipped, so a stream's window-sized
+  // texture meets the shadow comparison's texel edges at a few other pixels (the app's own lit
+  // pass drawn into a texture differs from its window as much: 25 pixels with nearest
+  // filtering, a unit in a few values with its 2 x 2 PCF). The half-size shadows differ in
+  // hundreds of values, by up to a shadow's depth.
+  const Image best = read_image(dir + "/0,1/probe_c0_f6_s1_0:0.ppm");
+  REQUIRE(best.width == full.width);
+  const auto [best_max, best_count] = compare_flipped(full, best);
+  const auto [half_max, half_count] = compare_flipped(half, best);
+  INFO("best stream against full: max " << best_max << " in " << best_count << "; against half: max " << half_max
+                                        << " in " << half_count);
+  CHECK(best_max <= 1);
+  CHECK(best_count <= 40);
+  CHECK(half_count > 10 * best_count);
+  const Image cheap = read_image(dir + "/0,0/probe_c0_f6_s1_0:1.ppm");
+  REQUIRE(cheap.width == half.width);
+  const auto [cheap_max, cheap_count] = compare_flipped(half, cheap);
+  INFO("half stream against half: max " << cheap_max << " in " << cheap_count);
+  CHECK(cheap_max <= 1);
+  CHECK(cheap_count <= 40);
+  // The shown image's error against the best stream is the half shadow map's, not nothing.
+  size_t probed = 0;
+  for (const auto& row : read_csv_rows_by_name(dir + "/log_0,1.csv"))
+    if (!row.at("probe_error").empty()) {
+      CHECK(std::stod(row.at("probe_error")) > 0.005);
+      ++probed;
+    }
+  CHECK(probed >= 3);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("each context's probe errors reach its own rows, though frame numbers restart per context") {
   // probe_contexts: three contexts on one thread, each with frames 1, 2, ... and context i
   // drawing the scene's frame f + i at its frame f, so the same frame number shows a different
