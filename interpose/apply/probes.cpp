@@ -64,6 +64,7 @@ struct ProbeGl {
   void(APIENTRYP GetTexLevelParameteriv)(GLenum, GLint, GLenum, GLint*) = nullptr;
   void(APIENTRYP TexStorage2D)(GLenum, GLsizei, GLenum, GLsizei, GLsizei) = nullptr;
   void(APIENTRYP TexStorage3D)(GLenum, GLsizei, GLenum, GLsizei, GLsizei, GLsizei) = nullptr;
+  void(APIENTRYP FramebufferTexture)(GLenum, GLenum, GLuint, GLint) = nullptr;  // GL 3.2, ES 3.2
   void(APIENTRYP GetRenderbufferParameteriv)(GLenum, GLenum, GLint*) = nullptr;
   void(APIENTRYP DrawBuffers)(GLsizei, const GLenum*) = nullptr;
   void(APIENTRYP GetQueryiv)(GLenum, GLenum, GLint*) = nullptr;
@@ -92,6 +93,7 @@ const ProbeGl& pgl() {
     load(p.GetTexLevelParameteriv, "glGetTexLevelParameteriv");
     load(p.TexStorage2D, "glTexStorage2D");
     load(p.TexStorage3D, "glTexStorage3D");
+    load(p.FramebufferTexture, "glFramebufferTexture");
     load(p.GetRenderbufferParameteriv, "glGetRenderbufferParameteriv");
     load(p.DrawBuffers, "glDrawBuffers");
     load(p.GetQueryiv, "glGetQueryiv");
@@ -149,8 +151,9 @@ struct ShadowImage {
   GLint format = 0;
   GLsizei samples = 0;
   GLsizei levels = 1;  // a texture's mip levels, as many as the app's (its glGenerateMipmap is repeated)
-  // A layered texture's: its kind, its layers (a cube map's six faces), the one attached. Its
-  // shadow is the stream's (Stream::layered), shared by every framebuffer drawing a layer.
+  // A layered texture's: its kind, its layers (a cube map's six faces), the one attached (-1:
+  // all, a geometry shader choosing). Its shadow is the stream's (Stream::layered), shared by
+  // every framebuffer drawing into it.
   GLenum kind = GL_TEXTURE_2D;
   GLsizei layers = 1;
   GLint layer = 0;
@@ -343,7 +346,7 @@ struct ProbeFrames::Impl {
           if (at_least(3, 2, 3, 2))
             g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_LAYERED,
                                                   &layered);
-          if (level != 0 || layered) return false;
+          if (level != 0) return false;
           // The kind the scaler saw the texture made as, else taken to be 2D; a texture of
           // another kind cannot be bound to it: the error says so (GL_TEXTURE_TARGET, the direct
           // question, is not answered in compatibility profiles). Called within the shim's own
@@ -352,8 +355,11 @@ struct ProbeFrames::Impl {
           im.kind = known ? known : GL_TEXTURE_2D;
           const int k = kind_index(im.kind);
           if (k < 0 || (im.kind != GL_TEXTURE_2D && (!p.TexStorage3D || !g.FramebufferTextureLayer))) return false;
-          if (im.kind == GL_TEXTURE_2D && (face != 0 || layer != 0)) return false;
-          im.layer = im.kind == GL_TEXTURE_CUBE_MAP && face != 0 ? face - GL_TEXTURE_CUBE_MAP_POSITIVE_X : layer;
+          if (im.kind == GL_TEXTURE_2D && (face != 0 || layer != 0 || layered)) return false;
+          if (layered && !p.FramebufferTexture) return false;
+          im.layer = layered                                       ? -1
+                     : im.kind == GL_TEXTURE_CUBE_MAP && face != 0 ? face - GL_TEXTURE_CUBE_MAP_POSITIVE_X
+                                                                   : layer;
           const GLint bound = get(kKindBindings[k]);
           drain_gl_errors();
           g.BindTexture(im.kind, im.app);
@@ -385,7 +391,7 @@ struct ProbeFrames::Impl {
           // would stay undefined in the shadow, where level 0 alone stands for them.
           im.levels = im.kind == GL_TEXTURE_2D && generated_mipmaps.count(im.app) ? texture_levels() : 1;
           g.BindTexture(im.kind, static_cast<GLuint>(bound));
-          if (im.layer < 0 || im.layer >= im.layers) return false;
+          if (im.layer < -1 || im.layer >= im.layers) return false;
         }
         if (w <= 0 || h <= 0 || im.format == 0) return false;
         if (stored_w == 0) stored_w = w, stored_h = h;
@@ -496,7 +502,9 @@ struct ProbeFrames::Impl {
         g.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, im.point, GL_RENDERBUFFER, im.shadow);
       } else if (im.layered()) {
         im.shadow = layered_shadow(st, im, s.width, s.height).texture;
-        if (im.kind == GL_TEXTURE_CUBE_MAP)
+        if (im.layer < 0)
+          p.FramebufferTexture(GL_DRAW_FRAMEBUFFER, im.point, im.shadow, 0);
+        else if (im.kind == GL_TEXTURE_CUBE_MAP)
           g.FramebufferTexture2D(GL_DRAW_FRAMEBUFFER, im.point,
                                  GL_TEXTURE_CUBE_MAP_POSITIVE_X + static_cast<GLenum>(im.layer), im.shadow, 0);
         else
@@ -520,6 +528,44 @@ struct ProbeFrames::Impl {
 
   // The app's framebuffer's content now, before this frame's first draw to it, into the
   // shadow: what the app kept from before (or cleared to) is where both streams start.
+  // The layers of a layered image (the attached one, or all) not yet copied this probe frame,
+  // from the app's texture at its stored size into the stream's at the shadow's. A layer the
+  // stream drew earlier in the frame keeps what it drew. Binds its own framebuffers.
+  GLuint layer_fbo[2] = {0, 0};
+  void copy_layers(Stream& st, const ShadowImage& im, int src_w, int src_h, int dst_w, int dst_h) {
+    const ApplyGl& g = agl();
+    LayeredShadow& l = st.layered[im.app];
+    const bool color =
+        im.point != GL_DEPTH_ATTACHMENT && im.point != GL_STENCIL_ATTACHMENT && im.point != GL_DEPTH_STENCIL_ATTACHMENT;
+    const GLenum point = color ? GL_COLOR_ATTACHMENT0 : im.point;
+    const GLbitfield mask = color                               ? GL_COLOR_BUFFER_BIT
+                            : im.point == GL_DEPTH_ATTACHMENT   ? GL_DEPTH_BUFFER_BIT
+                            : im.point == GL_STENCIL_ATTACHMENT ? GL_STENCIL_BUFFER_BIT
+                                                                : GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT;
+    if (!layer_fbo[0]) g.GenFramebuffers(2, layer_fbo);
+    auto attach = [&](GLenum target, GLuint texture, GLint layer) {
+      if (im.kind == GL_TEXTURE_CUBE_MAP)
+        g.FramebufferTexture2D(target, point, GL_TEXTURE_CUBE_MAP_POSITIVE_X + static_cast<GLenum>(layer), texture, 0);
+      else
+        g.FramebufferTextureLayer(target, point, texture, 0, layer);
+    };
+    const GLint first = im.layer < 0 ? 0 : im.layer, last = im.layer < 0 ? im.layers - 1 : im.layer;
+    for (GLint layer = first; layer <= last; ++layer) {
+      uint64_t& copied = l.copied_frame[static_cast<size_t>(layer)];
+      if (copied == frame) continue;
+      copied = frame;
+      g.BindFramebuffer(GL_READ_FRAMEBUFFER, layer_fbo[0]);
+      attach(GL_READ_FRAMEBUFFER, im.app, layer);
+      g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, layer_fbo[1]);
+      attach(GL_DRAW_FRAMEBUFFER, l.texture, layer);
+      if (color) {
+        g.ReadBuffer(GL_COLOR_ATTACHMENT0);
+        pgl().DrawBuffers(1, &point);
+      }
+      g.BlitFramebuffer(0, 0, src_w, src_h, 0, 0, dst_w, dst_h, mask, GL_NEAREST);
+    }
+  }
+
   // `whole`: every image; else only layers of layered images not yet copied this frame (the
   // framebuffer was described again after the app re-attached its images).
   void copy_in(Stream& st, GLuint app, Shadow& s, bool whole) {
@@ -538,17 +584,14 @@ struct ProbeFrames::Impl {
     bool multisampled = false;
     for (const ShadowImage& im : s.images) multisampled |= im.samples > 0;
     if (multisampled && (src_w != s.width || src_h != s.height)) return;
+    for (const ShadowImage& im : s.images)
+      if (im.layered()) copy_layers(st, im, src_w, src_h, s.width, s.height);
+    g.BindFramebuffer(GL_READ_FRAMEBUFFER, real);
+    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, s.fbo);
     const GLint read_buffer = get(GL_READ_BUFFER);
     GLbitfield depth_stencil = 0;
     for (const ShadowImage& im : s.images) {
-      if (im.layered()) {
-        // A layer the stream drew earlier in the frame keeps what it drew.
-        uint64_t& copied = st.layered[im.app].copied_frame[static_cast<size_t>(im.layer)];
-        if (copied == frame) continue;
-        copied = frame;
-      } else if (!whole) {
-        continue;
-      }
+      if (im.layered() || !whole) continue;
       if (im.point == GL_DEPTH_ATTACHMENT)
         depth_stencil |= GL_DEPTH_BUFFER_BIT;
       else if (im.point == GL_STENCIL_ATTACHMENT)

@@ -16,10 +16,10 @@
 // transform feedback active, draws of programs with storage blocks or atomic counters (side
 // effects), draws inside the app's occlusion queries, compute dispatches, glCopyTex*.
 // A layer of an array texture or a cube map's face (a shadow renderer's cascades and faces,
-// re-attached one after another) is drawn into the stream's own copy of the whole texture at
-// the stream's scale, which the stream's draws then sample; layered attachments (a geometry
-// shader choosing the layer) and levels above 0 are not shadowed; contexts before GL 4.2 /
-// GLES 3.1 are not probed.
+// re-attached one after another), or the whole texture attached (a geometry shader choosing
+// the layer), is drawn into the stream's own copy of the whole texture at the stream's scale,
+// which the stream's draws then sample. Levels above 0 are not shadowed; contexts before
+// GL 4.2 / GLES 3.1 are not probed.
 #pragma once
 #include <cstdint>
 #include <memory>

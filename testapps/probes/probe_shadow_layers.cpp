@@ -7,6 +7,9 @@
 //   --storage mutable       glTexImage3D / glTexImage2D per face (default)
 //             immutable     glTexStorage3D / glTexStorage2D(GL_TEXTURE_CUBE_MAP)
 //             dsa           glCreateTextures, glTextureStorage*, glNamedFramebufferTextureLayer
+//   --attach layered        the whole texture attached (glFramebufferTexture), cleared once and
+//                           drawn by one draw whose geometry shader sends a copy of the
+//                           occluder to each layer (gl_Layer), as one-pass shadow renderers do
 //   --static 1              the shadow map drawn at the first frame only and sampled ever after
 //                           (a cached shadow map of static geometry)
 //   --moving 1              the occluders move from frame to frame (by 0.1 of a layer, back
@@ -36,6 +39,15 @@ const char* kOccluderVertex =
     "void main(){ p = pos; gl_Position = vec4(pos * 0.45 + offset, 0.0, 1.0); }\n";
 const char* kOccluderFragment =
     "#version 330 core\nin vec2 p;\nvoid main(){ if (dot(p, p) > 1.0) discard; /* shadow */ }\n";
+// The layered pass: the occluder once per layer, moved by that layer's offset.
+const char* kLayeredVertex =
+    "#version 330 core\nlayout(location=0) in vec2 pos;\nout vec2 vp;\nvoid main(){ vp = pos; }\n";
+const char* kLayeredGeometry =
+    "#version 330 core\nlayout(triangles) in;\nlayout(triangle_strip, max_vertices = 18) out;\n"
+    "uniform vec2 offsets[6];\nuniform int layers;\nin vec2 vp[];\nout vec2 p;\n"
+    "void main(){ for (int l = 0; l < layers; ++l) { for (int i = 0; i < 3; ++i) {\n"
+    "  gl_Layer = l; p = vp[i]; gl_Position = vec4(vp[i] * 0.45 + offsets[l], 0.0, 1.0); EmitVertex(); }\n"
+    "  EndPrimitive(); } }\n";
 const char* kLitVertex =
     "#version 330 core\nlayout(location=0) in vec2 pos;\nout vec2 uv;\n"
     "void main(){ uv = pos * 0.5 + 0.5; gl_Position = vec4(pos, 0.0, 1.0); }\n";
@@ -58,12 +70,14 @@ const char* kLitCube =
     "  vec3 tint = vec3(0.2 + 0.15 * float(face), 0.8, 1.0 - 0.15 * float(face));\n"
     "  frag = vec4(tint * (0.25 + 0.75 * lit), 1.0); /* lit */ }\n";
 
-GLuint program(const char* vs, const char* fs) {
+GLuint program(const char* vs, const char* fs, const char* gs = nullptr) {
   const GLuint p = glCreateProgram();
   const GLuint v = compile_shader(GL_VERTEX_SHADER, vs), f = compile_shader(GL_FRAGMENT_SHADER, fs);
-  if (!v || !f) return 0;
+  const GLuint g = gs ? compile_shader(GL_GEOMETRY_SHADER, gs) : 0;
+  if (!v || !f || (gs && !g)) return 0;
   glAttachShader(p, v);
   glAttachShader(p, f);
+  if (g) glAttachShader(p, g);
   glLinkProgram(p);
   GLint ok = 0;
   glGetProgramiv(p, GL_LINK_STATUS, &ok);
@@ -148,12 +162,13 @@ bool answers_as_made(GLuint t, bool cube, Storage storage) {
 
 int main(int argc, char** argv) {
   ProbeArgs args = parse_probe_args(argc, argv);
-  bool cube = false, cached = false, moving = false;
+  bool cube = false, cached = false, moving = false, layered = false;
   Storage storage = Storage::kMutable;
   std::string each;
   for (int i = 1; i + 1 < argc; ++i) {
     if (!strcmp(argv[i], "--layout")) cube = !strcmp(argv[i + 1], "cube");
     if (!strcmp(argv[i], "--static")) cached = !strcmp(argv[i + 1], "1");
+    if (!strcmp(argv[i], "--attach")) layered = !strcmp(argv[i + 1], "layered");
     if (!strcmp(argv[i], "--moving")) moving = !strcmp(argv[i + 1], "1");
     if (!strcmp(argv[i], "--each")) each = argv[i + 1];
     if (!strcmp(argv[i], "--storage"))
@@ -165,7 +180,8 @@ int main(int argc, char** argv) {
   EglFns egl;
   EglWindow win;
   if (!open_current_window("probe_shadow_layers", egl, ContextKind::kCore45, w, h, &win)) return 2;
-  const GLuint occluder = program(kOccluderVertex, kOccluderFragment),
+  const GLuint occluder = layered ? program(kLayeredVertex, kOccluderFragment, kLayeredGeometry)
+                                  : program(kOccluderVertex, kOccluderFragment),
                lit = program(kLitVertex, cube ? kLitCube : kLitArray);
   if (!occluder || !lit) {
     fprintf(stderr, "probe_shadow_layers: a program does not link\n");
@@ -187,7 +203,11 @@ int main(int argc, char** argv) {
   }
   // One layer (a cube map's face) attached at a time, as a shadow renderer walks its cascades.
   auto attach = [&](int layer) {
-    if (storage == Storage::kDsa)
+    if (layered && storage == Storage::kDsa)
+      glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, shadows, 0);
+    else if (layered)
+      glFramebufferTexture(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, shadows, 0);
+    else if (storage == Storage::kDsa)
       glNamedFramebufferTextureLayer(fbo, GL_DEPTH_ATTACHMENT, shadows, 0, layer);
     else if (cube)
       glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_CUBE_MAP_POSITIVE_X + layer, shadows, 0);
@@ -202,7 +222,8 @@ int main(int argc, char** argv) {
   }
   glUseProgram(lit);
   glUniform1i(glGetUniformLocation(lit, "shadows"), 0);
-  const GLint offset = glGetUniformLocation(occluder, "offset");
+  const GLint offset = glGetUniformLocation(occluder, "offset"), offsets = glGetUniformLocation(occluder, "offsets");
+  glProgramUniform1i(occluder, glGetUniformLocation(occluder, "layers"), layers);
 
   std::vector<uint8_t> image(static_cast<size_t>(w) * h * 4);
   GLenum error = glGetError();
@@ -213,11 +234,21 @@ int main(int argc, char** argv) {
       glViewport(0, 0, kShadowSize, kShadowSize);
       glEnable(GL_DEPTH_TEST);
       glUseProgram(occluder);
+      const float shift = moving && f % 2 ? 0.2f : 0.0f;
+      float at[12];
       for (int layer = 0; layer < layers; ++layer) {
+        at[2 * layer] = 0.35f * ((layer % 3) - 1) + shift;
+        at[2 * layer + 1] = 0.25f * ((layer % 2) ? 1.0f : -1.0f);
+      }
+      if (layered) {
+        glClear(GL_DEPTH_BUFFER_BIT);  // every layer
+        glUniform2fv(offsets, layers, at);
+        glDrawArrays(GL_TRIANGLES, 0, 6);
+      }
+      for (int layer = 0; layer < layers && !layered; ++layer) {
         attach(layer);
         glClear(GL_DEPTH_BUFFER_BIT);
-        const float shift = moving && f % 2 ? 0.2f : 0.0f;
-        glUniform2f(offset, 0.35f * ((layer % 3) - 1) + shift, 0.25f * ((layer % 2) ? 1.0f : -1.0f));
+        glUniform2f(offset, at[2 * layer], at[2 * layer + 1]);
         glDrawArrays(GL_TRIANGLES, 0, 6);
       }
       glDisable(GL_DEPTH_TEST);

@@ -483,9 +483,11 @@ TEST_CASE("probes draw shadow maps in array layers and cube-map faces at each st
   // shadow of the array and sample that: its image is the app's own at full size.
   // (Left to the app's texture, the best stream sampled the half-size shadows the app drew, and
   // the probe error read 1e-6.) Shown at full size, the stream with the shadow pass at half draws
-  // what the app draws forced to half. Probes every second frame.
+  // what the app draws forced to half. Probes every second frame. The shadow map drawn layer by
+  // layer, or attached whole and drawn once (a geometry shader choosing the layer).
   const std::string layout = GENERATE("array", "cube");
-  INFO(layout);
+  const std::string attach = GENERATE("layer", "layered");
+  INFO(layout << ", " << attach);
   const std::string dir = temp_path("probes_shadow_layers"), manifest = dir + "/shadow.toml";
   fs::remove_all(dir);
   fs::create_directories(dir);
@@ -494,7 +496,8 @@ TEST_CASE("probes draw shadow maps in array layers and cube-map faces at each st
     m << "[[pass]]\nname = \"shadow\"\nmatch = { source = \"/* shadow */\" }\n[[pass.level]]\nname = \"full\"\n"
          "[[pass.level]]\nname = \"half\"\nscale = 0.5\ntargets = [\"self\"]\n";
   }
-  const std::vector<std::string> args = {probe_path("probe_shadow_layers"), "--size", "96", "--layout", layout};
+  const std::vector<std::string> args = {
+      probe_path("probe_shadow_layers"), "--size", "96", "--layout", layout, "--attach", attach};
   auto run = [&](const std::string& config, const std::string& out, bool probes) {
     auto a = args;
     a.insert(a.end(), {"--frames", probes ? "8" : "6", "--out", out});

@@ -414,10 +414,13 @@ TEST_CASE("shadow maps in the layers of an array or the faces of a cube map scal
   // shadow fragments), the lit pass is drawn as before, the image keeps its shadows, and the
   // texture answers as the app made it (size, layers, immutable format and levels: exit 5 if
   // not; any GL error: exit 4). Made by glTexImage3D / glTexImage2D per face, by glTexStorage*,
-  // or by name (glTextureStorage*, glNamedFramebufferTextureLayer).
+  // or by name (glTextureStorage*, glNamedFramebufferTextureLayer); drawn layer by layer, or
+  // attached whole and drawn once, a geometry shader choosing the layer.
   const std::string layout = GENERATE("array", "cube");
   const std::string storage = GENERATE("mutable", "immutable", "dsa");
-  INFO(layout << ", " << storage);
+  const std::string attach = GENERATE("layer", "layered");
+  if (attach == "layered" && storage == "immutable") return;
+  INFO(layout << ", " << storage << ", " << attach);
   const std::string manifest = shadow_layers_manifest(), plain_img = temp_path("shadow_layers_plain.ppm");
   const std::vector<std::string> args = {probe_path("probe_shadow_layers"),
                                          "--frames",
@@ -428,6 +431,8 @@ TEST_CASE("shadow maps in the layers of an array or the faces of a cube map scal
                                          layout,
                                          "--storage",
                                          storage,
+                                         "--attach",
+                                         attach,
                                          "--out"};
   auto with_out = [&](const std::string& out) {
     auto a = args;
