@@ -755,6 +755,7 @@ struct ProbeFrames::Impl {
       if (!c.bound_variants->at(st.config).draws) return false;
     } else if (c.pipeline && !c.program) {
       bind_pipeline_stages(c);
+      if (pipeline_skips(c)) return false;
     }
     const ApplyGl& g = agl();
     g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, sh.fbo);

@@ -136,6 +136,9 @@ void bind_pipeline_stages(ContextState& c);
 
 // Re-derives the pass of the current binding (program, pipeline or fixed function).
 void update_pass(ContextState& c);
+// Whether a stage of the bound program pipeline is held by a variant whose level skips the
+// pass's draws under c.config.
+bool pipeline_skips(ContextState& c);
 PassId pass_of_program(ShareGroup& g, GLuint program);  // caller holds g.mu
 
 // Every known context, for the final flush at exit.

@@ -198,6 +198,18 @@ void apply_configuration(ContextState& c, const Levels& config) {
   update_pass(c);
 }
 
+bool pipeline_skips(ContextState& c) {
+  auto it = c.pipeline_stages.find(c.pipeline);
+  if (it == c.pipeline_stages.end()) return false;
+  std::lock_guard lock(c.group->mu);
+  for (GLuint p : it->second) {
+    auto info = p ? c.group->programs.find(p) : c.group->programs.end();
+    if (info != c.group->programs.end() && info->second.variants && !info->second.variants->at(c.config).draws)
+      return true;
+  }
+  return false;
+}
+
 void update_pass(ContextState& c) {
   if (!c.counter) return;
   PassId pass = kFixedFunctionPass;

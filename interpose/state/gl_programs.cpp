@@ -126,6 +126,20 @@ void hook_every_draw_of_copies(ContextState& c) {
     c.counter->set_every_draw_hooked(any(c.program ? c.bound_variants : c.pipeline_fragment_variants));
 }
 
+// The manifest pass a pipeline's draws belong to: that of its fragment stage's program, else of
+// the first other stage's that matched one; -1 for none.
+int pipeline_manifest_pass(ContextState& c, const std::array<GLuint, 6>& stages) {
+  std::lock_guard lock(c.group->mu);
+  auto pass_of = [&](GLuint program) {
+    auto it = program ? c.group->programs.find(program) : c.group->programs.end();
+    return it == c.group->programs.end() ? -1 : it->second.manifest_pass;
+  };
+  if (const int pass = pass_of(stages[kFragmentSlot]); pass >= 0) return pass;
+  for (GLuint program : stages)
+    if (const int pass = pass_of(program); pass >= 0) return pass;
+  return -1;
+}
+
 void update_pipeline_uniforms(ContextState& c) {
   c.pipeline_uniform_variants.reset();
   c.pipeline_fragment_variants.reset();
@@ -134,6 +148,8 @@ void update_pipeline_uniforms(ContextState& c) {
   if (it != c.pipeline_active.end()) c.pipeline_uniform_variants = variants_of(c, it->second);
   auto stages = c.pipeline_stages.find(c.pipeline);
   if (stages != c.pipeline_stages.end()) c.pipeline_fragment_variants = variants_of(c, stages->second[kFragmentSlot]);
+  // Its draws are the pass's: the targets it scales ("self"), the passes a probe frame saw.
+  c.manifest_pass = stages == c.pipeline_stages.end() ? -1 : pipeline_manifest_pass(c, stages->second);
   hook_every_draw_of_copies(c);
 }
 }  // namespace

@@ -565,6 +565,47 @@ TEST_CASE("probes draw shadow maps in array layers and cube-map faces at each st
   fs::remove_all(dir);
 }
 
+TEST_CASE("a pass drawn by a program pipeline is probed as one drawn by a program") {
+  // probe_offscreen's compose pass, drawn by a program or by a program pipeline of separable
+  // programs, under a manifest whose one pass is it, with a level that skips its draws. Probe
+  // frames must see it drawing and probe it at that level: a stream "0:1" whose image lacks
+  // the composition. (Drawn by a pipeline, its draws were no pass's: the probes took it for a
+  // pass not in the scene, whose every level costs nothing, and never probed it.)
+  const std::string pipeline = GENERATE("0", "1");
+  INFO("pipeline " << pipeline);
+  const std::string dir = temp_path("probes_pipeline"), manifest = dir + "/compose.toml";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  {
+    std::ofstream m(manifest);
+    m << "[[pass]]\nname = \"compose\"\nmatch = { source = \"/* compose */\" }\n[[pass.level]]\nname = \"on\"\n"
+         "[[pass.level]]\nname = \"off\"\ndraws = false\n";
+  }
+  const ProcessResult r =
+      run_process({probe_path("probe_offscreen"), "--size", "64", "--frames", "10", "--pipeline", pipeline},
+                  {{"LD_PRELOAD", shim_path()},
+                   {"GLBUDGET_CONFIG", manifest},
+                   {"GLBUDGET_SENSOR", "cpu"},
+                   {"GLBUDGET_FORCE", "0,0"},
+                   {"GLBUDGET_PROBE_PERIOD", "2"},
+                   {"GLBUDGET_DUMP_PROBES", dir}});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.err.find("glbudget:") == std::string::npos);
+  int probed = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    if (name.find("_s1_0:1.ppm") == std::string::npos) continue;
+    ++probed;
+    const std::string shown = dir + "/" + name.substr(0, name.find("_s1_")) + "_shown_0:0.ppm";
+    const Image off = read_image(entry.path().string()), on = read_image(shown);
+    REQUIRE(!on.pixels.empty());
+    CHECK(off.pixels != on.pixels);
+  }
+  CHECK(probed >= 2);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("each context's probe errors reach its own rows, though frame numbers restart per context") {
   // probe_contexts: three contexts on one thread, each with frames 1, 2, ... and context i
   // drawing the scene's frame f + i at its frame f, so the same frame number shows a different
