@@ -109,6 +109,7 @@ ApplyGl load_all() {
   load(g.ActiveTexture, "glActiveTexture");
   load(g.TexImage2D, "glTexImage2D");
   load(g.TexImage3D, "glTexImage3D");
+  load(g.TexImage2DMultisample, "glTexImage2DMultisample");
   load(g.TexParameteri, "glTexParameteri");
   load(g.GetTexParameteriv, "glGetTexParameteriv");
   load(g.Viewport, "glViewport");

@@ -106,7 +106,8 @@ struct ApplyGl {
   void(APIENTRYP BindTexture)(GLenum, GLuint) = nullptr;
   void(APIENTRYP ActiveTexture)(GLenum) = nullptr;
   void(APIENTRYP TexImage2D)(GLenum, GLint, GLint, GLsizei, GLsizei, GLint, GLenum, GLenum, const void*) = nullptr;
-  PFNGLTEXIMAGE3DPROC TexImage3D = nullptr;  // GL 1.2, ES 3.0
+  PFNGLTEXIMAGE3DPROC TexImage3D = nullptr;                        // GL 1.2, ES 3.0
+  PFNGLTEXIMAGE2DMULTISAMPLEPROC TexImage2DMultisample = nullptr;  // GL 3.2, not ES
   void(APIENTRYP TexParameteri)(GLenum, GLenum, GLint) = nullptr;
   void(APIENTRYP GetTexParameteriv)(GLenum, GLenum, GLint*) = nullptr;
   void(APIENTRYP Viewport)(GLint, GLint, GLsizei, GLsizei) = nullptr;

@@ -167,7 +167,8 @@ void handle_glTexImage2D(pfn_glTexImage2D real, GLenum target, GLint level, GLin
                          GLsizei height, GLint border, GLenum format, GLenum type, const void* pixels) {
   TargetScaler* s = scaler();
   // GL_TEXTURE_2D or a cube map's face (TargetScaler::texture_kind); not a 1D array.
-  if (s && TargetScaler::texture_kind(target) && target != GL_TEXTURE_CUBE_MAP && width > 0 && height > 0)
+  if (s && TargetScaler::texture_kind(target) && target != GL_TEXTURE_CUBE_MAP && target != GL_TEXTURE_2D_MULTISAMPLE &&
+      width > 0 && height > 0)
     s->tex_image(target, level, internalformat, &width, &height, 1, format, type, uploads_data(pixels));
   real(target, level, internalformat, width, height, border, format, type, pixels);
 }
@@ -200,6 +201,36 @@ void handle_glTextureStorage2D(pfn_glTextureStorage2D real, GLuint texture, GLsi
       return;
   }
   real(texture, levels, internalformat, width, height);
+}
+
+void handle_glTexImage2DMultisample(pfn_glTexImage2DMultisample real, GLenum target, GLsizei samples,
+                                    GLenum internalformat, GLsizei width, GLsizei height,
+                                    GLboolean fixedsamplelocations) {
+  TargetScaler* s = scaler();
+  if (s && target == GL_TEXTURE_2D_MULTISAMPLE && width > 0 && height > 0)
+    s->tex_image_multisample(samples, internalformat, &width, &height, fixedsamplelocations);
+  real(target, samples, internalformat, width, height, fixedsamplelocations);
+}
+
+void handle_glTexStorage2DMultisample(pfn_glTexStorage2DMultisample real, GLenum target, GLsizei samples,
+                                      GLenum internalformat, GLsizei width, GLsizei height,
+                                      GLboolean fixedsamplelocations) {
+  TargetScaler* s = scaler();
+  if (s && target == GL_TEXTURE_2D_MULTISAMPLE &&
+      s->tex_storage_multisample(s->bound_texture(target), samples, internalformat, width, height,
+                                 fixedsamplelocations))
+    return;
+  real(target, samples, internalformat, width, height, fixedsamplelocations);
+}
+
+void handle_glTextureStorage2DMultisample(pfn_glTextureStorage2DMultisample real, GLuint texture, GLsizei samples,
+                                          GLenum internalformat, GLsizei width, GLsizei height,
+                                          GLboolean fixedsamplelocations) {
+  if (TargetScaler* s = scaler();
+      s && named_texture_kind(texture) == GL_TEXTURE_2D_MULTISAMPLE &&
+      s->tex_storage_multisample(texture, samples, internalformat, width, height, fixedsamplelocations))
+    return;
+  real(texture, samples, internalformat, width, height, fixedsamplelocations);
 }
 
 void handle_glTexStorage3D(pfn_glTexStorage3D real, GLenum target, GLsizei levels, GLenum internalformat, GLsizei width,
@@ -283,6 +314,7 @@ void handle_glBlitFramebuffer(pfn_glBlitFramebuffer real, GLint srcX0, GLint src
   if (!s) return real(srcX0, srcY0, srcX1, srcY1, dstX0, dstY0, dstX1, dstY1, mask, filter);
   const GLint app_src[4] = {srcX0, srcY0, srcX1, srcY1}, app_dst[4] = {dstX0, dstY0, dstX1, dstY1};
   GLint src[4] = {srcX0, srcY0, srcX1, srcY1}, dst[4] = {dstX0, dstY0, dstX1, dstY1};
+  s->on_blit(s->app_read_framebuffer(), s->app_draw_framebuffer());
   s->blit_rectangles(s->app_read_framebuffer(), s->app_draw_framebuffer(), src, dst);
   if (ProbeFrames* p = t_probe) p->prepare();
   if (!s->blit_multisampled_window(s->app_read_framebuffer(), s->app_draw_framebuffer(), src, dst, mask, filter))
@@ -441,6 +473,7 @@ void handle_glBlitNamedFramebuffer(pfn_glBlitNamedFramebuffer real, GLuint readF
   if (!s)
     return real(readFramebuffer, drawFramebuffer, srcX0, srcY0, srcX1, srcY1, dstX0, dstY0, dstX1, dstY1, mask, filter);
   GLint src[4] = {srcX0, srcY0, srcX1, srcY1}, dst[4] = {dstX0, dstY0, dstX1, dstY1};
+  s->on_blit(readFramebuffer, drawFramebuffer);
   s->blit_rectangles(readFramebuffer, drawFramebuffer, src, dst);
   if (s->blit_multisampled_window(readFramebuffer, drawFramebuffer, src, dst, mask, filter)) return;
   real(s->real_framebuffer(readFramebuffer), s->real_framebuffer(drawFramebuffer), src[0], src[1], src[2], src[3],

@@ -65,6 +65,8 @@ struct ProbeGl {
   void(APIENTRYP TexStorage2D)(GLenum, GLsizei, GLenum, GLsizei, GLsizei) = nullptr;
   void(APIENTRYP TexStorage3D)(GLenum, GLsizei, GLenum, GLsizei, GLsizei, GLsizei) = nullptr;
   void(APIENTRYP FramebufferTexture)(GLenum, GLenum, GLuint, GLint) = nullptr;  // GL 3.2, ES 3.2
+  void(APIENTRYP TexStorage2DMultisample)(GLenum, GLsizei, GLenum, GLsizei, GLsizei,
+                                          GLboolean) = nullptr;  // GL 4.3, ES 3.1
   void(APIENTRYP GetRenderbufferParameteriv)(GLenum, GLenum, GLint*) = nullptr;
   void(APIENTRYP DrawBuffers)(GLsizei, const GLenum*) = nullptr;
   void(APIENTRYP GetQueryiv)(GLenum, GLenum, GLint*) = nullptr;
@@ -94,6 +96,7 @@ const ProbeGl& pgl() {
     load(p.TexStorage2D, "glTexStorage2D");
     load(p.TexStorage3D, "glTexStorage3D");
     load(p.FramebufferTexture, "glFramebufferTexture");
+    load(p.TexStorage2DMultisample, "glTexStorage2DMultisample");
     load(p.GetRenderbufferParameteriv, "glGetRenderbufferParameteriv");
     load(p.DrawBuffers, "glDrawBuffers");
     load(p.GetQueryiv, "glGetQueryiv");
@@ -132,11 +135,12 @@ GLint get(GLenum pname) {
 }
 
 // The texture kinds a framebuffer draws into (TargetScaler::texture_kind): index 0 is 2D, the
-// others are layered (a layer or a cube map's face attached).
-constexpr GLenum kKinds[] = {GL_TEXTURE_2D, GL_TEXTURE_2D_ARRAY, GL_TEXTURE_CUBE_MAP, GL_TEXTURE_CUBE_MAP_ARRAY};
-constexpr int kKindCount = 4;
+// last multisample 2D, the others layered (a layer or a cube map's face attached).
+constexpr GLenum kKinds[] = {GL_TEXTURE_2D, GL_TEXTURE_2D_ARRAY, GL_TEXTURE_CUBE_MAP, GL_TEXTURE_CUBE_MAP_ARRAY,
+                             GL_TEXTURE_2D_MULTISAMPLE};
+constexpr int kKindCount = 5;
 constexpr GLenum kKindBindings[] = {GL_TEXTURE_BINDING_2D, GL_TEXTURE_BINDING_2D_ARRAY, GL_TEXTURE_BINDING_CUBE_MAP,
-                                    GL_TEXTURE_BINDING_CUBE_MAP_ARRAY};
+                                    GL_TEXTURE_BINDING_CUBE_MAP_ARRAY, GL_TEXTURE_BINDING_2D_MULTISAMPLE};
 int kind_index(GLenum kind) {
   for (int k = 0; k < kKindCount; ++k)
     if (kKinds[k] == kind) return k;
@@ -157,7 +161,7 @@ struct ShadowImage {
   GLenum kind = GL_TEXTURE_2D;
   GLsizei layers = 1;
   GLint layer = 0;
-  bool layered() const { return !renderbuffer && kind != GL_TEXTURE_2D; }
+  bool layered() const { return !renderbuffer && kind != GL_TEXTURE_2D && kind != GL_TEXTURE_2D_MULTISAMPLE; }
 };
 
 // A stream's shadow of an app texture drawn layer by layer: every layer at the stream's scale,
@@ -354,8 +358,9 @@ struct ProbeFrames::Impl {
           const GLenum known = t.kind_of(im.app);
           im.kind = known ? known : GL_TEXTURE_2D;
           const int k = kind_index(im.kind);
-          if (k < 0 || (im.kind != GL_TEXTURE_2D && (!p.TexStorage3D || !g.FramebufferTextureLayer))) return false;
-          if (im.kind == GL_TEXTURE_2D && (face != 0 || layer != 0 || layered)) return false;
+          if (k < 0 || (im.layered() && (!p.TexStorage3D || !g.FramebufferTextureLayer))) return false;
+          if (im.kind == GL_TEXTURE_2D_MULTISAMPLE && !p.TexStorage2DMultisample) return false;
+          if (!im.layered() && (face != 0 || layer != 0 || layered)) return false;
           if (layered && !p.FramebufferTexture) return false;
           im.layer = layered                                       ? -1
                      : im.kind == GL_TEXTURE_CUBE_MAP && face != 0 ? face - GL_TEXTURE_CUBE_MAP_POSITIVE_X
@@ -383,8 +388,10 @@ struct ProbeFrames::Impl {
           p.GetTexLevelParameteriv(of, 0, GL_TEXTURE_HEIGHT, &h);
           if (im.kind == GL_TEXTURE_CUBE_MAP) {
             im.layers = 6;
-          } else if (im.kind != GL_TEXTURE_2D) {
+          } else if (im.layered()) {
             p.GetTexLevelParameteriv(of, 0, GL_TEXTURE_DEPTH, &im.layers);
+          } else if (im.kind == GL_TEXTURE_2D_MULTISAMPLE) {
+            p.GetTexLevelParameteriv(of, 0, GL_TEXTURE_SAMPLES, &im.samples);
           }
           // Its levels only where the app fills them by glGenerateMipmap, which the duplicate
           // repeats; levels it draws one by one (framebuffers of level > 0 are not shadowed)
@@ -509,6 +516,14 @@ struct ProbeFrames::Impl {
                                  GL_TEXTURE_CUBE_MAP_POSITIVE_X + static_cast<GLenum>(im.layer), im.shadow, 0);
         else
           g.FramebufferTextureLayer(GL_DRAW_FRAMEBUFFER, im.point, im.shadow, 0, im.layer);
+      } else if (im.kind == GL_TEXTURE_2D_MULTISAMPLE) {
+        const GLint bound = get(GL_TEXTURE_BINDING_2D_MULTISAMPLE);
+        g.GenTextures(1, &im.shadow);
+        g.BindTexture(GL_TEXTURE_2D_MULTISAMPLE, im.shadow);
+        p.TexStorage2DMultisample(GL_TEXTURE_2D_MULTISAMPLE, im.samples, static_cast<GLenum>(im.format), s.width,
+                                  s.height, GL_TRUE);
+        g.BindTexture(GL_TEXTURE_2D_MULTISAMPLE, static_cast<GLuint>(bound));
+        g.FramebufferTexture2D(GL_DRAW_FRAMEBUFFER, im.point, GL_TEXTURE_2D_MULTISAMPLE, im.shadow, 0);
       } else {
         g.GenTextures(1, &im.shadow);
         g.BindTexture(GL_TEXTURE_2D, im.shadow);

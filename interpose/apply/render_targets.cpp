@@ -114,6 +114,8 @@ GLenum binding_of(GLenum kind) {
       return GL_TEXTURE_BINDING_CUBE_MAP;
     case GL_TEXTURE_CUBE_MAP_ARRAY:
       return GL_TEXTURE_BINDING_CUBE_MAP_ARRAY;
+    case GL_TEXTURE_2D_MULTISAMPLE:
+      return GL_TEXTURE_BINDING_2D_MULTISAMPLE;
     default:
       return GL_TEXTURE_BINDING_2D;
   }
@@ -605,8 +607,9 @@ bool TargetScaler::window_sized(const Framebuffer& f) const {
   return true;
 }
 
-void TargetScaler::learn_attachments(Framebuffer& f) {
-  // Asked of the framebuffer bound for drawing, which is this one when a draw reaches it.
+void TargetScaler::learn_attachments(Framebuffer& f, GLenum target) {
+  // Asked of the framebuffer bound to `target`: for drawing, which is this one when a draw
+  // reaches it.
   const ApplyGl& g = agl();
   f.attachments.clear();
   GLint colors = 8;
@@ -617,9 +620,9 @@ void TargetScaler::learn_attachments(Framebuffer& f) {
   points.push_back(GL_STENCIL_ATTACHMENT);
   for (GLenum point : points) {
     GLint type = GL_NONE, name = 0;
-    g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+    g.GetFramebufferAttachmentParameteriv(target, point, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
     if (type != GL_TEXTURE && type != GL_RENDERBUFFER) continue;
-    g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &name);
+    g.GetFramebufferAttachmentParameteriv(target, point, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &name);
     const bool rb = type == GL_RENDERBUFFER;
     bool seen = false;  // a depth-stencil image answers for both points
     for (const Attachment& a : f.attachments) seen |= a.renderbuffer == rb && a.name == static_cast<GLuint>(name);
@@ -662,6 +665,24 @@ void TargetScaler::on_draw(int pass) {
   if (f.scale != before) apply_viewport();
 }
 
+void TargetScaler::on_blit(GLuint read, GLuint draw) {
+  const double before = draw_fbo_ ? framebuffers_[draw_fbo_].scale : 1.0;
+  for (GLuint name : {read, draw}) {
+    if (name == 0) continue;
+    Framebuffer& f = framebuffers_[name];
+    if (name == draw) f.drawn_frame = frame_;
+    if (f.attachments_known) continue;
+    // Learnt through the read binding, which the blit sets again itself.
+    GLint bound = 0;
+    agl().GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &bound);
+    agl().BindFramebuffer(GL_READ_FRAMEBUFFER, name);
+    learn_attachments(f, GL_READ_FRAMEBUFFER);
+    ensure_scale(name, f);
+    agl().BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(bound));
+  }
+  if (draw_fbo_ && framebuffers_[draw_fbo_].scale != before) apply_viewport();
+}
+
 void TargetScaler::ensure_scale(GLuint name, Framebuffer& f, bool carry) {
   double s = wanted_scale(name, f);
   // A framebuffer whose images are not all the scaler's keeps its size: scaling the others
@@ -671,11 +692,13 @@ void TargetScaler::ensure_scale(GLuint name, Framebuffer& f, bool carry) {
     const auto& images = a.renderbuffer ? renderbuffers_ : textures_;
     const auto it = images.find(a.name);
     if (it != images.end() && !it->second.app_size.empty()) continue;
-    say_once("unknown-image" + std::to_string(a.name),
-             std::string(a.renderbuffer ? "renderbuffer " : "texture ") + std::to_string(a.name) + " of framebuffer " +
-                 std::to_string(name) +
-                 " was not made by glTexImage2D, glRenderbufferStorage or glTexStorage2D of a framebuffer format; "
-                 "the framebuffer is not scaled");
+    say_once(
+        "unknown-image" + std::to_string(a.name),
+        std::string(a.renderbuffer ? "renderbuffer " : "texture ") + std::to_string(a.name) + " of framebuffer " +
+            std::to_string(name) +
+            " was not made by glTexImage2D/3D, glTexImage2DMultisample, glRenderbufferStorage or glTex(ture)Storage* "
+            "of a framebuffer format; "
+            "the framebuffer is not scaled");
     // Its known images are left as they are: another framebuffer may share one (a depth
     // buffer) at its own scale.
     f.scale = 1.0;
@@ -705,6 +728,11 @@ void TargetScaler::specify_level(const Image& image, GLint level, GLsizei width,
       for (GLenum face = 0; face < 6; ++face)
         g.TexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + face, level, image.internal_format, width, height, 0,
                      image.format, image.type, nullptr);
+      break;
+    case GL_TEXTURE_2D_MULTISAMPLE:
+      if (g.TexImage2DMultisample)
+        g.TexImage2DMultisample(GL_TEXTURE_2D_MULTISAMPLE, image.samples, static_cast<GLenum>(image.internal_format),
+                                width, height, image.fixed_locations);
       break;
     case GL_TEXTURE_2D_ARRAY:
     case GL_TEXTURE_CUBE_MAP_ARRAY:
@@ -737,8 +765,8 @@ void TargetScaler::rescale(GLuint name, Image& image, double scale, bool carry_c
     g.BindFramebuffer(target, fb);
     if (image.renderbuffer)
       g.FramebufferRenderbuffer(target, point, GL_RENDERBUFFER, object);
-    else if (image.kind == GL_TEXTURE_2D)
-      g.FramebufferTexture2D(target, point, GL_TEXTURE_2D, object, 0);
+    else if (image.kind == GL_TEXTURE_2D || image.kind == GL_TEXTURE_2D_MULTISAMPLE)
+      g.FramebufferTexture2D(target, point, image.kind, object, 0);
     else if (image.kind == GL_TEXTURE_CUBE_MAP)
       g.FramebufferTexture2D(target, point, GL_TEXTURE_CUBE_MAP_POSITIVE_X + static_cast<GLenum>(layer), object, 0);
     else
@@ -892,6 +920,7 @@ GLenum TargetScaler::texture_kind(GLenum target) {
     case GL_TEXTURE_2D_ARRAY:
     case GL_TEXTURE_CUBE_MAP:
     case GL_TEXTURE_CUBE_MAP_ARRAY:
+    case GL_TEXTURE_2D_MULTISAMPLE:
       return target;
     default:
       return target >= GL_TEXTURE_CUBE_MAP_POSITIVE_X && target <= GL_TEXTURE_CUBE_MAP_NEGATIVE_Z ? GL_TEXTURE_CUBE_MAP
@@ -969,6 +998,39 @@ bool TargetScaler::tex_storage(GLenum kind, GLuint texture, GLsizei levels, GLen
   textures_[texture].storage_levels = levels;
   g.TexParameteri(kind, GL_TEXTURE_BASE_LEVEL, texture_parameter(texture, GL_TEXTURE_BASE_LEVEL, base));
   g.TexParameteri(kind, GL_TEXTURE_MAX_LEVEL, texture_parameter(texture, GL_TEXTURE_MAX_LEVEL, max));
+  return true;
+}
+
+void TargetScaler::tex_image_multisample(GLsizei samples, GLenum internal_format, GLsizei* width, GLsizei* height,
+                                         GLboolean fixed_locations) {
+  const GLuint bound = bound_texture(GL_TEXTURE_2D_MULTISAMPLE);
+  if (!bound) return;
+  Image& im = textures_[bound];
+  im.kind = GL_TEXTURE_2D_MULTISAMPLE;
+  im.samples = samples;
+  im.fixed_locations = fixed_locations;
+  im.internal_format = static_cast<GLint>(internal_format);
+  im.app_size.assign(1, {*width, *height});
+  if (im.scale == 1.0) return;
+  *width = scaled(*width, im.scale);
+  *height = scaled(*height, im.scale);
+}
+
+bool TargetScaler::tex_storage_multisample(GLuint texture, GLsizei samples, GLenum internal_format, GLsizei width,
+                                           GLsizei height, GLboolean fixed_locations) {
+  GLenum format = 0, type = 0;
+  const ApplyGl& g = agl();
+  // GLES has no mutable multisample textures: there it stays immutable, at its size.
+  if (gles_ || !g.TexImage2DMultisample || !texture || samples < 0 || width <= 0 || height <= 0 ||
+      !null_upload(internal_format, &format, &type))
+    return false;
+  const auto known = textures_.find(texture);
+  if (known != textures_.end() && known->second.storage_levels) return false;  // immutable already: the driver's error
+  SavedBindings saved(GL_TEXTURE_2D_MULTISAMPLE);
+  g.BindTexture(GL_TEXTURE_2D_MULTISAMPLE, texture);
+  tex_image_multisample(samples, internal_format, &width, &height, fixed_locations);
+  g.TexImage2DMultisample(GL_TEXTURE_2D_MULTISAMPLE, samples, internal_format, width, height, fixed_locations);
+  textures_[texture].storage_levels = 1;
   return true;
 }
 

@@ -12,9 +12,9 @@
 // A multisampled window gets a stand-in of as many samples, resolved and stretched at the swap.
 // Textures of the four kinds a framebuffer draws into a layer or face of (2D, 2D arrays, cube
 // maps, cube-map arrays: cascaded and point-light shadow maps) scale alike, every layer and
-// face together.
+// face together; so do multisample 2D textures (MSAA scene targets), desktop GL only.
 // Limits: not immutable textures of a format no framebuffer holds, nor mipmapped immutable
-// ones but of the window's size or named by the manifest; not 3D or multisample textures; a
+// ones but of the window's size or named by the manifest; not 3D or multisample array textures; a
 // framebuffer with an image the scaler cannot scale keeps its size; textures are tracked per
 // context; a multisampled GLES window is not scaled.
 #pragma once
@@ -46,6 +46,10 @@ class TargetScaler {
   void set_configuration(const Levels& config);
   // A draw is about to go to the bound draw framebuffer under manifest pass `pass` (-1: none).
   void on_draw(int pass);
+  // Before a blit between the app's framebuffers `read` and `draw` (0: the window): a
+  // framebuffer first met there (a multisampled scene resolved into one no draw reaches) is
+  // learnt and scaled as a draw would, so that both rectangles scale alike.
+  void on_blit(GLuint read, GLuint draw);
   // glClear / glClearBuffer* of the bound draw framebuffer (mask: GL_*_BUFFER_BIT).
   void on_clear(GLbitfield mask);
   void end_frame() { ++frame_; }
@@ -121,6 +125,15 @@ class TargetScaler {
   // gl(Tex|Texture)Parameter: what the driver gets. Such a texture's base and maximum levels
   // are kept as the app sets them and given clamped to its levels.
   GLint texture_parameter(GLuint texture, GLenum pname, GLint value);
+  // glTexImage2DMultisample of the texture bound to GL_TEXTURE_2D_MULTISAMPLE: fills the size
+  // to give the driver.
+  void tex_image_multisample(GLsizei samples, GLenum internal_format, GLsizei* width, GLsizei* height,
+                             GLboolean fixed_locations);
+  // glTex(ture)Storage2DMultisample: made mutable (glTexImage2DMultisample) where the driver
+  // has it (desktop GL 3.2+), so that it can be resized, and answered as immutable; true
+  // where it was made here.
+  bool tex_storage_multisample(GLuint texture, GLsizei samples, GLenum internal_format, GLsizei width, GLsizei height,
+                               GLboolean fixed_locations);
   // The texture bound to a call's target (a face: the cube map) on the active unit.
   GLuint bound_texture(GLenum target) const;
   // The pnames the three above answer or clamp: the hooks ask for the binding only for these.
@@ -171,6 +184,7 @@ class TargetScaler {
     GLint internal_format = 0;
     GLenum format = 0, type = 0;
     GLsizei samples = 0;
+    GLboolean fixed_locations = GL_TRUE;             // of a multisample texture
     GLsizei storage_levels = 0;                      // made by glTexStorage2D (stored mutable): its levels
     GLint app_base_level = 0, app_max_level = 1000;  // of such a texture, as the app set them
     std::vector<std::array<GLsizei, 2>> app_size;    // per mip level the app specified
@@ -240,7 +254,7 @@ class TargetScaler {
   double scale_for(GLuint name, const Framebuffer& f, const Levels& config) const;
   bool window_sized(const Framebuffer& f) const;
   bool named_by_manifest(GLuint texture) const;
-  void learn_attachments(Framebuffer& f);
+  void learn_attachments(Framebuffer& f, GLenum target = GL_DRAW_FRAMEBUFFER);
   void ensure_scale(GLuint name, Framebuffer& f, bool carry = true);
   void rescale(GLuint name, Image& image, double scale, bool carry);
   // One level of a texture, with no data, at a size: every face of a cube map, every layer of

@@ -12,6 +12,9 @@
 //   --format mipmapped   immutable too, the scene's colour a full mip chain (glTexStorage2D of
 //                        every level) whose levels glGenerateMipmap fills each frame; the
 //                        quarter pass reads its level 2 (bloom and auto-exposure chains)
+//   --format multisample the scene drawn into a 4-sample framebuffer of multisample textures
+//                        (colour by glTexImage2DMultisample, depth by glTexStorage2DMultisample)
+//                        and resolved into the scene's texture by glBlitFramebuffer (MSAA)
 //   --read-fbo PATH      at the last frame also reads the scene's framebuffer back
 //                        (glReadPixels of it, as screenshot and picking code does) into PATH,
 //                        and prints the pixel under a "cursor" at the centre of the scene's
@@ -125,7 +128,23 @@ GLuint program(const char* vs, const char* fs, bool es = false) {
   return ok ? p : 0;
 }
 
-enum class Format { kSized, kUnsized, kImmutable, kDsa, kMipmapped };
+enum class Format { kSized, kUnsized, kImmutable, kDsa, kMipmapped, kMultisample };
+constexpr int kSamples = 4;
+
+// A multisample texture answers as the app made it: its size, samples, and immutability.
+bool multisample_answers_as_made(GLuint texture, int w, int h, bool immutable) {
+  glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, texture);
+  GLint width = 0, height = 0, samples = 0, format = GL_FALSE;
+  glGetTexLevelParameteriv(GL_TEXTURE_2D_MULTISAMPLE, 0, GL_TEXTURE_WIDTH, &width);
+  glGetTexLevelParameteriv(GL_TEXTURE_2D_MULTISAMPLE, 0, GL_TEXTURE_HEIGHT, &height);
+  glGetTexLevelParameteriv(GL_TEXTURE_2D_MULTISAMPLE, 0, GL_TEXTURE_SAMPLES, &samples);
+  glGetTexParameteriv(GL_TEXTURE_2D_MULTISAMPLE, GL_TEXTURE_IMMUTABLE_FORMAT, &format);
+  const bool ok = width == w && height == h && samples == kSamples && format == (immutable ? GL_TRUE : GL_FALSE);
+  if (!ok)
+    fprintf(stderr, "probe_offscreen: multisample texture %u answers %dx%d, %d samples, immutable %d\n", texture, width,
+            height, samples, format);
+  return ok;
+}
 
 GLuint storage_texture(int w, int h, GLenum internal_format, Format format, int levels = 1) {
   GLuint t = 0;
@@ -253,11 +272,12 @@ int main(int argc, char** argv) {
       es = !strcmp(argv[i + 1], "gles3");
     }
     if (!strcmp(argv[i], "--format"))
-      format = !strcmp(argv[i + 1], "unsized")     ? Format::kUnsized
-               : !strcmp(argv[i + 1], "immutable") ? Format::kImmutable
-               : !strcmp(argv[i + 1], "dsa")       ? Format::kDsa
-               : !strcmp(argv[i + 1], "mipmapped") ? Format::kMipmapped
-                                                   : Format::kSized;
+      format = !strcmp(argv[i + 1], "unsized")       ? Format::kUnsized
+               : !strcmp(argv[i + 1], "immutable")   ? Format::kImmutable
+               : !strcmp(argv[i + 1], "dsa")         ? Format::kDsa
+               : !strcmp(argv[i + 1], "mipmapped")   ? Format::kMipmapped
+               : !strcmp(argv[i + 1], "multisample") ? Format::kMultisample
+                                                     : Format::kSized;
   }
   const bool dsa = format == Format::kDsa, mipmapped = format == Format::kMipmapped;
   const bool immutable = format == Format::kImmutable || dsa || mipmapped;
@@ -323,6 +343,25 @@ int main(int argc, char** argv) {
     fprintf(stderr, "probe_offscreen: framebuffer incomplete\n");
     return 2;
   }
+  // MSAA: the scene's own framebuffer, resolved into fbo[0] after the scene's draws.
+  const bool multisample = format == Format::kMultisample;
+  GLuint ms_fbo = 0, ms_color = 0, ms_depth = 0;
+  if (multisample) {
+    glGenTextures(1, &ms_color);
+    glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, ms_color);
+    glTexImage2DMultisample(GL_TEXTURE_2D_MULTISAMPLE, kSamples, GL_RGBA8, w, h, GL_TRUE);
+    glGenTextures(1, &ms_depth);
+    glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, ms_depth);
+    glTexStorage2DMultisample(GL_TEXTURE_2D_MULTISAMPLE, kSamples, GL_DEPTH24_STENCIL8, w, h, GL_TRUE);
+    glGenFramebuffers(1, &ms_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, ms_fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D_MULTISAMPLE, ms_color, 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D_MULTISAMPLE, ms_depth, 0);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+      fprintf(stderr, "probe_offscreen: multisample framebuffer incomplete\n");
+      return 2;
+    }
+  }
   GLuint compose_stages = 0, compose_fragment = compose_program;
   if (pipeline && !(compose_stages = compose_pipeline(compose_source(compose), &compose_fragment))) {
     fprintf(stderr, "probe_offscreen: the compose pipeline's programs do not link\n");
@@ -339,10 +378,15 @@ int main(int argc, char** argv) {
   GLenum error = glGetError();
   if (error != GL_NO_ERROR) fprintf(stderr, "probe_offscreen: GL error 0x%04x before the first frame\n", error);
   for (int f = 0; f < args.frames && error == GL_NO_ERROR; ++f) {
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo[0]);
+    glBindFramebuffer(GL_FRAMEBUFFER, multisample ? ms_fbo : fbo[0]);
     glViewport(0, 0, w, h);
     glBindVertexArray(static_cast<GLuint>(scene_vao));
     scene.draw_frame(f);
+    if (multisample) {  // resolved
+      glBindFramebuffer(GL_READ_FRAMEBUFFER, ms_fbo);
+      glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo[0]);
+      glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    }
 
     glBindFramebuffer(GL_FRAMEBUFFER, fbo[1]);
     glViewport(0, 0, w / 4, h / 4);
@@ -389,7 +433,9 @@ int main(int argc, char** argv) {
   // After the frames (a scaled texture is stored at its scale by now).
   const bool as_made = answers_as_made(scene_color, w, h, immutable, dsa, scene_levels) &&
                        answers_as_made(quarter_color, w / 4, h / 4, immutable, dsa) &&
-                       (!immutable || answers_as_made(depth, w, h, true, dsa));
+                       (!immutable || answers_as_made(depth, w, h, true, dsa)) &&
+                       (!multisample || (multisample_answers_as_made(ms_color, w, h, false) &&
+                                         multisample_answers_as_made(ms_depth, w, h, true)));
   if (error == GL_NO_ERROR) error = glGetError();
   const int rc = error != GL_NO_ERROR ? 4 : !as_made ? 5 : write_ppm(args.out, image, w, h) ? 0 : 3;
   eglMakeCurrent(win.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);

@@ -436,7 +436,7 @@ TEST_CASE("probes shadow an app's scaled framebuffers in any profile and format,
   }
 }
 
-TEST_CASE("the best stream draws an app's mip chains as the app does: its glGenerateMipmap reaches the shadows") {
+TEST_CASE("the best stream draws an app's mip chains and multisample textures as the app does") {
   // probe_offscreen --format mipmapped at 60 %: the scene's colour is a mip chain that
   // glGenerateMipmap fills each frame and the quarter pass reads minified. The best stream's
   // image of a probe frame must be the app's own at its best, bit for bit: its shadow of the
@@ -444,10 +444,16 @@ TEST_CASE("the best stream draws an app's mip chains as the app does: its glGene
   // single-level shadow, 1148 values of 30000 differed at 100 x 100, where the chain's texels
   // straddle the scene's edges). The shadow takes the app's levels once the app has been
   // seen generating them (from the second probe frame: frame 6 here).
+  // probe_offscreen --format multisample: the scene drawn into 4-sample textures and resolved by
+  // a blit: the streams' shadows of them are 4-sample textures at their scales, the resolve
+  // blitted between the shadows (a stream that left them to the app's resolved the app's
+  // 60 % scene into its best image).
+  const std::string format = GENERATE("mipmapped", "multisample");
+  INFO(format);
   const std::string dir = temp_path("probes_mipmapped"), plain = dir + "/plain.ppm";
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const std::vector<std::string> args = {probe_path("probe_offscreen"), "--size", "100", "--format", "mipmapped"};
+  const std::vector<std::string> args = {probe_path("probe_offscreen"), "--size", "100", "--format", format};
   auto plain_args = args;
   plain_args.insert(plain_args.end(), {"--frames", "6", "--out", plain});
   REQUIRE(run_process(plain_args, {}).exit_code == 0);

@@ -175,8 +175,11 @@ TEST_CASE("an app's window-sized framebuffers follow the window's scale, smaller
   // (immutable storage, as GL 4.2+ engines make theirs), or so by name (GL 4.5 direct state
   // access: glTextureStorage2D, glNamedFramebufferTexture, the queries by name), where each
   // must still answer as the app made it (size, immutable format and levels: exit 5 if not), or
-  // with the scene's colour a full mip chain of immutable storage that glGenerateMipmap fills.
-  const std::string format = GENERATE("sized", "immutable", "dsa", "mipmapped");
+  // with the scene's colour a full mip chain of immutable storage that glGenerateMipmap fills, or
+  // with the scene drawn into 4-sample textures and resolved by a blit into its texture (the
+  // resolve's target, which no draw reaches, is scaled at the blit: a multisampled blit takes
+  // rectangles of one size only).
+  const std::string format = GENERATE("sized", "immutable", "dsa", "mipmapped", "multisample");
   INFO("textures: " << format);
   const std::string plain_img = temp_path("offscreen_plain.ppm");
   REQUIRE(

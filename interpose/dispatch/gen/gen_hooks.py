@@ -46,6 +46,7 @@ CUSTOM = [
     'glTextureStorage2D', 'glGetTextureParameteriv', 'glTextureParameteri', 'glTextureParameteriv',
     'glGetTextureLevelParameteriv', 'glGetTextureLevelParameterfv',
     'glTexImage3D', 'glTexStorage3D', 'glTextureStorage3D', 'glFramebufferTextureLayer',  # arrays, cube maps
+    'glTexImage2DMultisample', 'glTexStorage2DMultisample', 'glTextureStorage2DMultisample',
     'glNamedFramebufferTexture', 'glNamedFramebufferTextureLayer', 'glNamedFramebufferRenderbuffer',
     'glGenerateMipmap', 'glGenerateTextureMipmap',  # apply/probes.cpp: shadows' levels too
     # apply/: the default framebuffer's stand-in
