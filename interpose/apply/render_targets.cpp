@@ -77,6 +77,16 @@ bool null_upload(GLenum internal_format, GLenum* format, GLenum* type) {
       {GL_R32F, GL_RED, GL_FLOAT},
       {GL_R11F_G11F_B10F, GL_RGB, GL_UNSIGNED_INT_10F_11F_11F_REV},
       {GL_RGBA16, GL_RGBA, GL_UNSIGNED_SHORT},
+      {GL_RGB16, GL_RGB, GL_UNSIGNED_SHORT},
+      {GL_RG16, GL_RG, GL_UNSIGNED_SHORT},
+      {GL_R16, GL_RED, GL_UNSIGNED_SHORT},
+      {GL_RGBA16_SNORM, GL_RGBA, GL_SHORT},
+      {GL_RG16_SNORM, GL_RG, GL_SHORT},
+      {GL_R16_SNORM, GL_RED, GL_SHORT},
+      {GL_RGBA8_SNORM, GL_RGBA, GL_BYTE},
+      {GL_RG8_SNORM, GL_RG, GL_BYTE},
+      {GL_R8_SNORM, GL_RED, GL_BYTE},
+      {GL_RGB10_A2UI, GL_RGBA_INTEGER, GL_UNSIGNED_INT_2_10_10_10_REV},
       {GL_RGBA8UI, GL_RGBA_INTEGER, GL_UNSIGNED_BYTE},
       {GL_RGBA8I, GL_RGBA_INTEGER, GL_BYTE},
       {GL_RGBA16UI, GL_RGBA_INTEGER, GL_UNSIGNED_SHORT},
@@ -90,8 +100,14 @@ bool null_upload(GLenum internal_format, GLenum* format, GLenum* type) {
       {GL_R16UI, GL_RED_INTEGER, GL_UNSIGNED_SHORT},
       {GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT},
       {GL_R32I, GL_RED_INTEGER, GL_INT},
+      {GL_RG8I, GL_RG_INTEGER, GL_BYTE},
+      {GL_RG16I, GL_RG_INTEGER, GL_SHORT},
+      {GL_RG32I, GL_RG_INTEGER, GL_INT},
+      {GL_R8I, GL_RED_INTEGER, GL_BYTE},
+      {GL_R16I, GL_RED_INTEGER, GL_SHORT},
       {GL_DEPTH_COMPONENT16, GL_DEPTH_COMPONENT, GL_UNSIGNED_SHORT},
       {GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT},
+      {GL_DEPTH_COMPONENT32, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT},
       {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT},
       {GL_DEPTH24_STENCIL8, GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8},
       {GL_DEPTH32F_STENCIL8, GL_DEPTH_STENCIL, GL_FLOAT_32_UNSIGNED_INT_24_8_REV},
@@ -118,6 +134,24 @@ GLenum binding_of(GLenum kind) {
       return GL_TEXTURE_BINDING_2D_MULTISAMPLE;
     default:
       return GL_TEXTURE_BINDING_2D;
+  }
+}
+
+// A format of the table above that OpenGL ES 3 takes without an extension (16-bit normalised
+// ones need EXT_texture_norm16; 32-bit integer depth is desktop only).
+bool in_gles(GLenum internal_format) {
+  switch (internal_format) {
+    case GL_RGBA16:
+    case GL_RGB16:
+    case GL_RG16:
+    case GL_R16:
+    case GL_RGBA16_SNORM:
+    case GL_RG16_SNORM:
+    case GL_R16_SNORM:
+    case GL_DEPTH_COMPONENT32:
+      return false;
+    default:
+      return true;
   }
 }
 
@@ -480,7 +514,11 @@ GLenum sized_for_copy(GLint format) {
   // error the app could read).
   const auto sized = static_cast<GLenum>(sized_internal_format(format));
   GLenum upload_format = 0, type = 0;
-  return null_upload(sized, &upload_format, &type) ? sized : 0;
+  if (!null_upload(sized, &upload_format, &type)) return 0;
+  // Signed normalised (not integer) and 16-bit RGB formats are textures' only: no renderbuffer
+  // takes them.
+  const bool snorm = (type == GL_BYTE || type == GL_SHORT) && !is_integer_format(upload_format);
+  return snorm || sized == GL_RGB16 ? 0 : sized;
 }
 }  // namespace
 
@@ -977,7 +1015,7 @@ bool TargetScaler::tex_storage(GLenum kind, GLuint texture, GLsizei levels, GLen
   if ((kind == GL_TEXTURE_CUBE_MAP || kind == GL_TEXTURE_CUBE_MAP_ARRAY) && width != height) return false;
   if (kind == GL_TEXTURE_CUBE_MAP_ARRAY && layers % 6 != 0) return false;
   if (levels > 1 && !(width == window_width_ && height == window_height_) && !named_by_manifest(texture)) return false;
-  if (gles_ && internal_format == GL_RGBA16) return false;  // GLES only with EXT_texture_norm16
+  if (gles_ && !in_gles(internal_format)) return false;
   const auto known = textures_.find(texture);
   if (known != textures_.end() && known->second.storage_levels) return false;  // immutable already: the driver's error
   const ApplyGl& g = agl();

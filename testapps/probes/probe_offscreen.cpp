@@ -15,6 +15,8 @@
 //   --format multisample the scene drawn into a 4-sample framebuffer of multisample textures
 //                        (colour by glTexImage2DMultisample, depth by glTexStorage2DMultisample)
 //                        and resolved into the scene's texture by glBlitFramebuffer (MSAA)
+//   --color FORMAT       with immutable textures, the colour textures' format: rgba8 (default),
+//                        rg16 (16-bit normalised), rgba16f, r11f_g11f_b10f (HDR targets)
 //   --read-fbo PATH      at the last frame also reads the scene's framebuffer back
 //                        (glReadPixels of it, as screenshot and picking code does) into PATH,
 //                        and prints the pixel under a "cursor" at the centre of the scene's
@@ -165,10 +167,12 @@ int full_chain(int w, int h) {
   return levels;
 }
 
+GLenum g_color_format = GL_RGBA8;  // of immutable colour textures (--color)
+
 GLuint color_texture(int w, int h, Format format, int levels = 1) {
   GLuint t = 0;
   if (format == Format::kImmutable || format == Format::kDsa || format == Format::kMipmapped) {
-    t = storage_texture(w, h, GL_RGBA8, format, levels);  // bound, unless by name
+    t = storage_texture(w, h, g_color_format, format, levels);  // bound, unless by name
   } else {
     glGenTextures(1, &t);
     glBindTexture(GL_TEXTURE_2D, t);
@@ -267,6 +271,11 @@ int main(int argc, char** argv) {
     if (!strcmp(argv[i], "--twice")) twice = !strcmp(argv[i + 1], "1");
     if (!strcmp(argv[i], "--compose")) compose = argv[i + 1];
     if (!strcmp(argv[i], "--read-fbo")) read_fbo_path = argv[i + 1];
+    if (!strcmp(argv[i], "--color"))
+      g_color_format = !strcmp(argv[i + 1], "rg16")             ? GL_RG16
+                       : !strcmp(argv[i + 1], "rgba16f")        ? GL_RGBA16F
+                       : !strcmp(argv[i + 1], "r11f_g11f_b10f") ? GL_R11F_G11F_B10F
+                                                                : GL_RGBA8;
     if (!strcmp(argv[i], "--profile")) {
       compat = !strcmp(argv[i + 1], "compat");
       es = !strcmp(argv[i + 1], "gles3");

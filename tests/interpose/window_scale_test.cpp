@@ -180,19 +180,23 @@ TEST_CASE("an app's window-sized framebuffers follow the window's scale, smaller
   // resolve's target, which no draw reaches, is scaled at the blit: a multisampled blit takes
   // rectangles of one size only).
   const std::string format = GENERATE("sized", "immutable", "dsa", "mipmapped", "multisample");
-  INFO("textures: " << format);
+  // Immutable colour of a 16-bit normalised format or an HDR one, too.
+  const std::string color = GENERATE("rgba8", "rg16", "r11f_g11f_b10f");
+  if (color != "rgba8" && format != "immutable") return;
+  INFO("textures: " << format << ", colour " << color);
   const std::string plain_img = temp_path("offscreen_plain.ppm");
-  REQUIRE(
-      run_process(
-          {probe_path("probe_offscreen"), "--frames", "3", "--size", "128", "--format", format, "--out", plain_img}, {})
-          .exit_code == 0);
+  REQUIRE(run_process({probe_path("probe_offscreen"), "--frames", "3", "--size", "128", "--format", format, "--color",
+                       color, "--out", plain_img},
+                      {})
+              .exit_code == 0);
   std::map<std::string, std::map<std::string, double>> fragments;  // level -> pass -> fragments of frame 2
   std::map<std::string, std::string> images;
   for (const std::string level : {"0", "2"}) {
     const std::string log = temp_path("offscreen_" + level + ".csv"), img = temp_path("offscreen_" + level + ".ppm");
     unlink(log.c_str());
     const ProcessResult r = run_process(
-        {probe_path("probe_offscreen"), "--frames", "3", "--size", "128", "--format", format, "--out", img},
+        {probe_path("probe_offscreen"), "--frames", "3", "--size", "128", "--format", format, "--color", color, "--out",
+         img},
         {{"LD_PRELOAD", shim_path()}, {"GLBUDGET_LOG", log}, {"GLBUDGET_SENSOR", "cpu"}, {"GLBUDGET_FORCE", level}});
     INFO("level " << level << "\n" << r.err);
     REQUIRE(r.exit_code == 0);
