@@ -139,8 +139,6 @@ GLint get(GLenum pname) {
 constexpr GLenum kKinds[] = {GL_TEXTURE_2D, GL_TEXTURE_2D_ARRAY, GL_TEXTURE_CUBE_MAP, GL_TEXTURE_CUBE_MAP_ARRAY,
                              GL_TEXTURE_2D_MULTISAMPLE};
 constexpr int kKindCount = 5;
-constexpr GLenum kKindBindings[] = {GL_TEXTURE_BINDING_2D, GL_TEXTURE_BINDING_2D_ARRAY, GL_TEXTURE_BINDING_CUBE_MAP,
-                                    GL_TEXTURE_BINDING_CUBE_MAP_ARRAY, GL_TEXTURE_BINDING_2D_MULTISAMPLE};
 int kind_index(GLenum kind) {
   for (int k = 0; k < kKindCount; ++k)
     if (kKinds[k] == kind) return k;
@@ -365,7 +363,7 @@ struct ProbeFrames::Impl {
           im.layer = layered                                       ? -1
                      : im.kind == GL_TEXTURE_CUBE_MAP && face != 0 ? face - GL_TEXTURE_CUBE_MAP_POSITIVE_X
                                                                    : layer;
-          const GLint bound = get(kKindBindings[k]);
+          const GLint bound = get(TargetScaler::binding_of(kKinds[k]));
           drain_gl_errors();
           g.BindTexture(im.kind, im.app);
           if (!drain_gl_errors().empty()) {  // a texture of another target: GL_INVALID_OPERATION
@@ -466,7 +464,7 @@ struct ProbeFrames::Impl {
       return l;
     const ApplyGl& g = agl();
     if (l.texture) g.DeleteTextures(1, &l.texture);
-    const GLint bound = get(kKindBindings[kind_index(im.kind)]);
+    const GLint bound = get(TargetScaler::binding_of(im.kind));
     l = LayeredShadow{};
     g.GenTextures(1, &l.texture);
     g.BindTexture(im.kind, l.texture);
@@ -836,7 +834,7 @@ struct ProbeFrames::Impl {
       agl().ActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(u));
       for (int k = 0; k < kKindCount; ++k) {
         if (!((kinds >> k) & 1)) continue;
-        unit_texture[u][k] = get(kKindBindings[k]);
+        unit_texture[u][k] = get(TargetScaler::binding_of(kKinds[k]));
         redirected[u][k] = false;
       }
     }

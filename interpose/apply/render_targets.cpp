@@ -121,22 +121,6 @@ bool null_upload(GLenum internal_format, GLenum* format, GLenum* type) {
   return false;
 }
 
-// The binding query of a texture kind (TargetScaler::texture_kind).
-GLenum binding_of(GLenum kind) {
-  switch (kind) {
-    case GL_TEXTURE_2D_ARRAY:
-      return GL_TEXTURE_BINDING_2D_ARRAY;
-    case GL_TEXTURE_CUBE_MAP:
-      return GL_TEXTURE_BINDING_CUBE_MAP;
-    case GL_TEXTURE_CUBE_MAP_ARRAY:
-      return GL_TEXTURE_BINDING_CUBE_MAP_ARRAY;
-    case GL_TEXTURE_2D_MULTISAMPLE:
-      return GL_TEXTURE_BINDING_2D_MULTISAMPLE;
-    default:
-      return GL_TEXTURE_BINDING_2D;
-  }
-}
-
 // A format of the table above that OpenGL ES 3 takes without an extension (16-bit normalised
 // ones need EXT_texture_norm16; 32-bit integer depth is desktop only).
 bool in_gles(GLenum internal_format) {
@@ -165,7 +149,7 @@ struct SavedBindings {
     const ApplyGl& g = agl();
     g.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
     g.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read);
-    g.GetIntegerv(binding_of(kind), &texture);
+    g.GetIntegerv(TargetScaler::binding_of(kind), &texture);
     g.GetIntegerv(GL_RENDERBUFFER_BINDING, &renderbuffer);
     g.GetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &unpack);
     scissor = g.IsEnabled(GL_SCISSOR_TEST);
@@ -951,6 +935,21 @@ void TargetScaler::set_box(std::array<GLint, 4>& box, void(APIENTRYP set)(GLint,
 void TargetScaler::viewport(GLint x, GLint y, GLsizei w, GLsizei h) { set_box(viewport_, agl().Viewport, x, y, w, h); }
 
 void TargetScaler::scissor(GLint x, GLint y, GLsizei w, GLsizei h) { set_box(scissor_, agl().Scissor, x, y, w, h); }
+
+GLenum TargetScaler::binding_of(GLenum kind) {
+  switch (kind) {
+    case GL_TEXTURE_2D_ARRAY:
+      return GL_TEXTURE_BINDING_2D_ARRAY;
+    case GL_TEXTURE_CUBE_MAP:
+      return GL_TEXTURE_BINDING_CUBE_MAP;
+    case GL_TEXTURE_CUBE_MAP_ARRAY:
+      return GL_TEXTURE_BINDING_CUBE_MAP_ARRAY;
+    case GL_TEXTURE_2D_MULTISAMPLE:
+      return GL_TEXTURE_BINDING_2D_MULTISAMPLE;
+    default:
+      return GL_TEXTURE_BINDING_2D;
+  }
+}
 
 GLenum TargetScaler::texture_kind(GLenum target) {
   switch (target) {

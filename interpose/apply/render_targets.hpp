@@ -103,6 +103,8 @@ class TargetScaler {
   // The texture kinds scaled here (GL_TEXTURE_2D, _2D_ARRAY, _CUBE_MAP, _CUBE_MAP_ARRAY), and
   // the kind a call's target specifies (a cube map's face: GL_TEXTURE_CUBE_MAP); 0 for others.
   static GLenum texture_kind(GLenum target);
+  // The binding query of a kind (GL_TEXTURE_BINDING_2D_ARRAY for GL_TEXTURE_2D_ARRAY, ...).
+  static GLenum binding_of(GLenum kind);
   // glTexImage2D (GL_TEXTURE_2D, a cube map's face) or glTexImage3D (a 2D or cube-map array,
   // `layers` deep) of the texture bound to the call's target: fills the size to give the driver.
   void tex_image(GLenum target, GLint level, GLint internal_format, GLsizei* width, GLsizei* height, GLsizei layers,
