@@ -15,6 +15,8 @@
 //   --moving 1              the occluders move from frame to frame (by 0.1 of a layer, back
 //                           and forth): a layer's content from the frame before is stale
 //   --each PREFIX           every frame's image also into PREFIX<frame>.ppm
+//   --profile gles3         an OpenGL ES 3 context, its shaders in GLSL ES 3.00 (not with
+//                           --storage dsa or --attach layered)
 // The shadow map is 128 x 128 whatever the window's size. Exits 4 when glGetError reports an
 // error at any frame, 5 when the shadow map does not answer as the app made it (its size, its
 // layers, immutable format and levels).
@@ -70,9 +72,24 @@ const char* kLitCube =
     "  vec3 tint = vec3(0.2 + 0.15 * float(face), 0.8, 1.0 - 0.15 * float(face));\n"
     "  frag = vec4(tint * (0.25 + 0.75 * lit), 1.0); /* lit */ }\n";
 
+bool g_es = false;  // --profile gles3
+
+// A shader in GLSL ES 3.00 when the context is ES: its "#version 330 core" line replaced, and
+// the precisions ES asks for (shadow samplers have no default one).
+std::string in_dialect(const char* source) {
+  std::string s = source;
+  const std::string desktop = "#version 330 core\n";
+  if (g_es && s.rfind(desktop, 0) == 0)
+    s.replace(0, desktop.size(),
+              "#version 300 es\nprecision highp float;\nprecision highp sampler2DArrayShadow;\n"
+              "precision highp samplerCubeShadow;\n");
+  return s;
+}
+
 GLuint program(const char* vs, const char* fs, const char* gs = nullptr) {
   const GLuint p = glCreateProgram();
-  const GLuint v = compile_shader(GL_VERTEX_SHADER, vs), f = compile_shader(GL_FRAGMENT_SHADER, fs);
+  const GLuint v = compile_shader(GL_VERTEX_SHADER, in_dialect(vs).c_str()),
+               f = compile_shader(GL_FRAGMENT_SHADER, in_dialect(fs).c_str());
   const GLuint g = gs ? compile_shader(GL_GEOMETRY_SHADER, gs) : 0;
   if (!v || !f || (gs && !g)) return 0;
   glAttachShader(p, v);
@@ -171,6 +188,7 @@ int main(int argc, char** argv) {
     if (!strcmp(argv[i], "--attach")) layered = !strcmp(argv[i + 1], "layered");
     if (!strcmp(argv[i], "--moving")) moving = !strcmp(argv[i + 1], "1");
     if (!strcmp(argv[i], "--each")) each = argv[i + 1];
+    if (!strcmp(argv[i], "--profile")) g_es = !strcmp(argv[i + 1], "gles3");
     if (!strcmp(argv[i], "--storage"))
       storage = !strcmp(argv[i + 1], "immutable") ? Storage::kImmutable
                 : !strcmp(argv[i + 1], "dsa")     ? Storage::kDsa
@@ -179,7 +197,12 @@ int main(int argc, char** argv) {
   const int w = args.width, h = args.height;
   EglFns egl;
   EglWindow win;
-  if (!open_current_window("probe_shadow_layers", egl, ContextKind::kCore45, w, h, &win)) return 2;
+  if (g_es && (layered || storage == Storage::kDsa)) {
+    fprintf(stderr, "probe_shadow_layers: --profile gles3 takes neither --attach layered nor --storage dsa\n");
+    return 2;
+  }
+  if (!open_current_window("probe_shadow_layers", egl, g_es ? ContextKind::kGles3 : ContextKind::kCore45, w, h, &win))
+    return 2;
   const GLuint occluder = layered ? program(kLayeredVertex, kOccluderFragment, kLayeredGeometry)
                                   : program(kOccluderVertex, kOccluderFragment),
                lit = program(kLitVertex, cube ? kLitCube : kLitArray);
@@ -198,7 +221,8 @@ int main(int argc, char** argv) {
   } else {
     glGenFramebuffers(1, &fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glDrawBuffer(GL_NONE);
+    const GLenum none = GL_NONE;
+    glDrawBuffers(1, &none);
     glReadBuffer(GL_NONE);
   }
   // One layer (a cube map's face) attached at a time, as a shadow renderer walks its cascades.

@@ -7,6 +7,14 @@
 
 #include "run_process.hpp"
 
+// In a sanitizer build (GLBUDGET_SANITIZED_RUN) a test's matrix takes each code path once; the
+// plain build runs it whole.
+#ifdef GLBUDGET_SANITIZED_RUN
+inline constexpr bool kSanitizedRun = true;
+#else
+inline constexpr bool kSanitizedRun = false;
+#endif
+
 struct PassExpectation {
   int64_t batches, vertices, fragments, primitives;
 };
