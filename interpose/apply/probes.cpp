@@ -162,8 +162,8 @@ struct ShadowImage {
   bool layered() const { return !renderbuffer && kind != GL_TEXTURE_2D && kind != GL_TEXTURE_2D_MULTISAMPLE; }
 };
 
-// A stream's shadow of an app texture drawn layer by layer: every layer at the stream's scale,
-// each filled with the app's content at its first use in a probe frame.
+// A stream's shadow of an array or cube-map texture of the app's: every layer at the stream's
+// scale, each filled with the app's content at its first use in a probe frame.
 struct LayeredShadow {
   GLuint texture = 0;
   GLenum kind = 0;
@@ -336,8 +336,8 @@ struct ProbeFrames::Impl {
           p.GetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_SAMPLES, &im.samples);
           g.BindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(bound));
         } else {
-          // Level 0 of a 2D texture, or a layer of an array or a cube map's face; not layered
-          // attachments (a geometry shader choosing the layer).
+          // Level 0 of a 2D or multisample texture, a layer of an array or a cube map's face, or
+          // all of them (a layered attachment: a geometry shader choosing the layer).
           GLint level = 0, layered = GL_FALSE, face = 0, layer = 0;
           g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, point, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL,
                                                 &level);
