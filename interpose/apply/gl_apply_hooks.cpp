@@ -166,9 +166,9 @@ GLenum named_texture_kind(GLuint texture) {
 void handle_glTexImage2D(pfn_glTexImage2D real, GLenum target, GLint level, GLint internalformat, GLsizei width,
                          GLsizei height, GLint border, GLenum format, GLenum type, const void* pixels) {
   TargetScaler* s = scaler();
-  // GL_TEXTURE_2D or a cube map's face (TargetScaler::texture_kind); not a 1D array.
-  if (s && TargetScaler::texture_kind(target) && target != GL_TEXTURE_CUBE_MAP && target != GL_TEXTURE_2D_MULTISAMPLE &&
-      width > 0 && height > 0)
+  // GL_TEXTURE_2D or a cube map's face; other targets (a 1D array, the app's mistakes) as they are.
+  const bool face = TargetScaler::texture_kind(target) == GL_TEXTURE_CUBE_MAP && target != GL_TEXTURE_CUBE_MAP;
+  if (s && (target == GL_TEXTURE_2D || face) && width > 0 && height > 0)
     s->tex_image(target, level, internalformat, &width, &height, 1, format, type, uploads_data(pixels));
   real(target, level, internalformat, width, height, border, format, type, pixels);
 }
