@@ -509,11 +509,8 @@ struct ProbeFrames::Impl {
         im.shadow = layered_shadow(st, im, s.width, s.height).texture;
         if (im.layer < 0)
           p.FramebufferTexture(GL_DRAW_FRAMEBUFFER, im.point, im.shadow, 0);
-        else if (im.kind == GL_TEXTURE_CUBE_MAP)
-          g.FramebufferTexture2D(GL_DRAW_FRAMEBUFFER, im.point,
-                                 GL_TEXTURE_CUBE_MAP_POSITIVE_X + static_cast<GLenum>(im.layer), im.shadow, 0);
         else
-          g.FramebufferTextureLayer(GL_DRAW_FRAMEBUFFER, im.point, im.shadow, 0, im.layer);
+          attach_texture_layer(GL_DRAW_FRAMEBUFFER, im.point, im.kind, im.shadow, im.layer);
       } else if (im.kind == GL_TEXTURE_2D_MULTISAMPLE) {
         const GLint bound = get(GL_TEXTURE_BINDING_2D_MULTISAMPLE);
         g.GenTextures(1, &im.shadow);
@@ -556,21 +553,15 @@ struct ProbeFrames::Impl {
                             : im.point == GL_STENCIL_ATTACHMENT ? GL_STENCIL_BUFFER_BIT
                                                                 : GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT;
     if (!layer_fbo[0]) g.GenFramebuffers(2, layer_fbo);
-    auto attach = [&](GLenum target, GLuint texture, GLint layer) {
-      if (im.kind == GL_TEXTURE_CUBE_MAP)
-        g.FramebufferTexture2D(target, point, GL_TEXTURE_CUBE_MAP_POSITIVE_X + static_cast<GLenum>(layer), texture, 0);
-      else
-        g.FramebufferTextureLayer(target, point, texture, 0, layer);
-    };
     const GLint first = im.layer < 0 ? 0 : im.layer, last = im.layer < 0 ? im.layers - 1 : im.layer;
     for (GLint layer = first; layer <= last; ++layer) {
       uint64_t& copied = l.copied_frame[static_cast<size_t>(layer)];
       if (copied == frame) continue;
       copied = frame;
       g.BindFramebuffer(GL_READ_FRAMEBUFFER, layer_fbo[0]);
-      attach(GL_READ_FRAMEBUFFER, im.app, layer);
+      attach_texture_layer(GL_READ_FRAMEBUFFER, point, im.kind, im.app, layer);
       g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, layer_fbo[1]);
-      attach(GL_DRAW_FRAMEBUFFER, l.texture, layer);
+      attach_texture_layer(GL_DRAW_FRAMEBUFFER, point, im.kind, l.texture, layer);
       if (color) {
         g.ReadBuffer(GL_COLOR_ATTACHMENT0);
         pgl().DrawBuffers(1, &point);

@@ -767,6 +767,16 @@ void TargetScaler::specify_level(const Image& image, GLint level, GLsizei width,
   }
 }
 
+void attach_texture_layer(GLenum target, GLenum point, GLenum kind, GLuint texture, GLint layer) {
+  const ApplyGl& g = agl();
+  if (kind == GL_TEXTURE_2D || kind == GL_TEXTURE_2D_MULTISAMPLE)
+    g.FramebufferTexture2D(target, point, kind, texture, 0);
+  else if (kind == GL_TEXTURE_CUBE_MAP)
+    g.FramebufferTexture2D(target, point, GL_TEXTURE_CUBE_MAP_POSITIVE_X + static_cast<GLenum>(layer), texture, 0);
+  else
+    g.FramebufferTextureLayer(target, point, texture, 0, layer);
+}
+
 void TargetScaler::rescale(GLuint name, Image& image, double scale, bool carry_contents) {
   if (image.app_size.empty()) return;
   const ApplyGl& g = agl();
@@ -787,12 +797,8 @@ void TargetScaler::rescale(GLuint name, Image& image, double scale, bool carry_c
     g.BindFramebuffer(target, fb);
     if (image.renderbuffer)
       g.FramebufferRenderbuffer(target, point, GL_RENDERBUFFER, object);
-    else if (image.kind == GL_TEXTURE_2D || image.kind == GL_TEXTURE_2D_MULTISAMPLE)
-      g.FramebufferTexture2D(target, point, image.kind, object, 0);
-    else if (image.kind == GL_TEXTURE_CUBE_MAP)
-      g.FramebufferTexture2D(target, point, GL_TEXTURE_CUBE_MAP_POSITIVE_X + static_cast<GLenum>(layer), object, 0);
     else
-      g.FramebufferTextureLayer(target, point, object, 0, layer);
+      attach_texture_layer(target, point, image.kind, object, layer);
   };
   auto allocate = [&](GLuint object, GLsizei w, GLsizei h, int level) {
     if (image.renderbuffer) {
@@ -894,10 +900,7 @@ void TargetScaler::bind_framebuffer(GLenum target, GLuint fbo) {
 }
 
 void TargetScaler::framebuffer_attachment_changed(GLenum target) {
-  ++attachment_changes_;
-  const GLuint fbo = target == GL_READ_FRAMEBUFFER ? read_fbo_ : draw_fbo_;
-  auto it = framebuffers_.find(fbo);
-  if (it != framebuffers_.end()) it->second.attachments_known = false;
+  named_framebuffer_attachment_changed(target == GL_READ_FRAMEBUFFER ? read_fbo_ : draw_fbo_);
 }
 
 void TargetScaler::named_framebuffer_attachment_changed(GLuint framebuffer) {

@@ -35,6 +35,10 @@ void scale_corners(const GLint* in, double sx, double sy, GLint* out);
 // The sized format of an unsized colour format (GL_RGBA: GL_RGBA8, as drivers size it), for
 // storage that takes sized formats only; other formats as they are.
 GLint sized_internal_format(GLint format);
+// Attaches level 0 of `texture`, of kind `kind` (TargetScaler::texture_kind), to `point` of the
+// framebuffer bound to `target`: a 2D or multisample texture whole, a cube map's face `layer`,
+// an array's layer `layer`.
+void attach_texture_layer(GLenum target, GLenum point, GLenum kind, GLuint texture, GLint layer);
 // The levels of a full mip chain of a width x height level 0 (1 + log2 of the larger side).
 int full_mip_levels(int width, int height);
 

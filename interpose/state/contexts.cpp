@@ -230,15 +230,13 @@ void update_pass(ContextState& c) {
         // A stage drawn through a variant is named by the variant, as a program is.
         PassId stage = p ? pass_of_program(*c.group, p) : 0;
         auto info = p ? c.group->programs.find(p) : c.group->programs.end();
-        if (info != c.group->programs.end() && info->second.variants) {
-          const Variant& v = info->second.variants->at(c.config);
-          stage = v.pass_hash;
-          skip = skip || !v.draws;
-        }
+        if (info != c.group->programs.end() && info->second.variants)
+          stage = info->second.variants->at(c.config).pass_hash;
         h = fnv1a_u64(stage, h);
       }
       pass = h;
     }
+    skip = pipeline_skips(c);
   }
   c.counter->set_pass(pass);
   c.counter->set_skipping(skip);
