@@ -141,7 +141,7 @@ TEST_CASE("glmark2's terrain with no manifest under a 50 % budget: the window sh
     std::vector<std::string> argv = {"env", "DISPLAY=" + xvfb.display(), "LD_PRELOAD=" + preload_value(shim_path())};
     for (const auto& [k, v] : env) argv.push_back(k + "=" + v);
 #ifdef SANITIZER_PRELOAD
-    const char* scene = "terrain:duration=20";  // a sanitized shim draws at half the pace or less
+    const char* scene = "terrain:duration=15";  // a sanitized shim draws at half the pace or less
 #else
     const char* scene = "terrain:duration=9";
 #endif
@@ -154,14 +154,14 @@ TEST_CASE("glmark2's terrain with no manifest under a 50 % budget: the window sh
     unlink(log.c_str());
     return f;
   };
-  const Frames governed = run("terrain_governed.csv", true), free = run("terrain_free.csv", false);
 #ifdef SANITIZER_PRELOAD
   // Under a sanitizer the shim's own work, not the window, sets the CPU time the power is
-  // estimated from: what this build checks is that glmark2 ran clean to its end, logged.
-  CHECK(governed.configuration.size() > 30);
-  CHECK(free.configuration.size() > 30);
+  // estimated from: what this build checks is that glmark2 ran clean to its end under the
+  // governor, logged (glmark2 without a budget is interpose_integration's).
+  CHECK(run("terrain_governed.csv", true).configuration.size() > 30);
   return;
 #endif
+  const Frames governed = run("terrain_governed.csv", true), free = run("terrain_free.csv", false);
   REQUIRE(governed.configuration.size() > 60);
   // From the first frame the governor shrank the window on, the work must stay well below the
   // free run's over the same frames. The last frame's configuration alone is not the test: when
