@@ -501,8 +501,7 @@ int calibrate_app_main(std::span<char* const> args) {
   }
   const fs::path dump = fs::path(scratch) / "dump";
   const std::string log = (fs::path(scratch) / "frames.csv").string();
-  std::string preload = shim;
-  if (const char* old = std::getenv("LD_PRELOAD"); old && *old) preload += std::string(":") + old;
+  const std::string preload = preload_with_shim(shim, std::getenv("LD_PRELOAD"));
   std::error_code ec;
   const std::vector<std::pair<std::string, std::string>> env = {
       {"LD_PRELOAD", preload},          {"GLBUDGET_CONFIG", fs::absolute(o->manifest, ec).string()},

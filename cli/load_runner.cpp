@@ -13,6 +13,8 @@
 #include <sstream>
 #include <string_view>
 
+#include "shim_path.hpp"
+
 extern char** environ;
 
 namespace glbudget::cli {
@@ -102,7 +104,7 @@ std::vector<std::string> LoadRunner::environment(const std::string& log) const {
   std::vector<std::string> env;
   for (char** e = environ; e && *e; ++e)
     if (!cleared(*e)) env.emplace_back(*e);
-  env.push_back("LD_PRELOAD=" + shim_);
+  env.push_back("LD_PRELOAD=" + preload_with_shim(shim_, nullptr));
   env.push_back("GLBUDGET_LOG=" + log);
   env.push_back("GLBUDGET_SENSOR=" + sensor_);
   env.push_back("GLBUDGET_INSTRUMENT=0");

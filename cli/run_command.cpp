@@ -140,9 +140,7 @@ int run_main(std::span<char* const> args) {
   }
 
   // LD_PRELOAD: the shim first, anything the user preloads after it.
-  std::string preload = shim;
-  if (const char* old = std::getenv("LD_PRELOAD"); old && *old) preload += std::string(":") + old;
-  setenv("LD_PRELOAD", preload.c_str(), 1);
+  setenv("LD_PRELOAD", preload_with_shim(shim, std::getenv("LD_PRELOAD")).c_str(), 1);
   for (const auto& [name, v] : env) setenv(name.c_str(), v.c_str(), 1);
 
   std::vector<char*> argv(args.begin() + static_cast<std::ptrdiff_t>(i), args.end());

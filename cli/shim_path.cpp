@@ -27,6 +27,15 @@ std::string first_file(const std::vector<fs::path>& candidates) {
 
 }  // namespace
 
+std::string preload_with_shim(const std::string& shim, const char* inherited) {
+  std::string preload = shim;
+#ifdef GLBUDGET_SANITIZER_PRELOAD
+  preload = std::string(GLBUDGET_SANITIZER_PRELOAD) + ":" + preload;
+#endif
+  if (inherited && *inherited) preload += std::string(":") + inherited;
+  return preload;
+}
+
 std::string find_shim() {
   if (const char* env = std::getenv("GLBUDGET_SHIM"); env && *env) return env;
   const fs::path dir = own_directory();

@@ -8,6 +8,11 @@ namespace glbudget::cli {
 // where `cmake --install` puts it (bin/../lib/<multiarch>/glbudget/). Empty when not found.
 std::string find_shim();
 
+// LD_PRELOAD for an app run with the shim: the shim, then what the user preloads (`inherited`,
+// when not empty). In a sanitizer build of glbudget, whose shim is sanitized too, the
+// sanitizer's runtime comes first: an unsanitized app must load it ahead of the shim.
+std::string preload_with_shim(const std::string& shim, const char* inherited);
+
 // A helper program built with glbudget: $<env_variable>, else in the build tree
 // (cli/../<build_dir>/<name>), else bin/../lib/glbudget/<name>. Empty when not found.
 std::string find_helper(const char* name, const char* build_dir, const char* env_variable);
