@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """`glbudget ssim` against scikit-image on generated image pairs (docs/ssim.md).
 
-    compare_skimage.py GLBUDGET [--keep DIR]
+    skimage_test.py GLBUDGET [--keep DIR]
 
 Writes PNG pairs: rendered-like frames against noisy, blurred, shifted, re-rendered at half
 resolution, banded and JPEG-compressed versions of themselves, identical pairs, constant,
