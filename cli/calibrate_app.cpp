@@ -136,13 +136,20 @@ std::optional<Options> parse(std::span<char* const> args, int& status) {
       const double v = std::strtod(value.c_str(), &end);
       const bool frames = arg == "--frames" || arg == "--power-frames" || arg == "--error-probes";
       const double least = arg == "--frames" ? 1 : 0;
-      const bool bad =
-          end == value.c_str() || *end || !std::isfinite(v) ||
-          (frames ? (v < least || v > 100000 || v != std::floor(v)) : (v <= 0 || (arg == "--fps" && v > 10000)));
+      // The power run leaves out the first two frames after each switch (settled_samples): with
+      // fewer than three a configuration, only the first one would be measured.
+      const bool too_few_to_settle = arg == "--power-frames" && (v == 1 || v == 2);
+      const bool bad = end == value.c_str() || *end || !std::isfinite(v) ||
+                       (frames ? (v < least || v > 100000 || v != std::floor(v) || too_few_to_settle)
+                               : (v <= 0 || (arg == "--fps" && v > 10000)));
       if (bad) {
-        std::fprintf(stderr, "glbudget: calibrate --app: %s %s is not %s\n", arg.c_str(), value.c_str(),
-                     frames ? (least ? "a number of frames in [1, 100000]" : "a number of frames in [0, 100000]")
-                            : (arg == "--fps" ? "a frame rate in (0, 10000]" : "a number of seconds > 0"));
+        const char* wanted = !frames ? (arg == "--fps" ? "a frame rate in (0, 10000]" : "a number of seconds > 0")
+                             : least ? "a number of frames in [1, 100000]"
+                             : arg == "--power-frames"
+                                 ? "0 (no power run) or a number of frames in [3, 100000] (the first two after each "
+                                   "switch are left out)"
+                                 : "a number of frames in [0, 100000]";
+        std::fprintf(stderr, "glbudget: calibrate --app: %s %s is not %s\n", arg.c_str(), value.c_str(), wanted);
         return std::nullopt;
       }
       if (arg == "--frames")
@@ -394,6 +401,11 @@ bool measure_power(const Options& o, const manifest::Manifest& m,
     std::printf("%-24s %9.2f %7d\n", colon.c_str(), mean, it->second.second);
     measured.push_back({{"configuration", colon}, {"power_w", mean}, {"frames", it->second.second}});
   }
+  if (measured.size() < listed.size())
+    std::fprintf(stderr,
+                 "glbudget: calibrate --app: the power run measured %zu of its %zu configurations (the app ended, "
+                 "or --timeout came, before the rest); the costs are fitted from those\n",
+                 measured.size(), listed.size());
   const model::PlatformCosts& k = fit->costs;
   std::printf(
       "costs in this app's frames: batch %.4g, vertex %.4g, fragment %.4g, instruction %.4g, texel %.4g "

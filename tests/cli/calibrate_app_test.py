@@ -17,7 +17,9 @@
    without --output the table lands where the shim looks ($XDG_CACHE_HOME/glbudget/demo.variants.json).
 4. Bad input: no manifest, a program that does not exist, one that draws nothing: a
    `glbudget:` line and a non-zero status.
-Usage: calibrate_app_test.py GLBUDGET DEMO MANIFEST PROFILE WORK_DIR
+With --sanitized (the ASan build's command and shim): step 1's table only, smaller, with no
+ground truth (minutes under the sanitizer), and a --power-frames too few to measure refused.
+Usage: calibrate_app_test.py GLBUDGET DEMO MANIFEST PROFILE WORK_DIR [--sanitized]
 """
 import glob
 import json
@@ -27,7 +29,9 @@ import subprocess
 import sys
 
 glbudget, demo, manifest, profile, work = sys.argv[1:6]
-DEMO_ARGS = ["--scene", "hall", "--detail", "0.05", "--width", "160", "--height", "90"]
+SANITIZED = sys.argv[6:] == ["--sanitized"]
+DEMO_ARGS = ["--scene", "hall", "--detail", "0.05", "--width", "96" if SANITIZED else "160",
+             "--height", "54" if SANITIZED else "90"]
 failures = []
 
 
@@ -55,7 +59,8 @@ os.makedirs(work)
 
 # 1. The table.
 table_path = os.path.join(work, "demo.variants.json")
-r = calibrate(["--config", manifest, "--frames", "6", "--power-frames", "4", "--error-probes", "3", "--sensor", "cpu",
+r = calibrate(["--config", manifest, "--frames", "6", "--power-frames", "4", "--error-probes", "2" if SANITIZED else "3",
+               "--sensor", "cpu",
                "--profile", profile, "--output", table_path, "--", demo] + DEMO_ARGS + ["--frames", "100000"])
 print(r.stdout, r.stderr)
 check(r.returncode == 0, f"calibrate --app exit status {r.returncode}")
@@ -100,6 +105,13 @@ check(len(measured_errors) == 12 and all(e["probes"] >= 2 and e["error"] >= 0 fo
 ratios = {name: [level.get("error_ratio") for level in levels[1:]] for name, levels in passes.items()}
 check(all(k[-1] == 1.0 and k[0] is not None and 0.0 <= k[0] < 1.0 for k in ratios.values()),
       f"k of each pass's cheapest level 1, the middle one in [0, 1): {ratios}")
+if SANITIZED:
+    r = calibrate(["--config", manifest, "--power-frames", "2", "--", demo])
+    check(r.returncode == 2 and "--power-frames 2 is not 0 (no power run) or a number of frames in [3," in r.stderr,
+          f"--power-frames 2 measures nothing past the first configuration: {r.stderr!r}")
+    print("ok" if not failures else f"{len(failures)} failure(s)")
+    sys.exit(1 if failures else 0)
+
 # Ground truth for k: the demo's own images with one pass at a level, against its best, over
 # five frames (1 - SSIM by `glbudget ssim`). The calibrated k must be near it, and nearer than
 # the stand-in l / lmax = 0.5 taken together.
@@ -207,6 +219,9 @@ check(r.returncode == 1 and "glbudget: calibrate --app: the app linked no progra
       f"a program that draws nothing: {r.returncode} {r.stderr!r}")
 r = calibrate(["--config", manifest, "--frames", "0", "--", "true"])
 check(r.returncode == 2 and "glbudget: calibrate --app: --frames 0 is not" in r.stderr, f"--frames 0: {r.stderr!r}")
+r = calibrate(["--config", manifest, "--power-frames", "2", "--", demo])
+check(r.returncode == 2 and "--power-frames 2 is not 0 (no power run) or a number of frames in [3," in r.stderr,
+      f"--power-frames 2 measures nothing past the first configuration: {r.stderr!r}")
 
 print("ok" if not failures else f"{len(failures)} failure(s)")
 sys.exit(1 if failures else 0)
