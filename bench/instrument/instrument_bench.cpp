@@ -6,13 +6,13 @@
 #include "egl_context.hpp"
 #include "gl_program.hpp"
 #include "glbudget/instrument/instrument.hpp"
+#include "program_cases.hpp"
 #include "shader_files.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -21,14 +21,6 @@ using namespace glbudget::test;
 using Clock = std::chrono::steady_clock;
 
 namespace {
-
-struct BenchCase {
-  const char* name;
-  const char* profile;
-  const char* vertex_file;
-  const char* fragment_file;
-  std::function<void(GLuint)> set_uniforms;
-};
 
 double milliseconds(Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); }
 
@@ -60,7 +52,7 @@ GLuint program_from(const std::string& vertex, const std::string& fragment) {
   return p.id;
 }
 
-void run(const BenchCase& c, int size, int frames) {
+void run(const ProgramCase& c, int size, int frames) {
   EglContext context(c.profile);
   if (!context.ok()) {
     std::fprintf(stderr, "%s\n", context.error().c_str());
@@ -123,29 +115,11 @@ void run(const BenchCase& c, int size, int frames) {
   glDeleteProgram(counted);
 }
 
-void set_int(GLuint program, const char* name, int value) {
-  glProgramUniform1i(program, glGetUniformLocation(program, name), value);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   setenv("MESA_SHADER_CACHE_DISABLE", "true", 1);  // time real compiles
   const int size = argc > 1 ? std::max(16, std::atoi(argv[1])) : 512;
   const int frames = argc > 2 ? std::max(4, std::atoi(argv[2])) : 40;
-  const BenchCase cases[] = {
-      {"loops", "core", "quad.vert", "loops.frag",
-       [](GLuint p) {
-         set_int(p, "image", 0);
-         set_int(p, "trips", 5);
-         glProgramUniform1f(p, glGetUniformLocation(p, "scale"), 0.5f);
-       }},
-      {"jumps", "core", "quad_es.vert", "jumps.frag",
-       [](GLuint p) {
-         set_int(p, "image", 0);
-         set_int(p, "mode", 0);
-       }},
-      {"compat", "compatibility", "quad_compat.vert", "compat.frag", [](GLuint p) { set_int(p, "image", 0); }},
-  };
-  for (const BenchCase& c : cases) run(c, size, frames);
+  for (const ProgramCase& c : program_cases()) run(c, size, frames);
 }

@@ -4,28 +4,17 @@
 #include "egl_context.hpp"
 #include "gl_program.hpp"
 #include "glbudget/instrument/instrument.hpp"
+#include "program_cases.hpp"
 #include "shader_files.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <cstdlib>
-#include <functional>
 
 using namespace glbudget::instrument;
 using namespace glbudget::test;
 
 namespace {
-
-struct ProgramCase {
-  const char* name;
-  const char* profile;
-  const char* vertex_file;
-  const char* fragment_file;
-  std::function<void(GLuint)> set_uniforms;
-  double fragment_instructions;  // hand counts per invocation (see the shader files)
-  double fragment_texels;
-  std::vector<int> fragment_warning_lines = {};  // where the driver warns in the original
-};
 
 struct Built {
   CompiledShader vertex, fragment;
@@ -122,38 +111,16 @@ void run_case(const ProgramCase& c) {
   glDeleteBuffers(1, &counters);
 }
 
-void set_int(GLuint program, const char* name, int value) {
-  glProgramUniform1i(program, glGetUniformLocation(program, name), value);
-}
-
 }  // namespace
 
 TEST_CASE("GLSL 3.30 core: uniform loop, texture in a called function, half-taken branch", "[gl]") {
-  run_case({"loops", "core", "quad.vert", "loops.frag",
-            [](GLuint p) {
-              set_int(p, "image", 0);
-              set_int(p, "trips", 5);
-              glProgramUniform1f(p, glGetUniformLocation(p, "scale"), 0.5f);
-            },
-            51.5, 5.0});
+  run_case(program_case("loops"));
 }
 
 TEST_CASE("GLSL ES 3.00: discard, early return, break, continue, while, do, switch", "[gl]") {
-  run_case({"jumps", "core", "quad_es.vert", "jumps.frag",
-            [](GLuint p) {
-              set_int(p, "image", 0);
-              set_int(p, "mode", 0);
-            },
-            34.75, 1.5});
+  run_case(program_case("jumps"));
 }
 
 TEST_CASE("GLSL 1.20 compatibility: texture2D, macros, #line, a driver warning", "[gl]") {
-  run_case({"compat",
-            "compatibility",
-            "quad_compat.vert",
-            "compat.frag",
-            [](GLuint p) { set_int(p, "image", 0); },
-            9.5,
-            2.0,
-            {101}});
+  run_case(program_case("compat"));
 }
