@@ -343,25 +343,29 @@ void handle_glBindAttribLocation(pfn_glBindAttribLocation real, GLuint program, 
   bindings.emplace_back(name, index);
 }
 
-void handle_glBindFragDataLocationIndexed(pfn_glBindFragDataLocationIndexed real, GLuint program, GLuint colorNumber,
-                                          GLuint index, const GLchar* name) {
-  real(program, colorNumber, index, name);
+namespace {
+
+// A fragment output's location bound before the link, replayed onto the program's variants.
+void remember_frag_data_binding(GLuint program, GLuint color, GLuint index, const GLchar* name) {
   ContextState* c = current_context();
   if (!c || !name || !shadows_programs(*c)) return;
   std::lock_guard lock(c->group->mu);
   auto& bindings = c->group->programs[program].frag_data_bindings;
   std::erase_if(bindings, [&](const auto& b) { return b.first == name; });
-  bindings.emplace_back(name, std::make_pair(colorNumber, index));
+  bindings.emplace_back(name, std::make_pair(color, index));
+}
+
+}  // namespace
+
+void handle_glBindFragDataLocationIndexed(pfn_glBindFragDataLocationIndexed real, GLuint program, GLuint colorNumber,
+                                          GLuint index, const GLchar* name) {
+  real(program, colorNumber, index, name);
+  remember_frag_data_binding(program, colorNumber, index, name);
 }
 
 void handle_glBindFragDataLocation(pfn_glBindFragDataLocation real, GLuint program, GLuint color, const GLchar* name) {
   real(program, color, name);
-  ContextState* c = current_context();
-  if (!c || !name || !shadows_programs(*c)) return;
-  std::lock_guard lock(c->group->mu);
-  auto& bindings = c->group->programs[program].frag_data_bindings;
-  std::erase_if(bindings, [&](const auto& b) { return b.first == name; });
-  bindings.emplace_back(name, std::make_pair(color, 0u));
+  remember_frag_data_binding(program, color, 0u, name);
 }
 
 void handle_glUniformBlockBinding(pfn_glUniformBlockBinding real, GLuint program, GLuint index, GLuint binding) {

@@ -41,8 +41,14 @@ inline const std::vector<ProgramCase>& program_cases() {
          set_int_uniform(p, "mode", 0);
        },
        34.75, 1.5},
-      {"compat", "compatibility", "quad_compat.vert", "compat.frag",
-       [](GLuint p) { set_int_uniform(p, "image", 0); }, 9.5, 2.0, {101}},
+      {"compat",
+       "compatibility",
+       "quad_compat.vert",
+       "compat.frag",
+       [](GLuint p) { set_int_uniform(p, "image", 0); },
+       9.5,
+       2.0,
+       {101}},
   };
   return cases;
 }

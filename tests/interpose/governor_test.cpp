@@ -53,14 +53,14 @@ TEST_CASE("the demo under a 40 % budget: fit, select, transition, and the power 
   const std::string log = temp_path("governed.csv");
   unlink(log.c_str());
   const ProcessResult r = run_process(
-      {DEMO_PATH, "--scene", "hall", "--detail", "0.2", "--width", "320", "--height", "180", "--frames", "110"},
+      {DEMO_PATH, "--scene", "hall", "--detail", "0.2", "--width", "320", "--height", "180", "--frames", "160"},
       {{"LD_PRELOAD", shim_path()},
        {"GLBUDGET_CONFIG", source("testapps/demo/glbudget.toml")},
        {"GLBUDGET_POWER", "40%"},
        {"GLBUDGET_PROFILE", kProfile},
        {"GLBUDGET_SENSOR", "cpu"},
        {"GLBUDGET_FPS", "10"},
-       {"GLBUDGET_SELECT_FRAMES", "40"},
+       {"GLBUDGET_SELECT_FRAMES", "60"},
        {"GLBUDGET_TRANSITION_S", "1"},
        {"GLBUDGET_LOG", log}});
   INFO(r.err);
@@ -71,13 +71,46 @@ TEST_CASE("the demo under a 40 % budget: fit, select, transition, and the power 
   CHECK(decisions.count("fit") + decisions.count("select") >= 1);
   CHECK(decisions.count("select") == 1);
   CHECK(decisions.count("transition") == 1);
-#ifndef SANITIZER_PRELOAD
-  // After the fit, the fitter checks every 10 usable frames and a changed configuration starts a
-  // new 30-frame window. A sanitized shim's extra CPU time reads as power over the budget, so
-  // the governor reselects every 20-40 frames there and no window completes within the run
-  // (online_fitter_test has the fitter's own cases).
-  CHECK(decisions.count("refit") + decisions.count("check") >= 1);
-#endif
+  // The fitter keeps learning after its fit: it checks the model every 10 usable frames, and a
+  // changed configuration starts a new 30-frame fitting window (probe frames and those after
+  // them are not usable). The decision column holds one event a frame, a selection's over a
+  // check's, so the check is asserted where the run gives the fitter room: every steady stretch
+  // of 45 frames or more (no configuration change or transition) holds a check or a
+  // refit. The governor reselects whenever the configuration it chose is predicted over the
+  // budget, more often where the shim runs sanitized (its extra CPU time reads as power), so a
+  // run may have no such stretch; it is said, not failed.
+  const long first_fit = [&] {
+    for (auto& [frame, d] : f.decision)
+      if (d == "fit") return frame;
+    return 0L;
+  }();
+  REQUIRE(first_fit > 0);
+  long stretch_start = 0, longest_stretch = 0;
+  bool learnt = false;
+  auto close_stretch = [&](long end) {
+    if (stretch_start > 0 && end - stretch_start >= 45) {
+      INFO("frames " << stretch_start << "-" << end - 1 << " at " << f.configuration.at(stretch_start));
+      CHECK(learnt);
+    }
+    if (stretch_start > 0) longest_stretch = std::max(longest_stretch, end - stretch_start);
+    stretch_start = 0;
+  };
+  std::string previous_configuration;
+  for (auto& [frame, d] : f.decision) {
+    if (frame <= first_fit) continue;
+    const std::string& c = f.configuration.at(frame);
+    const bool moved = d == "transition" || c != previous_configuration;  // a selection may keep it
+    previous_configuration = c;
+    if (moved) {
+      close_stretch(frame);
+      continue;
+    }
+    if (stretch_start == 0) stretch_start = frame, learnt = false;
+    learnt = learnt || d == "check" || d == "refit";
+  }
+  close_stretch(f.decision.rbegin()->first + 1);
+  if (longest_stretch < 45)
+    WARN("no steady stretch of 45 frames after the fit (longest " << longest_stretch << "): checks not asserted");
   // Best until the model is fitted (30 frames), then cheaper.
   CHECK(f.configuration.at(10) == "0:0:0:0:0:0");
   CHECK(f.configuration.rbegin()->second != "0:0:0:0:0:0");
@@ -87,8 +120,8 @@ TEST_CASE("the demo under a 40 % budget: fit, select, transition, and the power 
   // on this 2-core machine moves by more than the knobs do (a run beside a build measured more
   // power under the budget than before it). So the test asserts the loop, and reports the
   // power; bench/governor/evaluate_budgets.py measures budgets kept on a quiet machine.
-  const double work_before = mean_of(f.fragments, 5, 30), work_after = mean_of(f.fragments, 80, 110);
-  const double before = mean_power(f, 5, 30), after = mean_power(f, 80, 110);
+  const double work_before = mean_of(f.fragments, 5, 30), work_after = mean_of(f.fragments, 130, 160);
+  const double before = mean_power(f, 5, 30), after = mean_power(f, 130, 160);
   WARN("fragments per frame " << work_before << " then " << work_after << "; mean power before the first "
                               << "selection " << before << " W, at the end " << after << " W (estimate)");
   unlink(log.c_str());
