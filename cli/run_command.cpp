@@ -73,9 +73,7 @@ int run_main(std::span<char* const> args) {
       budget = true;
     } else if (arg == "--error") {
       if (!(v = value("--error"))) return 2;
-      char* end = nullptr;
-      const double e = std::strtod(v, &end);
-      if (end == v || *end || !(e >= 0.0 && e <= 1.0)) {
+      if (!model::parse_error_budget(v)) {
         std::fprintf(stderr, "glbudget: run: --error %s is not an error (1 - SSIM) in [0, 1]\n", v);
         return 2;
       }

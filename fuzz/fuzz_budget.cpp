@@ -1,5 +1,7 @@
-// Fuzz target: the power budget (GLBUDGET_POWER, `glbudget run --power`): "40%", "35W", "off".
-// Input: the value. A budget that parses must be usable: a share in [0, 1] or watts >= 0.
+// Fuzz target: the budgets. The power budget (GLBUDGET_POWER, `glbudget run --power`): "40%",
+// "35W", "off"; and the error budget (GLBUDGET_ERROR, `glbudget run --error`): "0.02". Input:
+// the value, given to both. A budget that parses must be usable: a share in [0, 1] or watts
+// >= 0; an error in [0, 1].
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -10,8 +12,10 @@
 namespace model = glbudget::model;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const std::optional<model::Budget> budget =
-      model::parse_budget(std::string_view(reinterpret_cast<const char*>(data), size));
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  if (const std::optional<double> error = model::parse_error_budget(text); error && !(*error >= 0.0 && *error <= 1.0))
+    std::abort();
+  const std::optional<model::Budget> budget = model::parse_budget(text);
   if (!budget) return 0;
   switch (budget->kind) {
     case model::Budget::Kind::Off:

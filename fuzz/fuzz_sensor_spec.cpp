@@ -1,12 +1,14 @@
 // Fuzz target: the power sensor spec (GLBUDGET_SENSOR, `glbudget run --sensor`):
-// "auto", "rapl", "amdgpu:card=1", "file:PATH", ... Input: the value. Only the spec is parsed
-// here; opening the sensor it names needs the machine's sysfs.
+// "auto", "rapl", "amdgpu:card=1", "file:PATH", ... and its sampling period
+// (GLBUDGET_SENSOR_PERIOD_MS, 1..1000). Input: the value, given to both. Only the spec is
+// parsed here; opening the sensor it names needs the machine's sysfs.
 #include <cstdint>
 #include <cstdlib>
 #include <string>
 #include <string_view>
 
 #include "glbudget/sensors/registry.hpp"
+#include "glbudget/sensors/sensor.hpp"
 
 namespace sensors = glbudget::sensors;
 
@@ -16,5 +18,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       sensors::parse_sensor_spec(std::string_view(reinterpret_cast<const char*>(data), size), error);
   if (!spec && error.empty()) std::abort();  // a rejection says why
   if (spec && spec->kind.empty()) std::abort();
+  const auto period = sensors::parse_sampling_period_ms(std::string_view(reinterpret_cast<const char*>(data), size));
+  if (period && (period->count() < 1 || period->count() > 1000)) std::abort();
   return 0;
 }

@@ -490,12 +490,8 @@ bool governor_start() {
       if (b) settings.power = *b;
     }
     if (!o.error.empty()) {
-      char* end = nullptr;
-      const double e = std::strtod(o.error.c_str(), &end);
-      if (end != o.error.c_str() && !*end && e >= 0.0 && e <= 1.0)
-        settings.error_budget = e;
-      else
-        say("GLBUDGET_ERROR='" + o.error + "' is not an error (1 - SSIM) in [0, 1]; ignored");
+      settings.error_budget = model::parse_error_budget(o.error);
+      if (!settings.error_budget) say("GLBUDGET_ERROR='" + o.error + "' is not an error (1 - SSIM) in [0, 1]; ignored");
     }
     const bool budget = settings.power.kind != model::Budget::Kind::Off || settings.error_budget;
     if (!budget && !probes_asked) return;

@@ -23,6 +23,17 @@ TEST_CASE("budgets parse as share of range, watts or off", "[model][selection]")
   }
 }
 
+TEST_CASE("error budgets parse as 1 - SSIM in [0, 1]", "[model][selection]") {
+  CHECK(parse_error_budget("0.02") == Approx(0.02));
+  CHECK(parse_error_budget(" 0 ") == 0.0);
+  CHECK(parse_error_budget("1") == 1.0);
+  CHECK(parse_error_budget("1e-3") == Approx(0.001));
+  for (const char* bad : {"", "x", "-0.01", "1.0001", "nan", "inf", "0.02%", "0.02 0.03", "1e400"}) {
+    CAPTURE(bad);
+    CHECK(!parse_error_budget(bad));
+  }
+}
+
 TEST_CASE("selection takes the lowest error within the budget", "[model][selection]") {
   const std::vector<double> power{30, 40, 50, 60};
   const std::vector<double> error{0.30, 0.10, 0.05, 0.0};

@@ -52,6 +52,16 @@ TEST_CASE("bad or unavailable GLBUDGET_SENSOR values fall back to auto", "[envir
   }
 }
 
+TEST_CASE("sampling periods parse as whole milliseconds in 1..1000", "[environment]") {
+  using std::chrono::milliseconds;
+  CHECK(parse_sampling_period_ms("1") == milliseconds(1));
+  CHECK(parse_sampling_period_ms("1000") == milliseconds(1000));
+  for (const char* bad : {"", "0", "1001", "-5", "5ms", " 5", "2.5", "99999999999999999999"}) {
+    CAPTURE(bad);
+    CHECK(!parse_sampling_period_ms(bad));
+  }
+}
+
 TEST_CASE("GLBUDGET_SENSOR_PERIOD_MS sets the sampling period; bad values keep the default", "[environment]") {
   FakeSysfs sysfs;
   using std::chrono::milliseconds;

@@ -54,6 +54,12 @@ std::optional<Budget> parse_budget(std::string_view text) {
   return reject(text, "has no unit");
 }
 
+std::optional<double> parse_error_budget(std::string_view text) {
+  const std::optional<double> e = parse_number(text);
+  if (!e || *e < 0.0 || *e > 1.0) return std::nullopt;
+  return *e;
+}
+
 namespace {
 
 struct Range {

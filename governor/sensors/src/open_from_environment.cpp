@@ -8,6 +8,13 @@
 
 namespace glbudget::sensors {
 
+std::optional<std::chrono::milliseconds> parse_sampling_period_ms(std::string_view text) {
+  int ms = 0;
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), ms);
+  if (ec != std::errc() || ptr != text.data() + text.size() || ms < 1 || ms > 1000) return std::nullopt;
+  return std::chrono::milliseconds(ms);
+}
+
 namespace {
 
 // GLBUDGET_SENSOR_PERIOD_MS: 1..1000, default 5 (see the README for what it costs).
@@ -15,11 +22,8 @@ SamplerOptions sampler_options_from_environment() {
   SamplerOptions options;
   const char* value = std::getenv("GLBUDGET_SENSOR_PERIOD_MS");
   if (!value || !*value) return options;
-  const std::string_view text = value;
-  int ms = 0;
-  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), ms);
-  if (ec == std::errc() && ptr == text.data() + text.size() && ms >= 1 && ms <= 1000)
-    options.period = std::chrono::milliseconds(ms);
+  if (const auto period = parse_sampling_period_ms(value))
+    options.period = *period;
   else
     std::fprintf(stderr, "glbudget: GLBUDGET_SENSOR_PERIOD_MS=%s is not 1..1000; using %lld\n", value,
                  static_cast<long long>(options.period.count() / 1'000'000));

@@ -20,6 +20,10 @@ struct Budget {
 // and std::nullopt, so the caller keeps its default.
 std::optional<Budget> parse_budget(std::string_view text);
 
+// An error budget (GLBUDGET_ERROR, `glbudget run --error`): 1 - SSIM in [0, 1], e.g. "0.02",
+// spaces around it allowed. Anything else: std::nullopt, and the caller says why in its words.
+std::optional<double> parse_error_budget(std::string_view text);
+
 // Power limit in watts for this set of predictions; +inf when the budget is off. A share of
 // the range runs from the lowest predicted power to, with `error`, the predicted power of the
 // best-quality configuration (the highest among those of least error), else the highest

@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <thread>
@@ -90,5 +91,9 @@ std::int64_t monotonic_now_ns();
 // "auto", which always ends at the cpu estimate. Returns null only if even that fails.
 // With "auto" it says on stderr which sensor it picked.
 std::unique_ptr<PowerSensor> open_sensor_from_environment();
+
+// GLBUDGET_SENSOR_PERIOD_MS's value: whole milliseconds in 1..1000, nothing around them;
+// std::nullopt otherwise.
+std::optional<std::chrono::milliseconds> parse_sampling_period_ms(std::string_view text);
 
 }  // namespace glbudget::sensors
