@@ -13,12 +13,12 @@
 namespace sensors = glbudget::sensors;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
   std::string error;
-  const std::optional<sensors::SensorSpec> spec =
-      sensors::parse_sensor_spec(std::string_view(reinterpret_cast<const char*>(data), size), error);
+  const std::optional<sensors::SensorSpec> spec = sensors::parse_sensor_spec(text, error);
   if (!spec && error.empty()) std::abort();  // a rejection says why
   if (spec && spec->kind.empty()) std::abort();
-  const auto period = sensors::parse_sampling_period_ms(std::string_view(reinterpret_cast<const char*>(data), size));
+  const auto period = sensors::parse_sampling_period_ms(text);
   if (period && (period->count() < 1 || period->count() > 1000)) std::abort();
   return 0;
 }
