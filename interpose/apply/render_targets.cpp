@@ -194,7 +194,7 @@ std::array<GLsizei, 2> TargetScaler::Image::stored_level_size(size_t level) cons
   return {std::max(1, stored_width() >> level), std::max(1, stored_height() >> level)};
 }
 
-TargetScaler::TargetScaler(bool gles) : gles_(gles) {
+TargetScaler::TargetScaler(bool gles, bool blits) : gles_(gles), blits_(blits) {
   const ApplyGl& g = agl();
   g.GetIntegerv(GL_VIEWPORT, viewport_.data());
   g.GetIntegerv(GL_SCISSOR_BOX, scissor_.data());
@@ -202,8 +202,13 @@ TargetScaler::TargetScaler(bool gles) : gles_(gles) {
   window_width_ = viewport_[2];
   window_height_ = viewport_[3];
   GLint fbo = 0;
-  g.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
+  g.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);  // GL_FRAMEBUFFER_BINDING, the same enum
   draw_fbo_ = static_cast<GLuint>(fbo);
+  if (!blits_) {  // one binding for reading and drawing: GL_READ_FRAMEBUFFER_BINDING is an error
+    read_fbo_ = draw_fbo_;
+    draw_copy_ = std::make_unique<DrawCopy>(gles);
+    return;
+  }
   g.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &fbo);
   read_fbo_ = static_cast<GLuint>(fbo);
 }
@@ -256,6 +261,7 @@ void TargetScaler::check_window() {
   if (window_.checked) return;
   // What the window is made of, asked of the real default framebuffer.
   window_.checked = true;
+  if (!blits_) return check_window_without_blits();
   const ApplyGl& g = agl();
   GLint draw = 0, samples = 0, depth = GL_NONE, stencil = GL_NONE, encoding = GL_LINEAR;
   g.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
@@ -282,7 +288,7 @@ int TargetScaler::window_samples() {
 void TargetScaler::update_window() {
   const ApplyGl& g = agl();
   const double s = wanted_window_scale();
-  if (s == 1.0 || window_width_ <= 0 || window_height_ <= 0) {
+  if (s == 1.0 || window_width_ <= 0 || window_height_ <= 0 || window_unscalable_) {
     release_window();
     return;
   }
@@ -295,6 +301,7 @@ void TargetScaler::update_window() {
   }
   const int w = scaled(window_width_, s), h = scaled(window_height_, s);
   if (window_.fbo && w == window_.width && h == window_.height) return;
+  if (!blits_) return update_window_without_blits(w, h);
   GLint renderbuffer = 0, draw = 0, read = 0;
   g.GetIntegerv(GL_RENDERBUFFER_BINDING, &renderbuffer);
   g.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
@@ -334,7 +341,10 @@ void TargetScaler::delete_image_set(ImageSet& set) {
   if (!set.fbo) return;
   const ApplyGl& g = agl();
   g.DeleteFramebuffers(1, &set.fbo);
-  g.DeleteRenderbuffers(1, &set.color);
+  if (set.color_texture)
+    g.DeleteTextures(1, &set.color);
+  else
+    g.DeleteRenderbuffers(1, &set.color);
   if (set.depth) g.DeleteRenderbuffers(1, &set.depth);
   set = ImageSet{};
 }
@@ -366,6 +376,7 @@ void TargetScaler::ensure_image_set(ImageSet& set, int width, int height) {
 
 void TargetScaler::release_window() {
   if (!window_.fbo) return;
+  if (!blits_) return release_window_without_blits();
   const ApplyGl& g = agl();
   if (draw_fbo_ == 0) g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
   if (read_fbo_ == 0) g.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
@@ -426,6 +437,7 @@ GLuint TargetScaler::single_sampled_window(bool depth) {
 
 void TargetScaler::present() {
   if (!window_.fbo) return;
+  if (!blits_) return present_without_blits();
   BlitState saved;
   const GLuint from = single_sampled_window(false);
   if (window_.samples == 0) {
@@ -439,6 +451,7 @@ void TargetScaler::present() {
 }
 
 void TargetScaler::bind_window_copy() {
+  if (!blits_) return bind_window_copy_without_blits();
   ensure_image_set(window_.copy, window_width_, window_height_);
   {
     BlitState saved;
@@ -449,7 +462,9 @@ void TargetScaler::bind_window_copy() {
   agl().BindFramebuffer(GL_READ_FRAMEBUFFER, window_.copy.fbo);
 }
 
-void TargetScaler::unbind_window_copy() { agl().BindFramebuffer(GL_READ_FRAMEBUFFER, window_.fbo); }
+void TargetScaler::unbind_window_copy() {
+  agl().BindFramebuffer(blits_ ? GL_READ_FRAMEBUFFER : GL_FRAMEBUFFER, window_.fbo);
+}
 
 void TargetScaler::agl_bind_read_framebuffer(GLuint app) { agl().BindFramebuffer(GL_READ_FRAMEBUFFER, app); }
 
@@ -665,7 +680,7 @@ bool TargetScaler::cleared_before_drawn(const Framebuffer& f) const {
 }
 
 void TargetScaler::on_clear(GLbitfield mask) {
-  if (draw_fbo_ == 0) return;
+  if (draw_fbo_ == 0 || !blits_) return;
   Framebuffer& f = framebuffers_[draw_fbo_];
   if (f.drawn_frame == frame_) return;           // drawn already this frame: a clear now is no fresh start
   if (agl().IsEnabled(GL_SCISSOR_TEST)) return;  // a partial clear
@@ -675,7 +690,7 @@ void TargetScaler::on_clear(GLbitfield mask) {
 }
 
 void TargetScaler::on_draw(int pass) {
-  if (draw_fbo_ == 0) return;
+  if (draw_fbo_ == 0 || !blits_) return;
   Framebuffer& f = framebuffers_[draw_fbo_];
   f.drawn_frame = frame_;
   const bool new_pass = pass >= 0 && pass < 64 && !((f.passes >> pass) & 1);
@@ -688,6 +703,7 @@ void TargetScaler::on_draw(int pass) {
 }
 
 void TargetScaler::on_blit(GLuint read, GLuint draw) {
+  if (!blits_) return;
   const double before = draw_fbo_ ? framebuffers_[draw_fbo_].scale : 1.0;
   for (GLuint name : {read, draw}) {
     if (name == 0) continue;
@@ -971,7 +987,7 @@ GLenum TargetScaler::texture_kind(GLenum target) {
 void TargetScaler::tex_image(GLenum target, GLint level, GLint internal_format, GLsizei* width, GLsizei* height,
                              GLsizei layers, GLenum format, GLenum type, bool with_data) {
   const GLenum kind = texture_kind(target);
-  if (!kind || level < 0 || level > 16) return;
+  if (!kind || level < 0 || level > 16 || !blits_) return;
   const GLuint bound = bound_texture(kind);
   if (!bound) return;
   Image& im = textures_[bound];
@@ -1010,7 +1026,7 @@ bool TargetScaler::tex_storage(GLenum kind, GLuint texture, GLsizei levels, GLen
                                GLsizei height, GLsizei layers) {
   GLenum format = 0, type = 0;
   // Other calls (and the app's mistakes, which must raise the driver's errors) go as they are.
-  if (!texture || texture_kind(kind) != kind || levels < 1 || width <= 0 || height <= 0 || layers < 1 ||
+  if (!blits_ || !texture || texture_kind(kind) != kind || levels < 1 || width <= 0 || height <= 0 || layers < 1 ||
       !null_upload(internal_format, &format, &type))
     return false;
   if (levels > full_mip_levels(width, height)) return false;
@@ -1043,7 +1059,7 @@ bool TargetScaler::tex_storage(GLenum kind, GLuint texture, GLsizei levels, GLen
 
 void TargetScaler::tex_image_multisample(GLsizei samples, GLenum internal_format, GLsizei* width, GLsizei* height,
                                          GLboolean fixed_locations) {
-  const GLuint bound = bound_texture(GL_TEXTURE_2D_MULTISAMPLE);
+  const GLuint bound = blits_ ? bound_texture(GL_TEXTURE_2D_MULTISAMPLE) : 0;
   if (!bound) return;
   Image& im = textures_[bound];
   im.kind = GL_TEXTURE_2D_MULTISAMPLE;
@@ -1110,6 +1126,7 @@ GLint TargetScaler::texture_parameter(GLuint texture, GLenum pname, GLint value)
 }
 
 void TargetScaler::renderbuffer_storage(GLsizei samples, GLenum internal_format, GLsizei* width, GLsizei* height) {
+  if (!blits_) return;
   GLint bound = 0;
   agl().GetIntegerv(GL_RENDERBUFFER_BINDING, &bound);
   if (!bound) return;

@@ -17,13 +17,18 @@
 // ones but of the window's size or named by the manifest; not 3D or multisample array textures; a
 // framebuffer with an image the scaler cannot scale keeps its size; textures are tracked per
 // context; a multisampled GLES window is not scaled.
+// A context with framebuffer objects but no blits (OpenGL ES 2.0) scales the window alone: its
+// stand-in's colour is a texture, presented and read back by drawing it (draw_copy.hpp); the
+// app's own framebuffers keep their sizes there (window_without_blits.cpp).
 #pragma once
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <unordered_map>
 #include <vector>
 
 #include "configuration.hpp"
+#include "draw_copy.hpp"
 #include "gl_types.hpp"
 
 namespace glbudget {
@@ -44,7 +49,11 @@ int full_mip_levels(int width, int height);
 
 class TargetScaler {
  public:
-  explicit TargetScaler(bool gles);  // reads the viewport and scissor the context starts with
+  // Reads the viewport and scissor the context starts with. `blits`: the context has
+  // glBlitFramebuffer and separate read and draw bindings (GL 3.0, GLES 3.0); without, the
+  // window alone is scaled.
+  TargetScaler(bool gles, bool blits);
+  bool blits() const { return blits_; }
 
   // The configuration in force; re-scales the framebuffers seen so far.
   void set_configuration(const Levels& config);
@@ -218,10 +227,12 @@ class TargetScaler {
     double scale = 1.0;
   };
 
-  // A framebuffer of single-sampled renderbuffers in the window's formats.
+  // A framebuffer of single-sampled renderbuffers in the window's formats (the colour a
+  // texture where there are no blits, so that it can be drawn).
   struct ImageSet {
     GLuint fbo = 0, color = 0, depth = 0;
     int width = 0, height = 0;
+    bool color_texture = false;
   };
   struct Window {
     GLuint fbo = 0, color = 0, depth = 0;  // the stand-in (0: the window is not scaled)
@@ -231,6 +242,12 @@ class TargetScaler {
     GLenum color_format = GL_RGBA8;
     int samples = 0;
     bool has_depth = false, checked = false;
+    // Without blits: the colour is a texture; depth in what the driver has, and stencil in an
+    // image of its own where it has no packed depth-stencil.
+    bool color_texture = false;
+    GLenum depth_format = GL_DEPTH24_STENCIL8;
+    GLuint stencil = 0;
+    bool separate_stencil = false;
   };
   void check_window();
   void ensure_image_set(ImageSet& set, int width, int height);
@@ -244,6 +261,15 @@ class TargetScaler {
   void release_window();
   void bind_window_copy();
   void unbind_window_copy();
+  // The window in a context without blits (window_without_blits.cpp).
+  void check_window_without_blits();
+  void update_window_without_blits(int width, int height);
+  void release_window_without_blits();
+  void present_without_blits();
+  void bind_window_copy_without_blits();
+  // Stand-in images at width x height, the colour a linear-filtered texture.
+  void make_drawable_images(GLuint fbo, GLuint* color, GLuint* depth, GLuint* stencil, int width, int height,
+                            bool fresh);
   // The app-sized copy a read of the scaled app framebuffer bound for reading goes through:
   // made (or reused), the rectangle blitted into it, bound for reading; false where there is
   // nothing to copy (not scaled, multisampled, an image the scaler does not know).
@@ -282,6 +308,9 @@ class TargetScaler {
   std::array<GLint, 4> viewport_{}, scissor_{};
   bool any_scaled_ = false;
   bool gles_ = false;
+  bool blits_ = true;
+  std::unique_ptr<DrawCopy> draw_copy_;  // without blits
+  bool window_unscalable_ = false;       // the driver refused the stand-in: said once, not tried again
   uint64_t frame_ = 1;
   uint64_t attachment_changes_ = 0;
   GLint texture_units_ = -1;  // GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, once asked

@@ -58,6 +58,25 @@ void say_what_is_not_measured(const GlCaps& caps) {
     say_once("caps:timer", "the driver lacks GL_ARB_timer_query: gpu_ns is not measured (empty in the log)");
 }
 
+// A context whose render targets cannot all be scaled as the configuration asks: one line
+// each, once per process, so that a log's configuration column is never taken for what drew.
+void say_what_cannot_scale(const GlCaps& caps, bool blits, bool window_alone) {
+  if (blits || caps.major == 0) return;
+  const std::string version =
+      std::string(caps.gles ? "OpenGL ES " : "OpenGL ") + std::to_string(caps.major) + "." + std::to_string(caps.minor);
+  if (!window_alone) {
+    say_once("caps:scaling", "this context is " + version +
+                                 ", without framebuffer objects and blits in core: nothing is scaled (resolution "
+                                 "levels draw at full size)");
+    return;
+  }
+  if (manifest_scales_targets())
+    say_once("caps:scaling-targets",
+             "this context is " + version +
+                 ", without blits: the window's resolution is scaled, the app's own framebuffers "
+                 "keep their sizes");
+}
+
 void initialise(ContextState& c, Registry& r) {
   if (c.initialized) return;
   if (!load_gl_calls()) return;
@@ -65,10 +84,13 @@ void initialise(ContextState& c, Registry& r) {
   c.index = r.next_index++;
   c.caps = detect_caps();
   c.counter = std::make_unique<PassCounter>(c.caps);
-  // Scaling needs framebuffer objects and blits: GL 3.0, GLES 3.0.
-  const bool fbo_blit = c.caps.major >= 3;
-  if ((manifest_scales_targets() || manifest_scales_window()) && fbo_blit) {
-    c.targets = std::make_unique<TargetScaler>(c.caps.gles);
+  // Scaling needs framebuffer objects and blits: GL 3.0, GLES 3.0. GLES 2.0 has framebuffer
+  // objects without blits: there the window alone is scaled, its stand-in drawn.
+  const bool blits = c.caps.major >= 3;
+  const bool window_alone = c.caps.gles && c.caps.major == 2;
+  if (manifest_scales_targets() || manifest_scales_window()) say_what_cannot_scale(c.caps, blits, window_alone);
+  if ((manifest_scales_targets() || manifest_scales_window()) && (blits || window_alone)) {
+    c.targets = std::make_unique<TargetScaler>(c.caps.gles, blits);
     c.counter->set_draw_hook(
         [](void* ctx) {
           auto* cs = static_cast<ContextState*>(ctx);
@@ -86,7 +108,14 @@ void initialise(ContextState& c, Registry& r) {
   frame_output_started();
   say_what_is_not_measured(c.caps);
   // After the governor has started: probes are on by default when it governs.
-  if (c.targets && probe_settings().period > 0) c.probes = std::make_unique<ProbeFrames>(c);
+  if (c.targets && probe_settings().period > 0) {
+    if (c.targets->blits())
+      c.probes = std::make_unique<ProbeFrames>(c);
+    else
+      say_once("caps:probes",
+               "this context has no blits (OpenGL ES 2.0): no quality probes, the governor estimates "
+               "errors without them");
+  }
 }
 
 void retire(Registry& r, void* handle, bool is_current_here) {

@@ -280,3 +280,35 @@ TEST_CASE("glmark2 at 60 %, probed: offscreen passes, blur, shadow maps and terr
   CHECK(long_enough >= 1);
   unlink(log.c_str());
 }
+
+// glmark2's GLES 2 build in an OpenGL ES 2.0 context (MESA_GLES_VERSION_OVERRIDE: Mesa then
+// leaves out glBlitFramebuffer, as a Mali-400 or VideoCore IV driver does): the window at 60 %
+// is drawn into the back buffer at each swap instead of blitted. Its scenes bind framebuffer 0
+// between their offscreen passes (shadow, blur, refract), read textures and set state of their
+// own around the shim's copy; none may see a GL error (MESA_DEBUG) or stop early.
+TEST_CASE("glmark2-es2 in a GLES 2.0 context at 60 %: the window drawn without blits, no GL error", "[integration]") {
+  const std::string log = temp_path("glmark2_es2_60.csv");
+  unlink(log.c_str());
+  std::vector<std::string> cmd = {"glmark2-es2", "-s", "160x120"};
+  for (const char* scene : {"build:duration=0.5", "texture:duration=0.5", "desktop:effect=blur:duration=0.5",
+                            "refract:duration=0.3", "shadow:duration=0.5"})
+    cmd.insert(cmd.end(), {"-b", scene});
+  const ProcessResult r = run_under_xvfb({}, cmd,
+                                         {{"GLBUDGET_LOG", log},
+                                          {"GLBUDGET_FORCE", "2"},
+                                          {"GLBUDGET_SENSOR", "cpu"},
+                                          {"MESA_GLES_VERSION_OVERRIDE", "2.0"},
+                                          {"MESA_DEBUG", "1"}});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("OpenGL ES 2.0") != std::string::npos);
+  CHECK(r.out.find("glmark2 Score:") != std::string::npos);
+  CHECK(count_lines_with(r.err + r.out, "Mesa: User error") == 0);
+  // What cannot be done without blits is said once per process, and nothing else.
+  CHECK(count_lines_with(r.err, "glbudget:") == 1);
+  CHECK(count_lines_with(r.err, "without blits: the window's resolution is scaled") == 1);
+  const auto rows = read_csv_rows_by_name(log);
+  REQUIRE(rows.size() > 20);
+  for (const auto& row : rows) CHECK(row.at("configuration") == "2");
+  unlink(log.c_str());
+}
