@@ -166,6 +166,33 @@ TEST_CASE("a GLES 2.0 context, without blits: the window scaled, drawn into the 
     check_scaled_probe("probe_getproc", {"--es", "2", "--size", "160"}, level, es2, said);
 }
 
+// A desktop GL 2.1 context (a driver without GL 3: Mesa's i915, vc4's desktop GL) has framebuffer
+// objects and blits only as extensions, under other names: it draws at full size, and says so
+// once, so that the log's configuration column is not taken for what drew.
+TEST_CASE("a desktop GL 2.1 context: the window drawn at full size, said once", "[integration]") {
+  const std::string plain_img = temp_path("gl21_plain.ppm"), shim_img = temp_path("gl21_shim.ppm");
+  const std::vector<std::string> args = {probe_path("probe_compat"), "--size", "128", "--frames", "4", "--out"};
+  auto plain_args = args, shim_args = args;
+  plain_args.push_back(plain_img);
+  shim_args.push_back(shim_img);
+  REQUIRE(run_process(plain_args, {{"MESA_GL_VERSION_OVERRIDE", "2.1"}}).exit_code == 0);
+  const ProcessResult r = run_process(shim_args, {{"MESA_GL_VERSION_OVERRIDE", "2.1"},
+                                                  {"LD_PRELOAD", shim_path()},
+                                                  {"GLBUDGET_SENSOR", "cpu"},
+                                                  {"GLBUDGET_FORCE", "2"}});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(count_lines_with(r.err, "glbudget:") == 1);
+  CHECK(count_lines_with(r.err,
+                         "this context is OpenGL 2.1, without framebuffer objects and blits in core: "
+                         "nothing is scaled") == 1);
+  const Ppm a = read_ppm(plain_img), b = read_ppm(shim_img);
+  REQUIRE(!a.rgb.empty());
+  CHECK(a.rgb == b.rgb);
+  unlink(plain_img.c_str());
+  unlink(shim_img.c_str());
+}
+
 TEST_CASE("every level of the built-in render scale", "[integration]") {
   for (const char* level : {"1", "2", "3"}) check_scaled_probe("probe_direct", {"--size", "160"}, level);
 }
