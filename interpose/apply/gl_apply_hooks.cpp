@@ -39,8 +39,10 @@ void answer_for_app(GLenum pname, T* params) {
     // The stand-in's GL_COLOR_ATTACHMENT0 is the window's back buffer to the app.
     const GLuint app = pname == GL_READ_BUFFER ? s->app_read_framebuffer() : s->app_draw_framebuffer();
     if (app == 0 && params[0] == static_cast<T>(GL_COLOR_ATTACHMENT0)) params[0] = static_cast<T>(GL_BACK);
-  } else if ((pname == GL_VIEWPORT || pname == GL_SCISSOR_BOX) && c->targets && c->targets->active()) {
-    const GLint* box = pname == GL_VIEWPORT ? c->targets->app_viewport() : c->targets->app_scissor();
+  } else if ((pname == GL_VIEWPORT || pname == GL_SCISSOR_BOX) && s && (s->active() || s->window_scaled())) {
+    // The window's stand-in scales them too: an app that saves its viewport and sets it again
+    // would otherwise get it scaled twice.
+    const GLint* box = pname == GL_VIEWPORT ? s->app_viewport() : s->app_scissor();
     for (int i = 0; i < 4; ++i) params[i] = static_cast<T>(box[i]);
   }
 }
@@ -364,6 +366,16 @@ void handle_glClearBufferuiv(pfn_glClearBufferuiv real, GLenum buffer, GLint dra
 
 void handle_glClearBufferfi(pfn_glClearBufferfi real, GLenum buffer, GLint drawbuffer, GLfloat depth, GLint stencil) {
   clear_with_probes(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, [&] { real(buffer, drawbuffer, depth, stencil); });
+}
+
+void handle_glPushAttrib(pfn_glPushAttrib real, GLbitfield mask) {
+  real(mask);
+  if (TargetScaler* s = scaler()) s->attrib_pushed(mask);
+}
+
+void handle_glPopAttrib(pfn_glPopAttrib real) {
+  real();
+  if (TargetScaler* s = scaler()) s->attrib_popped();
 }
 
 void handle_glReadPixels(pfn_glReadPixels real, GLint x, GLint y, GLsizei width, GLsizei height, GLenum format,

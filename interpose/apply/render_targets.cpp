@@ -906,6 +906,28 @@ void TargetScaler::apply_viewport() {
   g.Scissor(s[0], s[1], s[2], s[3]);
 }
 
+void TargetScaler::attrib_pushed(GLbitfield mask) {
+  GLint depth = 0;
+  agl().GetIntegerv(GL_ATTRIB_STACK_DEPTH, &depth);
+  const size_t now = depth > 0 ? static_cast<size_t>(depth) : 0;
+  // Nothing pushed (a full stack, or a push compiled into a display list): as deep as GL's.
+  if (now <= attrib_stack_.size()) return attrib_stack_.resize(now);
+  attrib_stack_.resize(now - 1);  // pushes made where the shim did not see them hold nothing
+  attrib_stack_.push_back({mask, viewport_, scissor_});
+}
+
+void TargetScaler::attrib_popped() {
+  GLint depth = 0;
+  agl().GetIntegerv(GL_ATTRIB_STACK_DEPTH, &depth);
+  const size_t now = depth > 0 ? static_cast<size_t>(depth) : 0;
+  if (now >= attrib_stack_.size()) return;  // an empty stack's pop: the driver's error
+  const SavedBoxes popped = attrib_stack_[now];
+  attrib_stack_.resize(now);
+  if (popped.mask & GL_VIEWPORT_BIT) viewport_ = popped.viewport;
+  if (popped.mask & GL_SCISSOR_BIT) scissor_ = popped.scissor;
+  if (popped.mask & (GL_VIEWPORT_BIT | GL_SCISSOR_BIT)) apply_viewport();
+}
+
 void TargetScaler::bind_framebuffer(GLenum target, GLuint fbo) {
   double before_x, before_y, after_x, after_y;
   scale_of(draw_fbo_, &before_x, &before_y);

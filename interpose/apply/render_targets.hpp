@@ -96,6 +96,12 @@ class TargetScaler {
     read();
     agl_bind_read_framebuffer(read_fbo_);
   }
+  // glPushAttrib/glPopAttrib (compatibility profile, SFML's pushGLStates, fixed-function HUDs):
+  // GL's stack restores the driver's viewport and scissor box, which are scaled, so the app's
+  // are kept on a stack of the same depth and given again after the pop, scaled for the
+  // framebuffer bound then (a push before a swap that switched the scale, popped after it).
+  void attrib_pushed(GLbitfield mask);
+  void attrib_popped();
   // glDrawBuffer(s)/glReadBuffer of the window while the stand-in is bound: GL_BACK and the
   // like become GL_COLOR_ATTACHMENT0.
   static GLenum window_buffer(GLenum buffer);
@@ -275,6 +281,11 @@ class TargetScaler {
   // nothing to copy (not scaled, multisampled, an image the scaler does not know).
   bool bind_read_copy(GLint x, GLint y, GLsizei w, GLsizei h, bool depth_stencil);
   void agl_bind_read_framebuffer(GLuint app);
+  struct SavedBoxes {
+    GLbitfield mask = 0;
+    std::array<GLint, 4> viewport{}, scissor{};
+  };
+  std::vector<SavedBoxes> attrib_stack_;  // as deep as GL's (GL_ATTRIB_STACK_DEPTH)
   struct ReadCopy {
     GLuint fbo = 0, image = 0;
     GLenum format = 0;

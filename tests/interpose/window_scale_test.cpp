@@ -193,6 +193,30 @@ TEST_CASE("a desktop GL 2.1 context: the window drawn at full size, said once", 
   unlink(shim_img.c_str());
 }
 
+// Fixed-function HUDs and SFML's pushGLStates keep the viewport on glPushAttrib's stack, and
+// apps save theirs with glGetIntegerv(GL_VIEWPORT) to set it again: both must see the app's
+// own box, never the scaled one the driver holds (set again, it would be scaled twice). The
+// probe exits 5 when GL_VIEWPORT after a pop is not its own, 4 on a GL error; every other frame
+// its push is made before the swap and popped after it, while the scale switches each frame.
+TEST_CASE("an app's viewport across glPushAttrib/glPopAttrib and glGetIntegerv, scaled window", "[integration]") {
+  check_scaled_probe("probe_compat", {"--size", "128", "--push-attrib", "1", "--frames", "5"}, "2");
+  for (const char* force : {"0;2", "2;0"}) {
+    INFO("GLBUDGET_FORCE=" << force << ", a switch at every frame");
+    const ProcessResult r = run_process({probe_path("probe_compat"), "--size", "128", "--push-attrib", "1", "--frames",
+                                         "6", "--out", temp_path("push_attrib.ppm")},
+                                        {{"LD_PRELOAD", shim_path()},
+                                         {"GLBUDGET_SENSOR", "cpu"},
+                                         {"GLBUDGET_FORCE", force},
+                                         {"GLBUDGET_FORCE_EVERY", "1"},
+                                         {"MESA_DEBUG", "1"}});
+    INFO(r.err);
+    CHECK(r.exit_code == 0);
+    CHECK(count_lines_with(r.err, "glbudget:") == 0);
+    CHECK(count_lines_with(r.err, "Mesa: User error") == 0);
+  }
+  unlink(temp_path("push_attrib.ppm").c_str());
+}
+
 TEST_CASE("every level of the built-in render scale", "[integration]") {
   for (const char* level : {"1", "2", "3"}) check_scaled_probe("probe_direct", {"--size", "160"}, level);
 }

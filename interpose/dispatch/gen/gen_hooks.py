@@ -56,6 +56,7 @@ CUSTOM = [
     'glNamedFramebufferDrawBuffers', 'glNamedFramebufferReadBuffer', 'glClearNamedFramebufferiv',
     'glClearNamedFramebufferuiv', 'glClearNamedFramebufferfv', 'glClearNamedFramebufferfi',
     'glClear', 'glClearBufferfv', 'glClearBufferiv', 'glClearBufferuiv', 'glClearBufferfi',
+    'glPushAttrib', 'glPopAttrib',  # apply/: the app's viewport and the window's read buffer across them
     'glBindAttribLocation', 'glBindFragDataLocation', 'glBindFragDataLocationIndexed',
     'glActiveShaderProgram', 'glGetProgramPipelineiv',
     'glGetError',  # state/gl_errors.cpp: the app's errors, kept apart from the shim's own
