@@ -368,6 +368,12 @@ void handle_glClearBufferfi(pfn_glClearBufferfi real, GLenum buffer, GLint drawb
   clear_with_probes(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, [&] { real(buffer, drawbuffer, depth, stencil); });
 }
 
+void handle_glTextureView(pfn_glTextureView real, GLuint texture, GLenum target, GLuint origtexture,
+                          GLenum internalformat, GLuint minlevel, GLuint numlevels, GLuint minlayer, GLuint numlayers) {
+  if (TargetScaler* s = scaler()) s->texture_viewed(origtexture);
+  real(texture, target, origtexture, internalformat, minlevel, numlevels, minlayer, numlayers);
+}
+
 void handle_glPushAttrib(pfn_glPushAttrib real, GLbitfield mask) {
   real(mask);
   if (TargetScaler* s = scaler()) s->attrib_pushed(mask);

@@ -730,6 +730,10 @@ void TargetScaler::ensure_scale(GLuint name, Framebuffer& f, bool carry) {
     const auto& images = a.renderbuffer ? renderbuffers_ : textures_;
     const auto it = images.find(a.name);
     if (it != images.end() && !it->second.app_size.empty()) continue;
+    if (!a.renderbuffer && viewed_.count(a.name)) {  // said when it was viewed
+      f.scale = 1.0;
+      return;
+    }
     say_once(
         "unknown-image" + std::to_string(a.name),
         std::string(a.renderbuffer ? "renderbuffer " : "texture ") + std::to_string(a.name) + " of framebuffer " +
@@ -956,7 +960,10 @@ void TargetScaler::framebuffers_deleted(GLsizei n, const GLuint* names) {
 }
 
 void TargetScaler::textures_deleted(GLsizei n, const GLuint* names) {
-  for (GLsizei i = 0; names && i < n; ++i) textures_.erase(names[i]);
+  for (GLsizei i = 0; names && i < n; ++i) {
+    textures_.erase(names[i]);
+    viewed_.erase(names[i]);  // the name may be made again, as anything
+  }
 }
 
 void TargetScaler::renderbuffers_deleted(GLsizei n, const GLuint* names) {
@@ -1011,7 +1018,7 @@ void TargetScaler::tex_image(GLenum target, GLint level, GLint internal_format, 
   const GLenum kind = texture_kind(target);
   if (!kind || level < 0 || level > 16 || !blits_) return;
   const GLuint bound = bound_texture(kind);
-  if (!bound) return;
+  if (!bound || viewed_.count(bound)) return;
   Image& im = textures_[bound];
   im.kind = kind;
   if (level == 0) {
@@ -1058,6 +1065,7 @@ bool TargetScaler::tex_storage(GLenum kind, GLuint texture, GLsizei levels, GLen
   if (gles_ && !in_gles(internal_format)) return false;
   const auto known = textures_.find(texture);
   if (known != textures_.end() && known->second.storage_levels) return false;  // immutable already: the driver's error
+  if (viewed_.count(texture)) return false;
   const ApplyGl& g = agl();
   if (kind != GL_TEXTURE_2D && kind != GL_TEXTURE_CUBE_MAP && !g.TexImage3D) return false;
   SavedBindings saved(kind);  // the kind's binding, and no pixel-unpack buffer: no data
@@ -1110,6 +1118,77 @@ bool TargetScaler::tex_storage_multisample(GLuint texture, GLsizei samples, GLen
   g.TexImage2DMultisample(GL_TEXTURE_2D_MULTISAMPLE, samples, internal_format, width, height, fixed_locations);
   textures_[texture].storage_levels = 1;
   return true;
+}
+
+void TargetScaler::texture_viewed(GLuint texture) {
+  const auto it = textures_.find(texture);
+  if (it == textures_.end() || !it->second.storage_levels) return;  // the driver's own storage, or none
+  using Storage2D = void(APIENTRYP)(GLenum, GLsizei, GLenum, GLsizei, GLsizei);
+  using Storage3D = void(APIENTRYP)(GLenum, GLsizei, GLenum, GLsizei, GLsizei, GLsizei);
+  using Storage2DMultisample = void(APIENTRYP)(GLenum, GLsizei, GLenum, GLsizei, GLsizei, GLboolean);
+  using CopyImage = void(APIENTRYP)(GLuint, GLenum, GLint, GLint, GLint, GLint, GLuint, GLenum, GLint, GLint, GLint,
+                                    GLint, GLsizei, GLsizei, GLsizei);
+  static const auto storage_2d = reinterpret_cast<Storage2D>(resolve_gl("glTexStorage2D"));
+  static const auto storage_3d = reinterpret_cast<Storage3D>(resolve_gl("glTexStorage3D"));
+  static const auto storage_2d_ms = reinterpret_cast<Storage2DMultisample>(resolve_gl("glTexStorage2DMultisample"));
+  static const auto copy_image = reinterpret_cast<CopyImage>(resolve_gl("glCopyImageSubData"));
+  if (!storage_2d || !copy_image) return;  // no views either (GL 4.3): the driver's answer stands
+  // Back to the app's size, with the framebuffers it is in: the view sees the app's texels.
+  for (auto& [name, f] : framebuffers_) {
+    bool holds = false;
+    for (const Attachment& a : f.attachments) holds |= !a.renderbuffer && a.name == texture;
+    if (!holds || f.scale == 1.0) continue;
+    for (const Attachment& a : f.attachments) {
+      auto& images = a.renderbuffer ? renderbuffers_ : textures_;
+      const auto im = images.find(a.name);
+      if (im != images.end() && im->second.scale != 1.0) rescale(a.name, im->second, 1.0, true);
+    }
+    f.scale = 1.0;
+  }
+  const Image image = it->second;
+  textures_.erase(it);
+  viewed_.insert(texture);
+  say_once("viewed" + std::to_string(texture),
+           "texture " + std::to_string(texture) +
+               " is viewed through glTextureView, which needs immutable storage: it keeps its size, and so do the "
+               "framebuffers it is attached to");
+  const ApplyGl& g = agl();
+  SavedBindings saved(image.kind);
+  const GLenum kind = image.kind;
+  const GLenum format = static_cast<GLenum>(image.internal_format);
+  const GLsizei levels = image.storage_levels, w = image.app_size[0][0], h = image.app_size[0][1];
+  const GLsizei depth = kind == GL_TEXTURE_CUBE_MAP ? 6 : image.layers;
+  auto make_storage = [&](GLuint name) {
+    g.BindTexture(kind, name);
+    if (kind == GL_TEXTURE_2D_MULTISAMPLE) {
+      if (storage_2d_ms) storage_2d_ms(kind, image.samples, format, w, h, image.fixed_locations);
+    } else if (kind == GL_TEXTURE_2D || kind == GL_TEXTURE_CUBE_MAP) {
+      storage_2d(kind, levels, format, w, h);
+    } else if (storage_3d) {
+      storage_3d(kind, levels, format, w, h, image.layers);
+    }
+  };
+  // The texels go through a copy of the same format: immutable storage replaces a texture's
+  // images, so it is made on the app's name only once they are safe.
+  GLuint copy = 0;
+  g.GenTextures(1, &copy);
+  make_storage(copy);
+  auto copy_levels = [&](GLuint from, GLuint to) {
+    for (GLsizei level = 0; level < levels; ++level)
+      copy_image(from, kind, level, 0, 0, 0, to, kind, level, 0, 0, 0, std::max(1, w >> level), std::max(1, h >> level),
+                 depth);
+  };
+  copy_levels(texture, copy);
+  // The levels as the app set them, while the storage is mutable: an immutable texture clamps
+  // what it is given from then on, as the app's own would have.
+  g.BindTexture(kind, texture);
+  if (kind != GL_TEXTURE_2D_MULTISAMPLE) {
+    g.TexParameteri(kind, GL_TEXTURE_BASE_LEVEL, image.app_base_level);
+    g.TexParameteri(kind, GL_TEXTURE_MAX_LEVEL, image.app_max_level);
+  }
+  make_storage(texture);
+  copy_levels(copy, texture);
+  g.DeleteTextures(1, &copy);
 }
 
 bool TargetScaler::named_by_manifest(GLuint texture) const {

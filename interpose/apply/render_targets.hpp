@@ -24,6 +24,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <set>
 #include <unordered_map>
 #include <vector>
 
@@ -157,6 +158,10 @@ class TargetScaler {
                                GLboolean fixed_locations);
   // The texture bound to a call's target (a face: the cube map) on the active unit.
   GLuint bound_texture(GLenum target) const;
+  // Before glTextureView of `texture`: a view needs immutable storage, so storage made mutable
+  // here (tex_storage) becomes the driver's immutable storage at the app's size, its contents
+  // kept, and is never scaled again, nor are the framebuffers it is attached to (said once).
+  void texture_viewed(GLuint texture);
   // The pnames the three above answer or clamp: the hooks ask for the binding only for these.
   static bool level_pname(GLenum pname) { return pname == GL_TEXTURE_BASE_LEVEL || pname == GL_TEXTURE_MAX_LEVEL; }
   static bool storage_pname(GLenum pname) {
@@ -286,6 +291,7 @@ class TargetScaler {
     std::array<GLint, 4> viewport{}, scissor{};
   };
   std::vector<SavedBoxes> attrib_stack_;  // as deep as GL's (GL_ATTRIB_STACK_DEPTH)
+  std::set<GLuint> viewed_;               // textures made immutable for glTextureView: never scaled
   struct ReadCopy {
     GLuint fbo = 0, image = 0;
     GLenum format = 0;

@@ -35,6 +35,9 @@
 //                        drawing other textures into the same framebuffer, draw after draw
 //   --pipeline 1         the compose pass drawn by a program pipeline of separable programs
 //                        (glCreateShaderProgramv), its uniforms set by glProgramUniform*
+//   --view 1             with immutable textures, the compose pass samples the scene through a
+//                        glTextureView of its colour texture (format reinterpretation, sRGB
+//                        views), made before the first frame
 // Exits 4 when glGetError reports an error at any frame: none of the app's calls raises one;
 // 5 when a texture does not answer as the app made it (size, immutable format and levels).
 //   pass A, B: the known scene, into the window-sized framebuffer
@@ -265,10 +268,11 @@ int main(int argc, char** argv) {
   bool compat = false, es = false;
   Format format = Format::kSized;
   std::string read_fbo_path, compose = "uv";
-  bool pipeline = false, twice = false;
+  bool pipeline = false, twice = false, view = false;
   for (int i = 1; i + 1 < argc; ++i) {
     if (!strcmp(argv[i], "--pipeline")) pipeline = !strcmp(argv[i + 1], "1");
     if (!strcmp(argv[i], "--twice")) twice = !strcmp(argv[i + 1], "1");
+    if (!strcmp(argv[i], "--view")) view = !strcmp(argv[i + 1], "1");
     if (!strcmp(argv[i], "--compose")) compose = argv[i + 1];
     if (!strcmp(argv[i], "--read-fbo")) read_fbo_path = argv[i + 1];
     if (!strcmp(argv[i], "--color"))
@@ -371,6 +375,17 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  // What the compose pass samples the scene through: its texture, or a view of it.
+  GLuint scene_sampled = scene_color;
+  if (view && immutable) {
+    glGenTextures(1, &scene_sampled);
+    glTextureView(scene_sampled, GL_TEXTURE_2D, scene_color, g_color_format, 0, static_cast<GLuint>(scene_levels), 0,
+                  1);
+    if (mipmapped) {
+      glBindTexture(GL_TEXTURE_2D, scene_sampled);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    }
+  }
   GLuint compose_stages = 0, compose_fragment = compose_program;
   if (pipeline && !(compose_stages = compose_pipeline(compose_source(compose), &compose_fragment))) {
     fprintf(stderr, "probe_offscreen: the compose pipeline's programs do not link\n");
@@ -408,6 +423,8 @@ int main(int argc, char** argv) {
 
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, w, h);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, scene_sampled);
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, quarter_color);
     if (compose_stages) {
@@ -426,7 +443,7 @@ int main(int argc, char** argv) {
       glDrawArrays(GL_TRIANGLES, 0, 6);
       glScissor(w / 2, 0, w - w / 2, h);
       glActiveTexture(GL_TEXTURE0);
-      glBindTexture(GL_TEXTURE_2D, scene_color);
+      glBindTexture(GL_TEXTURE_2D, scene_sampled);
       glActiveTexture(GL_TEXTURE1);
       glBindTexture(GL_TEXTURE_2D, quarter_color);
     }

@@ -217,6 +217,18 @@ TEST_CASE("an app's viewport across glPushAttrib/glPopAttrib and glGetIntegerv, 
   unlink(temp_path("push_attrib.ppm").c_str());
 }
 
+// glTextureView needs immutable storage, and the scaler makes window-sized glTexStorage2D
+// textures mutable so that it can resize them: such a view failed (GL_INVALID_OPERATION) under
+// the shim even with nothing scaled. The viewed texture now gets the driver's immutable storage
+// back at the app's size, keeps it, and so does its framebuffer; the window still scales.
+TEST_CASE("a texture the app views through glTextureView keeps its size and its view works", "[integration]") {
+  for (const char* format : {"immutable", "dsa", "mipmapped"}) {
+    INFO("--format " << format);
+    check_scaled_probe("probe_offscreen", {"--size", "128", "--format", format, "--view", "1"}, "2", {},
+                       "is viewed through glTextureView, which needs immutable storage");
+  }
+}
+
 TEST_CASE("every level of the built-in render scale", "[integration]") {
   for (const char* level : {"1", "2", "3"}) check_scaled_probe("probe_direct", {"--size", "160"}, level);
 }

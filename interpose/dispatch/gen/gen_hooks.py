@@ -56,6 +56,7 @@ CUSTOM = [
     'glNamedFramebufferDrawBuffers', 'glNamedFramebufferReadBuffer', 'glClearNamedFramebufferiv',
     'glClearNamedFramebufferuiv', 'glClearNamedFramebufferfv', 'glClearNamedFramebufferfi',
     'glClear', 'glClearBufferfv', 'glClearBufferiv', 'glClearBufferuiv', 'glClearBufferfi',
+    'glTextureView',  # apply/: a view needs the driver's immutable storage
     'glPushAttrib', 'glPopAttrib',  # apply/: the app's viewport and the window's read buffer across them
     'glBindAttribLocation', 'glBindFragDataLocation', 'glBindFragDataLocationIndexed',
     'glActiveShaderProgram', 'glGetProgramPipelineiv',
@@ -84,6 +85,7 @@ ALIASES_OF_CUSTOM = {
     'glTexStorage2DEXT': 'glTexStorage2D', 'glTexStorage3DEXT': 'glTexStorage3D',
     'glFramebufferTextureLayerEXT': 'glFramebufferTextureLayer', 'glFramebufferTextureLayerARB': 'glFramebufferTextureLayer',
     'glGenerateMipmapEXT': 'glGenerateMipmap',
+    'glTextureViewOES': 'glTextureView', 'glTextureViewEXT': 'glTextureView',
 }
 
 # Window-system entry points: implemented by hand (they carry frame and context logic), but
