@@ -52,6 +52,21 @@ AppLog run_app(const std::string& app) {
   return out;
 }
 
+// glmark2's (or glmark2-es2's) command line at 160x120 for `scenes`, each as "name[:options]"
+// and its seconds; longer under the sanitized shim, which draws a few frames a second here.
+std::vector<std::string> glmark2_command(const std::string& binary,
+                                         const std::vector<std::pair<std::string, double>>& scenes) {
+#ifdef SANITIZER_PRELOAD
+  const double slower = 3.0;
+#else
+  const double slower = 1.0;
+#endif
+  std::vector<std::string> cmd = {binary, "-s", "160x120"};
+  for (const auto& [scene, seconds] : scenes)
+    cmd.insert(cmd.end(), {"-b", scene + ":duration=" + std::to_string(seconds * slower)});
+  return cmd;
+}
+
 // Frames seen, and each frame's rows whole: every field of the header is there.
 std::set<long> frames_of(const AppLog& a) {
   std::set<long> frames;
@@ -212,33 +227,16 @@ TEST_CASE("glmark2 at 60 %, probed: offscreen passes, blur, shadow maps and terr
   // none in these scenes, so any is the shim's.
   const std::string log = temp_path("glmark2_60.csv");
   unlink(log.c_str());
-#ifdef SANITIZER_PRELOAD
-  const double slower = 3.0;  // the sanitized shim draws a few frames a second here
-#else
-  const double slower = 1.0;
-#endif
-  auto scene = [&](const std::string& name, double seconds) {
-    return name + ":duration=" + std::to_string(seconds * slower);
-  };
   // And on a multisampled window (4 samples, as an app with antialiasing on asks): its stand-in
   // is multisampled too, resolved and stretched at each swap, its probes' shadows as well.
   const std::string visual = GENERATE(as<std::string>(), "", "samples=4");
   INFO("visual: " << (visual.empty() ? "default" : visual));
-  std::vector<std::string> cmd = {"glmark2",
-                                  "-s",
-                                  "160x120",
-                                  "-b",
-                                  scene("build", 0.5),
-                                  "-b",
-                                  scene("texture", 0.5),
-                                  "-b",
-                                  scene("desktop:effect=blur", 0.5),
-                                  "-b",
-                                  scene("refract", 0.3),
-                                  "-b",
-                                  scene("shadow", 0.5),
-                                  "-b",
-                                  scene("terrain", 0.5)};
+  std::vector<std::string> cmd = glmark2_command("glmark2", {{"build", 0.5},
+                                                             {"texture", 0.5},
+                                                             {"desktop:effect=blur", 0.5},
+                                                             {"refract", 0.3},
+                                                             {"shadow", 0.5},
+                                                             {"terrain", 0.5}});
   if (!visual.empty()) cmd.insert(cmd.end(), {"--visual-config", visual});
   const ProcessResult r = run_under_xvfb({}, cmd,
                                          {{"GLBUDGET_LOG", log},
@@ -289,15 +287,9 @@ TEST_CASE("glmark2 at 60 %, probed: offscreen passes, blur, shadow maps and terr
 TEST_CASE("glmark2-es2 in a GLES 2.0 context at 60 %: the window drawn without blits, no GL error", "[integration]") {
   const std::string log = temp_path("glmark2_es2_60.csv");
   unlink(log.c_str());
-#ifdef SANITIZER_PRELOAD
-  const double slower = 3.0;  // the sanitized shim draws a few frames a second here
-#else
-  const double slower = 1.0;
-#endif
-  std::vector<std::string> cmd = {"glmark2-es2", "-s", "160x120"};
-  for (const auto& [scene, seconds] : std::vector<std::pair<std::string, double>>{
-           {"build", 0.5}, {"texture", 0.5}, {"desktop:effect=blur", 0.5}, {"refract", 0.3}, {"shadow", 0.5}})
-    cmd.insert(cmd.end(), {"-b", scene + ":duration=" + std::to_string(seconds * slower)});
+  const std::vector<std::string> cmd = glmark2_command(
+      "glmark2-es2",
+      {{"build", 0.5}, {"texture", 0.5}, {"desktop:effect=blur", 0.5}, {"refract", 0.3}, {"shadow", 0.5}});
   const ProcessResult r = run_under_xvfb({}, cmd,
                                          {{"GLBUDGET_LOG", log},
                                           {"GLBUDGET_FORCE", "2"},
