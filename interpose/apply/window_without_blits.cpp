@@ -2,6 +2,7 @@
 // one framebuffer binding for reading and drawing, no multisampled renderbuffers, no sized
 // colour formats. The stand-in's colour is a texture, drawn into the back buffer at each swap
 // and into a window-sized copy for reads (glReadPixels, glCopyTex* of the window).
+#include <cstdio>
 #include <cstring>
 #include <string>
 
