@@ -114,6 +114,8 @@ ApplyGl load_all() {
   load(g.GetTexParameteriv, "glGetTexParameteriv");
   load(g.Viewport, "glViewport");
   load(g.Scissor, "glScissor");
+  load(g.ViewportIndexedf, "glViewportIndexedf");
+  load(g.ScissorIndexed, "glScissorIndexed");
   load(g.Enable, "glEnable");
   load(g.Disable, "glDisable");
   load(g.IsEnabled, "glIsEnabled");

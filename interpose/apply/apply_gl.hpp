@@ -112,6 +112,8 @@ struct ApplyGl {
   void(APIENTRYP GetTexParameteriv)(GLenum, GLenum, GLint*) = nullptr;
   void(APIENTRYP Viewport)(GLint, GLint, GLsizei, GLsizei) = nullptr;
   void(APIENTRYP Scissor)(GLint, GLint, GLsizei, GLsizei) = nullptr;
+  PFNGLVIEWPORTINDEXEDFPROC ViewportIndexedf = nullptr;  // GL 4.1, ARB_viewport_array
+  PFNGLSCISSORINDEXEDPROC ScissorIndexed = nullptr;
   void(APIENTRYP Enable)(GLenum) = nullptr;
   void(APIENTRYP Disable)(GLenum) = nullptr;
   GLboolean(APIENTRYP IsEnabled)(GLenum) = nullptr;

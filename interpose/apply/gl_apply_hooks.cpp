@@ -374,6 +374,80 @@ void handle_glTextureView(pfn_glTextureView real, GLuint texture, GLenum target,
   real(texture, target, origtexture, internalformat, minlevel, numlevels, minlayer, numlayers);
 }
 
+void handle_glViewportIndexedf(pfn_glViewportIndexedf real, GLuint index, GLfloat x, GLfloat y, GLfloat w, GLfloat h) {
+  const GLfloat box[4] = {x, y, w, h};
+  TargetScaler* s = scaler();
+  if (!s || !s->viewport_indexed(index, box)) real(index, x, y, w, h);
+}
+
+void handle_glViewportIndexedfv(pfn_glViewportIndexedfv real, GLuint index, const GLfloat* v) {
+  TargetScaler* s = scaler();
+  if (!s || !s->viewport_indexed(index, v)) real(index, v);
+}
+
+void handle_glViewportArrayv(pfn_glViewportArrayv real, GLuint first, GLsizei count, const GLfloat* v) {
+  TargetScaler* s = scaler();
+  if (!s || !v || count < 0) return real(first, count, v);
+  for (GLsizei i = 0; i < count; ++i)
+    if (!s->viewport_indexed(first + static_cast<GLuint>(i), v + 4 * i))
+      real(first + static_cast<GLuint>(i), 1, v + 4 * i);
+}
+
+void handle_glScissorIndexed(pfn_glScissorIndexed real, GLuint index, GLint left, GLint bottom, GLsizei width,
+                             GLsizei height) {
+  const GLint box[4] = {left, bottom, width, height};
+  TargetScaler* s = scaler();
+  if (!s || !s->scissor_indexed(index, box)) real(index, left, bottom, width, height);
+}
+
+void handle_glScissorIndexedv(pfn_glScissorIndexedv real, GLuint index, const GLint* v) {
+  TargetScaler* s = scaler();
+  if (!s || !s->scissor_indexed(index, v)) real(index, v);
+}
+
+void handle_glScissorArrayv(pfn_glScissorArrayv real, GLuint first, GLsizei count, const GLint* v) {
+  TargetScaler* s = scaler();
+  if (!s || !v || count < 0) return real(first, count, v);
+  for (GLsizei i = 0; i < count; ++i)
+    if (!s->scissor_indexed(first + static_cast<GLuint>(i), v + 4 * i))
+      real(first + static_cast<GLuint>(i), 1, v + 4 * i);
+}
+
+namespace {
+// glGet*i_v of GL_VIEWPORT and GL_SCISSOR_BOX: the app's boxes, as glGet* answers index 0's.
+template <typename T>
+void answer_indexed_for_app(GLenum target, GLuint index, T* data) {
+  TargetScaler* s = scaler();
+  if (!s || !data) return;
+  if (target == GL_VIEWPORT) {
+    GLfloat box[4];
+    if (s->app_viewport_at(index, box))
+      for (int i = 0; i < 4; ++i) data[i] = static_cast<T>(box[i]);
+  } else if (target == GL_SCISSOR_BOX) {
+    GLint box[4];
+    if (s->app_scissor_at(index, box))
+      for (int i = 0; i < 4; ++i) data[i] = static_cast<T>(box[i]);
+  }
+}
+}  // namespace
+
+void handle_glGetFloati_v(pfn_glGetFloati_v real, GLenum target, GLuint index, GLfloat* data) {
+  real(target, index, data);
+  answer_indexed_for_app(target, index, data);
+}
+void handle_glGetDoublei_v(pfn_glGetDoublei_v real, GLenum target, GLuint index, GLdouble* data) {
+  real(target, index, data);
+  answer_indexed_for_app(target, index, data);
+}
+void handle_glGetIntegeri_v(pfn_glGetIntegeri_v real, GLenum target, GLuint index, GLint* data) {
+  real(target, index, data);
+  answer_indexed_for_app(target, index, data);
+}
+void handle_glGetInteger64i_v(pfn_glGetInteger64i_v real, GLenum target, GLuint index, GLint64* data) {
+  real(target, index, data);
+  answer_indexed_for_app(target, index, data);
+}
+
 void handle_glPushAttrib(pfn_glPushAttrib real, GLbitfield mask) {
   real(mask);
   if (TargetScaler* s = scaler()) s->attrib_pushed(mask);

@@ -902,6 +902,7 @@ void scale_corners(const GLint* in, double sx, double sy, GLint* out) {
 void TargetScaler::apply_viewport() {
   double sx, sy;
   scale_of(draw_fbo_, &sx, &sy);
+  if (!viewports_.empty()) return apply_indexed_boxes(sx, sy);
   const ApplyGl& g = agl();
   GLint v[4], s[4];
   scale_box(viewport_.data(), sx, sy, v);
@@ -917,7 +918,7 @@ void TargetScaler::attrib_pushed(GLbitfield mask) {
   // Nothing pushed (a full stack, or a push compiled into a display list): as deep as GL's.
   if (now <= attrib_stack_.size()) return attrib_stack_.resize(now);
   attrib_stack_.resize(now - 1);  // pushes made where the shim did not see them hold nothing
-  attrib_stack_.push_back({mask, viewport_, scissor_});
+  attrib_stack_.push_back({mask, viewport_, scissor_, viewports_, scissors_});
 }
 
 void TargetScaler::attrib_popped() {
@@ -927,8 +928,23 @@ void TargetScaler::attrib_popped() {
   if (now >= attrib_stack_.size()) return;  // an empty stack's pop: the driver's error
   const SavedBoxes popped = attrib_stack_[now];
   attrib_stack_.resize(now);
-  if (popped.mask & GL_VIEWPORT_BIT) viewport_ = popped.viewport;
-  if (popped.mask & GL_SCISSOR_BIT) scissor_ = popped.scissor;
+  // Boxes pushed before the app set any by index were all index 0's.
+  if (popped.mask & GL_VIEWPORT_BIT) {
+    viewport_ = popped.viewport;
+    if (popped.viewports.size() == viewports_.size())
+      viewports_ = popped.viewports;
+    else
+      for (auto& box : viewports_)
+        for (int i = 0; i < 4; ++i)
+          box[static_cast<size_t>(i)] = static_cast<GLfloat>(viewport_[static_cast<size_t>(i)]);
+  }
+  if (popped.mask & GL_SCISSOR_BIT) {
+    scissor_ = popped.scissor;
+    if (popped.scissors.size() == scissors_.size())
+      scissors_ = popped.scissors;
+    else
+      for (auto& box : scissors_) box = scissor_;
+  }
   if (popped.mask & (GL_VIEWPORT_BIT | GL_SCISSOR_BIT)) apply_viewport();
 }
 
@@ -980,9 +996,17 @@ void TargetScaler::set_box(std::array<GLint, 4>& box, void(APIENTRYP set)(GLint,
   set(b[0], b[1], b[2], b[3]);
 }
 
-void TargetScaler::viewport(GLint x, GLint y, GLsizei w, GLsizei h) { set_box(viewport_, agl().Viewport, x, y, w, h); }
+// glViewport and glScissor set every index's box.
+void TargetScaler::viewport(GLint x, GLint y, GLsizei w, GLsizei h) {
+  set_box(viewport_, agl().Viewport, x, y, w, h);
+  for (auto& box : viewports_)
+    box = {static_cast<GLfloat>(x), static_cast<GLfloat>(y), static_cast<GLfloat>(w), static_cast<GLfloat>(h)};
+}
 
-void TargetScaler::scissor(GLint x, GLint y, GLsizei w, GLsizei h) { set_box(scissor_, agl().Scissor, x, y, w, h); }
+void TargetScaler::scissor(GLint x, GLint y, GLsizei w, GLsizei h) {
+  set_box(scissor_, agl().Scissor, x, y, w, h);
+  for (auto& box : scissors_) box = scissor_;
+}
 
 GLenum TargetScaler::binding_of(GLenum kind) {
   switch (kind) {

@@ -120,6 +120,15 @@ class TargetScaler {
   void renderbuffers_deleted(GLsizei n, const GLuint* names);
   void viewport(GLint x, GLint y, GLsizei w, GLsizei h);
   void scissor(GLint x, GLint y, GLsizei w, GLsizei h);
+  // Viewport arrays (GL 4.1, ARB_viewport_array; Wine's wined3d sets its viewport and scissor
+  // this way): the app's box at `index` kept and given scaled, as glViewport's and glScissor's
+  // are; false where the call is not the scaler's to make (an index or size the driver refuses,
+  // no viewport arrays): the hook passes it on as it is.
+  bool viewport_indexed(GLuint index, const GLfloat* box);
+  bool scissor_indexed(GLuint index, const GLint* box);
+  // The app's box at `index` for glGet*i_v (false: the driver's answer stands).
+  bool app_viewport_at(GLuint index, GLfloat* box) const;
+  bool app_scissor_at(GLuint index, GLint* box) const;
   // The texture kinds scaled here (GL_TEXTURE_2D, _2D_ARRAY, _CUBE_MAP, _CUBE_MAP_ARRAY), and
   // the kind a call's target specifies (a cube map's face: GL_TEXTURE_CUBE_MAP); 0 for others.
   static GLenum texture_kind(GLenum target);
@@ -289,7 +298,15 @@ class TargetScaler {
   struct SavedBoxes {
     GLbitfield mask = 0;
     std::array<GLint, 4> viewport{}, scissor{};
+    std::vector<std::array<GLfloat, 4>> viewports;
+    std::vector<std::array<GLint, 4>> scissors;
   };
+  // Once the app sets a box by index, every index's (GL_MAX_VIEWPORTS), index 0's mirrored in
+  // viewport_ and scissor_; empty before (viewport_arrays.cpp).
+  std::vector<std::array<GLfloat, 4>> viewports_;
+  std::vector<std::array<GLint, 4>> scissors_;
+  bool start_indexed_boxes();
+  void apply_indexed_boxes(double sx, double sy);
   std::vector<SavedBoxes> attrib_stack_;  // as deep as GL's (GL_ATTRIB_STACK_DEPTH)
   std::set<GLuint> viewed_;               // textures made immutable for glTextureView: never scaled
   struct ReadCopy {

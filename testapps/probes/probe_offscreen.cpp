@@ -35,6 +35,10 @@
 //                        drawing other textures into the same framebuffer, draw after draw
 //   --pipeline 1         the compose pass drawn by a program pipeline of separable programs
 //                        (glCreateShaderProgramv), its uniforms set by glProgramUniform*
+//   --viewport-indexed 1 every viewport set by glViewportIndexedf(0, ...) and the compose pass's
+//                        scissor boxes (--twice) by glScissorIndexed, as Wine's wined3d does on
+//                        drivers with viewport arrays; glGetFloati_v(GL_VIEWPORT, 0) must answer
+//                        the box set (else exit 5)
 //   --view 1             with immutable textures, the compose pass samples the scene through a
 //                        glTextureView of its colour texture (format reinterpretation, sRGB
 //                        views), made before the first frame
@@ -268,11 +272,12 @@ int main(int argc, char** argv) {
   bool compat = false, es = false;
   Format format = Format::kSized;
   std::string read_fbo_path, compose = "uv";
-  bool pipeline = false, twice = false, view = false;
+  bool pipeline = false, twice = false, view = false, indexed = false;
   for (int i = 1; i + 1 < argc; ++i) {
     if (!strcmp(argv[i], "--pipeline")) pipeline = !strcmp(argv[i + 1], "1");
     if (!strcmp(argv[i], "--twice")) twice = !strcmp(argv[i + 1], "1");
     if (!strcmp(argv[i], "--view")) view = !strcmp(argv[i + 1], "1");
+    if (!strcmp(argv[i], "--viewport-indexed")) indexed = !strcmp(argv[i + 1], "1");
     if (!strcmp(argv[i], "--compose")) compose = argv[i + 1];
     if (!strcmp(argv[i], "--read-fbo")) read_fbo_path = argv[i + 1];
     if (!strcmp(argv[i], "--color"))
@@ -398,12 +403,26 @@ int main(int argc, char** argv) {
   glProgramUniform2f(compose_fragment, glGetUniformLocation(compose_fragment, "u_resolution"), static_cast<float>(w),
                      static_cast<float>(h));
 
+  bool boxes_answered = true;  // glGetFloati_v(GL_VIEWPORT, 0) answered each box set by index
+  auto set_viewport = [&](int vw, int vh) {
+    if (!indexed) return glViewport(0, 0, vw, vh);
+    glViewportIndexedf(0, 0, 0, static_cast<GLfloat>(vw), static_cast<GLfloat>(vh));
+    GLfloat box[4] = {};
+    glGetFloati_v(GL_VIEWPORT, 0, box);
+    boxes_answered = boxes_answered && box[0] == 0 && box[1] == 0 && box[2] == vw && box[3] == vh;
+  };
+  auto set_scissor = [&](int x, int sw) {
+    if (indexed)
+      glScissorIndexed(0, x, 0, sw, h);
+    else
+      glScissor(x, 0, sw, h);
+  };
   std::vector<uint8_t> image;
   GLenum error = glGetError();
   if (error != GL_NO_ERROR) fprintf(stderr, "probe_offscreen: GL error 0x%04x before the first frame\n", error);
   for (int f = 0; f < args.frames && error == GL_NO_ERROR; ++f) {
     glBindFramebuffer(GL_FRAMEBUFFER, multisample ? ms_fbo : fbo[0]);
-    glViewport(0, 0, w, h);
+    set_viewport(w, h);
     glBindVertexArray(static_cast<GLuint>(scene_vao));
     scene.draw_frame(f);
     if (multisample) {  // resolved
@@ -413,7 +432,7 @@ int main(int argc, char** argv) {
     }
 
     glBindFramebuffer(GL_FRAMEBUFFER, fbo[1]);
-    glViewport(0, 0, w / 4, h / 4);
+    set_viewport(w / 4, h / 4);
     glBindVertexArray(static_cast<GLuint>(full_vao));
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, scene_color);
@@ -422,7 +441,7 @@ int main(int argc, char** argv) {
     glDrawArrays(GL_TRIANGLES, 0, 6);
 
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glViewport(0, 0, w, h);
+    set_viewport(w, h);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, scene_sampled);
     glActiveTexture(GL_TEXTURE1);
@@ -435,13 +454,13 @@ int main(int argc, char** argv) {
     }
     if (twice) {
       glEnable(GL_SCISSOR_TEST);
-      glScissor(0, 0, w / 2, h);
+      set_scissor(0, w / 2);
       glActiveTexture(GL_TEXTURE0);
       glBindTexture(GL_TEXTURE_2D, quarter_color);
       glActiveTexture(GL_TEXTURE1);
       glBindTexture(GL_TEXTURE_2D, scene_color);
       glDrawArrays(GL_TRIANGLES, 0, 6);
-      glScissor(w / 2, 0, w - w / 2, h);
+      set_scissor(w / 2, w - w / 2);
       glActiveTexture(GL_TEXTURE0);
       glBindTexture(GL_TEXTURE_2D, scene_sampled);
       glActiveTexture(GL_TEXTURE1);
@@ -463,7 +482,8 @@ int main(int argc, char** argv) {
                        (!multisample || (multisample_answers_as_made(ms_color, w, h, false) &&
                                          multisample_answers_as_made(ms_depth, w, h, true)));
   if (error == GL_NO_ERROR) error = glGetError();
-  const int rc = error != GL_NO_ERROR ? 4 : !as_made ? 5 : write_ppm(args.out, image, w, h) ? 0 : 3;
+  if (!boxes_answered) fprintf(stderr, "probe_offscreen: glGetFloati_v(GL_VIEWPORT, 0) did not answer the box set\n");
+  const int rc = error != GL_NO_ERROR ? 4 : !as_made || !boxes_answered ? 5 : write_ppm(args.out, image, w, h) ? 0 : 3;
   eglMakeCurrent(win.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   eglDestroyContext(win.display, win.context);
   eglTerminate(win.display);

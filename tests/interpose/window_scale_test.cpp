@@ -234,6 +234,21 @@ TEST_CASE("a texture the app views through glTextureView keeps its size and its 
   }
 }
 
+// Viewport arrays (GL 4.1): Wine's wined3d sets its viewport and scissor boxes through
+// glViewportIndexedf and glScissorIndexed where the driver has them. They scale as glViewport and
+// glScissor do (the same pixels at 60 %), and glGetFloati_v answers the app's box (the probe
+// exits 5 if not; before, the unscaled viewport drew a corner of the scaled window).
+TEST_CASE("viewport arrays scale as glViewport does: glViewportIndexedf, glScissorIndexed", "[integration]") {
+  for (const char* twice : {"0", "1"}) {
+    if (kSanitizedRun && std::string(twice) != "1") continue;  // the one with scissor boxes
+    INFO("--twice " << twice);
+    const Ppm indexed =
+        check_scaled_probe("probe_offscreen", {"--size", "128", "--viewport-indexed", "1", "--twice", twice}, "2");
+    const Ppm plain = check_scaled_probe("probe_offscreen", {"--size", "128", "--twice", twice}, "2");
+    CHECK(indexed.rgb == plain.rgb);
+  }
+}
+
 TEST_CASE("every level of the built-in render scale", "[integration]") {
   for (const char* level : {"1", "2", "3"}) check_scaled_probe("probe_direct", {"--size", "160"}, level);
 }

@@ -57,6 +57,9 @@ CUSTOM = [
     'glClearNamedFramebufferuiv', 'glClearNamedFramebufferfv', 'glClearNamedFramebufferfi',
     'glClear', 'glClearBufferfv', 'glClearBufferiv', 'glClearBufferuiv', 'glClearBufferfi',
     'glTextureView',  # apply/: a view needs the driver's immutable storage
+    # apply/viewport_arrays.cpp: viewport arrays scaled and answered as glViewport is
+    'glViewportIndexedf', 'glViewportIndexedfv', 'glViewportArrayv', 'glScissorIndexed', 'glScissorIndexedv',
+    'glScissorArrayv', 'glGetFloati_v', 'glGetIntegeri_v', 'glGetDoublei_v', 'glGetInteger64i_v',
     'glPushAttrib', 'glPopAttrib',  # apply/: the app's viewport and the window's read buffer across them
     'glBindAttribLocation', 'glBindFragDataLocation', 'glBindFragDataLocationIndexed',
     'glActiveShaderProgram', 'glGetProgramPipelineiv',
