@@ -75,17 +75,14 @@ constexpr const char* kVertex =
     "  glbudget_uv = glbudget_corner * 0.5 + 0.5;\n"
     "  gl_Position = vec4(glbudget_corner, 0.0, 1.0);\n"
     "}\n";
-constexpr const char* kFragmentEs =
-    "precision mediump float;\n"
+constexpr const char* kFragment =
     "uniform sampler2D glbudget_image;\n"
     "varying vec2 glbudget_uv;\n"
     "void main() { gl_FragColor = texture2D(glbudget_image, glbudget_uv); }\n";
-constexpr const char* kFragmentDesktop =
-    "#version 110\n"
-    "uniform sampler2D glbudget_image;\n"
-    "varying vec2 glbudget_uv;\n"
-    "void main() { gl_FragColor = texture2D(glbudget_image, glbudget_uv); }\n";
-constexpr const char* kVertexDesktopVersion = "#version 110\n";
+// What each stage starts with: GLSL ES 1.00 has no #version line and wants a float precision in
+// the fragment stage; desktop GL 2's GLSL is named.
+constexpr const char* kEsFragmentPrecision = "precision mediump float;\n";
+constexpr const char* kDesktopVersion = "#version 110\n";
 
 // The switches that would change a copied pixel, turned off for the copy.
 constexpr std::array<GLenum, 9> kSwitchesOff = {
@@ -120,9 +117,8 @@ bool DrawCopy::ready() {
     g.DeleteShader(shader);
     return 0;
   };
-  const GLuint vs =
-      gles_ ? compile(GL_VERTEX_SHADER, {kVertex}) : compile(GL_VERTEX_SHADER, {kVertexDesktopVersion, kVertex});
-  const GLuint fs = compile(GL_FRAGMENT_SHADER, {gles_ ? kFragmentEs : kFragmentDesktop});
+  const GLuint vs = compile(GL_VERTEX_SHADER, {gles_ ? "" : kDesktopVersion, kVertex});
+  const GLuint fs = compile(GL_FRAGMENT_SHADER, {gles_ ? kEsFragmentPrecision : kDesktopVersion, kFragment});
   if (vs && fs) {
     program_ = g.CreateProgram();
     g.AttachShader(program_, vs);

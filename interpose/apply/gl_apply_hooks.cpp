@@ -39,7 +39,7 @@ void answer_for_app(GLenum pname, T* params) {
     // The stand-in's GL_COLOR_ATTACHMENT0 is the window's back buffer to the app.
     const GLuint app = pname == GL_READ_BUFFER ? s->app_read_framebuffer() : s->app_draw_framebuffer();
     if (app == 0 && params[0] == static_cast<T>(GL_COLOR_ATTACHMENT0)) params[0] = static_cast<T>(GL_BACK);
-  } else if ((pname == GL_VIEWPORT || pname == GL_SCISSOR_BOX) && s && (s->active() || s->window_scaled())) {
+  } else if ((pname == GL_VIEWPORT || pname == GL_SCISSOR_BOX) && s && s->boxes_scaled()) {
     // The window's stand-in scales them too: an app that saves its viewport and sets it again
     // would otherwise get it scaled twice.
     const GLint* box = pname == GL_VIEWPORT ? s->app_viewport() : s->app_scissor();

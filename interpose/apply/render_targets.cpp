@@ -194,7 +194,7 @@ std::array<GLsizei, 2> TargetScaler::Image::stored_level_size(size_t level) cons
   return {std::max(1, stored_width() >> level), std::max(1, stored_height() >> level)};
 }
 
-TargetScaler::TargetScaler(bool gles, bool blits) : gles_(gles), blits_(blits) {
+TargetScaler::TargetScaler(const GlCaps& caps) : caps_(caps) {
   const ApplyGl& g = agl();
   g.GetIntegerv(GL_VIEWPORT, viewport_.data());
   g.GetIntegerv(GL_SCISSOR_BOX, scissor_.data());
@@ -204,9 +204,9 @@ TargetScaler::TargetScaler(bool gles, bool blits) : gles_(gles), blits_(blits) {
   GLint fbo = 0;
   g.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);  // GL_FRAMEBUFFER_BINDING, the same enum
   draw_fbo_ = static_cast<GLuint>(fbo);
-  if (!blits_) {  // one binding for reading and drawing: GL_READ_FRAMEBUFFER_BINDING is an error
+  if (!blits()) {  // one binding for reading and drawing: GL_READ_FRAMEBUFFER_BINDING is an error
     read_fbo_ = draw_fbo_;
-    draw_copy_ = std::make_unique<DrawCopy>(gles);
+    draw_copy_ = std::make_unique<DrawCopy>(caps_.gles);
     return;
   }
   g.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &fbo);
@@ -261,7 +261,7 @@ void TargetScaler::check_window() {
   if (window_.checked) return;
   // What the window is made of, asked of the real default framebuffer.
   window_.checked = true;
-  if (!blits_) return check_window_without_blits();
+  if (!blits()) return check_window_without_blits();
   const ApplyGl& g = agl();
   GLint draw = 0, samples = 0, depth = GL_NONE, stencil = GL_NONE, encoding = GL_LINEAR;
   g.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
@@ -272,7 +272,7 @@ void TargetScaler::check_window() {
   g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &depth);
   g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_STENCIL, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE,
                                         &stencil);
-  g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, gles_ ? GL_BACK : GL_BACK_LEFT,
+  g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, caps_.gles ? GL_BACK : GL_BACK_LEFT,
                                         GL_FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING, &encoding);
   g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
   window_.samples = std::max(0, samples);
@@ -295,13 +295,13 @@ void TargetScaler::update_window() {
   check_window();
   // A multisampled stand-in is resolved, then stretched, then written into the window, whose
   // samples then all take the pixel's value: GLES has no blit into a multisampled window.
-  if (window_.samples > 0 && gles_) {
+  if (window_.samples > 0 && caps_.gles) {
     say_once("multisampled-window", "the window is multisampled (GLES): its resolution is not scaled");
     return;
   }
   const int w = scaled(window_width_, s), h = scaled(window_height_, s);
   if (window_.fbo && w == window_.width && h == window_.height) return;
-  if (!blits_) return update_window_without_blits(w, h);
+  if (!blits()) return update_window_without_blits(w, h);
   GLint renderbuffer = 0, draw = 0, read = 0;
   g.GetIntegerv(GL_RENDERBUFFER_BINDING, &renderbuffer);
   g.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
@@ -376,7 +376,7 @@ void TargetScaler::ensure_image_set(ImageSet& set, int width, int height) {
 
 void TargetScaler::release_window() {
   if (!window_.fbo) return;
-  if (!blits_) return release_window_without_blits();
+  if (!blits()) return release_window_without_blits();
   const ApplyGl& g = agl();
   if (draw_fbo_ == 0) g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
   if (read_fbo_ == 0) g.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
@@ -437,7 +437,7 @@ GLuint TargetScaler::single_sampled_window(bool depth) {
 
 void TargetScaler::present() {
   if (!window_.fbo) return;
-  if (!blits_) return present_without_blits();
+  if (!blits()) return present_without_blits();
   BlitState saved;
   const GLuint from = single_sampled_window(false);
   if (window_.samples == 0) {
@@ -451,7 +451,7 @@ void TargetScaler::present() {
 }
 
 void TargetScaler::bind_window_copy() {
-  if (!blits_) return bind_window_copy_without_blits();
+  if (!blits()) return bind_window_copy_without_blits();
   ensure_image_set(window_.copy, window_width_, window_height_);
   {
     BlitState saved;
@@ -463,7 +463,7 @@ void TargetScaler::bind_window_copy() {
 }
 
 void TargetScaler::unbind_window_copy() {
-  agl().BindFramebuffer(blits_ ? GL_READ_FRAMEBUFFER : GL_FRAMEBUFFER, window_.fbo);
+  agl().BindFramebuffer(blits() ? GL_READ_FRAMEBUFFER : GL_FRAMEBUFFER, window_.fbo);
 }
 
 void TargetScaler::agl_bind_read_framebuffer(GLuint app) { agl().BindFramebuffer(GL_READ_FRAMEBUFFER, app); }
@@ -680,7 +680,7 @@ bool TargetScaler::cleared_before_drawn(const Framebuffer& f) const {
 }
 
 void TargetScaler::on_clear(GLbitfield mask) {
-  if (draw_fbo_ == 0 || !blits_) return;
+  if (draw_fbo_ == 0 || !blits()) return;
   Framebuffer& f = framebuffers_[draw_fbo_];
   if (f.drawn_frame == frame_) return;           // drawn already this frame: a clear now is no fresh start
   if (agl().IsEnabled(GL_SCISSOR_TEST)) return;  // a partial clear
@@ -690,7 +690,7 @@ void TargetScaler::on_clear(GLbitfield mask) {
 }
 
 void TargetScaler::on_draw(int pass) {
-  if (draw_fbo_ == 0 || !blits_) return;
+  if (draw_fbo_ == 0 || !blits()) return;
   Framebuffer& f = framebuffers_[draw_fbo_];
   f.drawn_frame = frame_;
   const bool new_pass = pass >= 0 && pass < 64 && !((f.passes >> pass) & 1);
@@ -703,7 +703,7 @@ void TargetScaler::on_draw(int pass) {
 }
 
 void TargetScaler::on_blit(GLuint read, GLuint draw) {
-  if (!blits_) return;
+  if (!blits()) return;
   const double before = draw_fbo_ ? framebuffers_[draw_fbo_].scale : 1.0;
   for (GLuint name : {read, draw}) {
     if (name == 0) continue;
@@ -934,9 +934,7 @@ void TargetScaler::attrib_popped() {
     if (popped.viewports.size() == viewports_.size())
       viewports_ = popped.viewports;
     else
-      for (auto& box : viewports_)
-        for (int i = 0; i < 4; ++i)
-          box[static_cast<size_t>(i)] = static_cast<GLfloat>(viewport_[static_cast<size_t>(i)]);
+      for (auto& box : viewports_) box = float_box(viewport_);
   }
   if (popped.mask & GL_SCISSOR_BIT) {
     scissor_ = popped.scissor;
@@ -999,8 +997,7 @@ void TargetScaler::set_box(std::array<GLint, 4>& box, void(APIENTRYP set)(GLint,
 // glViewport and glScissor set every index's box.
 void TargetScaler::viewport(GLint x, GLint y, GLsizei w, GLsizei h) {
   set_box(viewport_, agl().Viewport, x, y, w, h);
-  for (auto& box : viewports_)
-    box = {static_cast<GLfloat>(x), static_cast<GLfloat>(y), static_cast<GLfloat>(w), static_cast<GLfloat>(h)};
+  for (auto& box : viewports_) box = float_box(viewport_);
 }
 
 void TargetScaler::scissor(GLint x, GLint y, GLsizei w, GLsizei h) {
@@ -1040,7 +1037,7 @@ GLenum TargetScaler::texture_kind(GLenum target) {
 void TargetScaler::tex_image(GLenum target, GLint level, GLint internal_format, GLsizei* width, GLsizei* height,
                              GLsizei layers, GLenum format, GLenum type, bool with_data) {
   const GLenum kind = texture_kind(target);
-  if (!kind || level < 0 || level > 16 || !blits_) return;
+  if (!kind || level < 0 || level > 16 || !blits()) return;
   const GLuint bound = bound_texture(kind);
   if (!bound || viewed_.count(bound)) return;
   Image& im = textures_[bound];
@@ -1079,14 +1076,14 @@ bool TargetScaler::tex_storage(GLenum kind, GLuint texture, GLsizei levels, GLen
                                GLsizei height, GLsizei layers) {
   GLenum format = 0, type = 0;
   // Other calls (and the app's mistakes, which must raise the driver's errors) go as they are.
-  if (!blits_ || !texture || texture_kind(kind) != kind || levels < 1 || width <= 0 || height <= 0 || layers < 1 ||
+  if (!blits() || !texture || texture_kind(kind) != kind || levels < 1 || width <= 0 || height <= 0 || layers < 1 ||
       !null_upload(internal_format, &format, &type))
     return false;
   if (levels > full_mip_levels(width, height)) return false;
   if ((kind == GL_TEXTURE_CUBE_MAP || kind == GL_TEXTURE_CUBE_MAP_ARRAY) && width != height) return false;
   if (kind == GL_TEXTURE_CUBE_MAP_ARRAY && layers % 6 != 0) return false;
   if (levels > 1 && !(width == window_width_ && height == window_height_) && !named_by_manifest(texture)) return false;
-  if (gles_ && !in_gles(internal_format)) return false;
+  if (caps_.gles && !in_gles(internal_format)) return false;
   const auto known = textures_.find(texture);
   if (known != textures_.end() && known->second.storage_levels) return false;  // immutable already: the driver's error
   if (viewed_.count(texture)) return false;
@@ -1113,7 +1110,7 @@ bool TargetScaler::tex_storage(GLenum kind, GLuint texture, GLsizei levels, GLen
 
 void TargetScaler::tex_image_multisample(GLsizei samples, GLenum internal_format, GLsizei* width, GLsizei* height,
                                          GLboolean fixed_locations) {
-  const GLuint bound = blits_ ? bound_texture(GL_TEXTURE_2D_MULTISAMPLE) : 0;
+  const GLuint bound = blits() ? bound_texture(GL_TEXTURE_2D_MULTISAMPLE) : 0;
   if (!bound) return;
   Image& im = textures_[bound];
   im.kind = GL_TEXTURE_2D_MULTISAMPLE;
@@ -1131,7 +1128,7 @@ bool TargetScaler::tex_storage_multisample(GLuint texture, GLsizei samples, GLen
   GLenum format = 0, type = 0;
   const ApplyGl& g = agl();
   // GLES has no mutable multisample textures: there it stays immutable, at its size.
-  if (gles_ || !g.TexImage2DMultisample || !texture || samples < 0 || width <= 0 || height <= 0 ||
+  if (caps_.gles || !g.TexImage2DMultisample || !texture || samples < 0 || width <= 0 || height <= 0 ||
       !null_upload(internal_format, &format, &type))
     return false;
   const auto known = textures_.find(texture);
@@ -1251,7 +1248,7 @@ GLint TargetScaler::texture_parameter(GLuint texture, GLenum pname, GLint value)
 }
 
 void TargetScaler::renderbuffer_storage(GLsizei samples, GLenum internal_format, GLsizei* width, GLsizei* height) {
-  if (!blits_) return;
+  if (!blits()) return;
   GLint bound = 0;
   agl().GetIntegerv(GL_RENDERBUFFER_BINDING, &bound);
   if (!bound) return;

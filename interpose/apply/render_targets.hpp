@@ -31,6 +31,7 @@
 #include "configuration.hpp"
 #include "draw_copy.hpp"
 #include "gl_types.hpp"
+#include "pass_counter.hpp"
 
 namespace glbudget {
 
@@ -50,11 +51,12 @@ int full_mip_levels(int width, int height);
 
 class TargetScaler {
  public:
-  // Reads the viewport and scissor the context starts with. `blits`: the context has
-  // glBlitFramebuffer and separate read and draw bindings (GL 3.0, GLES 3.0); without, the
+  // Reads the viewport and scissor the context starts with (current, of `caps`).
+  explicit TargetScaler(const GlCaps& caps);
+  // glBlitFramebuffer and separate read and draw bindings (GL 3.0, GLES 3.0); without them the
   // window alone is scaled.
-  TargetScaler(bool gles, bool blits);
-  bool blits() const { return blits_; }
+  static bool has_blits(const GlCaps& caps) { return caps.major >= 3; }
+  bool blits() const { return has_blits(caps_); }
 
   // The configuration in force; re-scales the framebuffers seen so far.
   void set_configuration(const Levels& config);
@@ -203,6 +205,9 @@ class TargetScaler {
   const GLint* app_viewport() const { return viewport_.data(); }
   const GLint* app_scissor() const { return scissor_.data(); }
   bool active() const { return any_scaled_; }
+  // The driver's viewport and scissor boxes may be scaled (an app framebuffer or the window is):
+  // glGet* and glGet*i_v answer the app's.
+  bool boxes_scaled() const { return any_scaled_ || window_scaled(); }
 
   // For quality probes (apply/probes.hpp): the scale `config` would give the app's framebuffer
   // (0: the window), the scale its images are stored at now, and the window's size.
@@ -306,6 +311,10 @@ class TargetScaler {
   std::vector<std::array<GLfloat, 4>> viewports_;
   std::vector<std::array<GLint, 4>> scissors_;
   bool start_indexed_boxes();
+  static std::array<GLfloat, 4> float_box(const std::array<GLint, 4>& box) {
+    return {static_cast<GLfloat>(box[0]), static_cast<GLfloat>(box[1]), static_cast<GLfloat>(box[2]),
+            static_cast<GLfloat>(box[3])};
+  }
   void apply_indexed_boxes(double sx, double sy);
   std::vector<SavedBoxes> attrib_stack_;  // as deep as GL's (GL_ATTRIB_STACK_DEPTH)
   std::set<GLuint> viewed_;               // textures made immutable for glTextureView: never scaled
@@ -341,8 +350,7 @@ class TargetScaler {
   int window_width_ = 0, window_height_ = 0;
   std::array<GLint, 4> viewport_{}, scissor_{};
   bool any_scaled_ = false;
-  bool gles_ = false;
-  bool blits_ = true;
+  GlCaps caps_;
   std::unique_ptr<DrawCopy> draw_copy_;  // without blits
   bool window_unscalable_ = false;       // the driver refused the stand-in: said once, not tried again
   uint64_t frame_ = 1;

@@ -28,9 +28,7 @@ bool TargetScaler::start_indexed_boxes() {
   g.GetIntegerv(GL_MAX_VIEWPORTS, &count);
   if (count <= 0) return false;
   // Until now every index held index 0's box: glViewport and glScissor set them all.
-  viewports_.assign(static_cast<size_t>(count),
-                    {static_cast<GLfloat>(viewport_[0]), static_cast<GLfloat>(viewport_[1]),
-                     static_cast<GLfloat>(viewport_[2]), static_cast<GLfloat>(viewport_[3])});
+  viewports_.assign(static_cast<size_t>(count), float_box(viewport_));
   scissors_.assign(static_cast<size_t>(count), scissor_);
   return true;
 }
@@ -71,18 +69,16 @@ bool TargetScaler::scissor_indexed(GLuint index, const GLint* box) {
 }
 
 bool TargetScaler::app_viewport_at(GLuint index, GLfloat* box) const {
-  if (!box || !(any_scaled_ || window_scaled())) return false;
-  if (viewports_.empty()) {  // every index holds index 0's box
-    for (size_t i = 0; i < 4; ++i) box[i] = static_cast<GLfloat>(viewport_[i]);
-    return true;
-  }
-  if (index >= viewports_.size()) return false;
-  for (size_t i = 0; i < 4; ++i) box[i] = viewports_[index][i];
+  if (!box || !boxes_scaled()) return false;
+  if (!viewports_.empty() && index >= viewports_.size()) return false;
+  // Before any box is set by index, every index holds index 0's.
+  const std::array<GLfloat, 4> b = viewports_.empty() ? float_box(viewport_) : viewports_[index];
+  for (size_t i = 0; i < 4; ++i) box[i] = b[i];
   return true;
 }
 
 bool TargetScaler::app_scissor_at(GLuint index, GLint* box) const {
-  if (!box || !(any_scaled_ || window_scaled())) return false;
+  if (!box || !boxes_scaled()) return false;
   const std::array<GLint, 4>* b = &scissor_;
   if (!scissors_.empty()) {
     if (index >= scissors_.size()) return false;

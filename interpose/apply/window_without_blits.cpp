@@ -3,7 +3,6 @@
 // colour formats. The stand-in's colour is a texture, drawn into the back buffer at each swap
 // and into a window-sized copy for reads (glReadPixels, glCopyTex* of the window).
 #include <cstdio>
-#include <cstring>
 #include <string>
 
 #include "apply_gl.hpp"
@@ -14,17 +13,6 @@
 namespace glbudget {
 
 namespace {
-bool has_extension(const char* name) {
-  using GetString = const GLubyte*(APIENTRYP)(GLenum);
-  static const auto get = reinterpret_cast<GetString>(resolve_gl("glGetString"));
-  const char* all = get ? reinterpret_cast<const char*>(get(GL_EXTENSIONS)) : nullptr;
-  if (!all) return false;
-  const size_t n = strlen(name);
-  for (const char* p = strstr(all, name); p; p = strstr(p + n, name))
-    if ((p == all || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return true;
-  return false;
-}
-
 void store_renderbuffer(GLenum format, int width, int height) {
   static const auto storage = reinterpret_cast<PFNGLRENDERBUFFERSTORAGEPROC>(resolve_gl("glRenderbufferStorage"));
   storage(GL_RENDERBUFFER, format, width, height);
@@ -49,11 +37,11 @@ void TargetScaler::check_window_without_blits() {
   window_.samples = samples > 0 ? samples : 0;
   window_.has_depth = depth_bits > 0 || stencil_bits > 0;
   // Where the window has stencil: a depth-stencil image, else one of each.
-  const bool packed = stencil_bits > 0 && has_extension("GL_OES_packed_depth_stencil");
-  window_.depth_format = packed                                               ? GL_DEPTH24_STENCIL8
-                         : depth_bits > 16 && has_extension("GL_OES_depth24") ? GL_DEPTH_COMPONENT24
-                         : depth_bits > 0                                     ? GL_DEPTH_COMPONENT16
-                                                                              : GLenum{GL_NONE};
+  const bool packed = stencil_bits > 0 && has_extension(caps_, "GL_OES_packed_depth_stencil");
+  window_.depth_format = packed                                                      ? GL_DEPTH24_STENCIL8
+                         : depth_bits > 16 && has_extension(caps_, "GL_OES_depth24") ? GL_DEPTH_COMPONENT24
+                         : depth_bits > 0                                            ? GL_DEPTH_COMPONENT16
+                                                                                     : GLenum{GL_NONE};
   window_.separate_stencil = stencil_bits > 0 && !packed;
   window_.color_format = GL_RGBA;
 }

@@ -27,6 +27,8 @@ int stat_index(GLenum target) {
   return -1;
 }
 
+}  // namespace
+
 bool has_extension(const GlCaps& caps, const char* name) {
   if (extension_hidden(name)) return false;  // GLBUDGET_TEST_HIDE_EXTENSIONS
   const GlCalls& g = gl();
@@ -43,7 +45,6 @@ bool has_extension(const GlCaps& caps, const char* name) {
   }
   return false;
 }
-}  // namespace
 
 GlCaps detect_caps() {
   GlCaps caps;

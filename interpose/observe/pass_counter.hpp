@@ -22,6 +22,9 @@ struct GlCaps {
   bool query_buffer = false;    // ARB_query_buffer_object / GL 4.4: a bound buffer redirects reads
 };
 GlCaps detect_caps();
+// The current context's driver has `name` (GL_EXTENSIONS), and GLBUDGET_TEST_HIDE_EXTENSIONS does
+// not hide it.
+bool has_extension(const GlCaps& caps, const char* name);
 
 class PassCounter : public DrawCounter {
  public:

@@ -86,11 +86,12 @@ void initialise(ContextState& c, Registry& r) {
   c.counter = std::make_unique<PassCounter>(c.caps);
   // Scaling needs framebuffer objects and blits: GL 3.0, GLES 3.0. GLES 2.0 has framebuffer
   // objects without blits: there the window alone is scaled, its stand-in drawn.
-  const bool blits = c.caps.major >= 3;
+  const bool blits = TargetScaler::has_blits(c.caps);
   const bool window_alone = c.caps.gles && c.caps.major == 2;
-  if (manifest_scales_targets() || manifest_scales_window()) say_what_cannot_scale(c.caps, blits, window_alone);
-  if ((manifest_scales_targets() || manifest_scales_window()) && (blits || window_alone)) {
-    c.targets = std::make_unique<TargetScaler>(c.caps.gles, blits);
+  const bool scales = manifest_scales_targets() || manifest_scales_window();
+  if (scales) say_what_cannot_scale(c.caps, blits, window_alone);
+  if (scales && (blits || window_alone)) {
+    c.targets = std::make_unique<TargetScaler>(c.caps);
     c.counter->set_draw_hook(
         [](void* ctx) {
           auto* cs = static_cast<ContextState*>(ctx);
