@@ -120,6 +120,11 @@ bool manifest_scales_targets() { return state().scales_targets; }
 bool manifest_scales_window() { return state().scales_window; }
 bool manifest_app_coordinates() { return state().manifest.app_coordinates; }
 
+bool configuration_may_change() {
+  const State& s = state();
+  return governor_steering() || (s.forced.size() > 1 && s.every > 0);
+}
+
 Levels configuration_for_frame(uint64_t frame) {
   const State& s = state();
   Levels governed;

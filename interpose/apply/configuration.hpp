@@ -46,6 +46,9 @@ bool manifest_app_coordinates();
 
 // The configuration the frame with this number (1-based, per context) draws.
 Levels configuration_for_frame(uint64_t frame);
+// Whether the configuration can change while the app runs: the governor chooses it (a budget is
+// in force), or a GLBUDGET_FORCE list is stepped through (GLBUDGET_FORCE_EVERY).
+bool configuration_may_change();
 
 // A pass whose programs were matched at least once (for the report at exit).
 void note_pass_matched(int pass);

@@ -11,45 +11,13 @@
 #include <string>
 
 #include "apply_gl.hpp"
+#include "target_images.hpp"
 
 namespace glbudget {
 
+using namespace target_images;
+
 namespace {
-
-GLsizei scaled(GLsizei size, double scale) {
-  return std::max<GLsizei>(1, static_cast<GLsizei>(std::lround(size * scale)));
-}
-
-bool is_depth(GLint f) {
-  return f == GL_DEPTH_COMPONENT || f == GL_DEPTH_COMPONENT16 || f == GL_DEPTH_COMPONENT24 ||
-         f == GL_DEPTH_COMPONENT32 || f == GL_DEPTH_COMPONENT32F;
-}
-bool is_depth_stencil(GLint f) {
-  return f == GL_DEPTH_STENCIL || f == GL_DEPTH24_STENCIL8 || f == GL_DEPTH32F_STENCIL8;
-}
-// The buffers an image of `format` holds, and the framebuffer point it attaches to.
-GLbitfield buffer_bits(GLint format) {
-  if (is_depth(format)) return GL_DEPTH_BUFFER_BIT;
-  if (is_depth_stencil(format)) return GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT;
-  if (format == GL_STENCIL_INDEX8) return GL_STENCIL_BUFFER_BIT;
-  return GL_COLOR_BUFFER_BIT;
-}
-GLenum attachment_point(GLint format) {
-  switch (buffer_bits(format)) {
-    case GL_DEPTH_BUFFER_BIT:
-      return GL_DEPTH_ATTACHMENT;
-    case GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT:
-      return GL_DEPTH_STENCIL_ATTACHMENT;
-    case GL_STENCIL_BUFFER_BIT:
-      return GL_STENCIL_ATTACHMENT;
-    default:
-      return GL_COLOR_ATTACHMENT0;
-  }
-}
-bool is_integer_format(GLenum format) {
-  return format == GL_RED_INTEGER || format == GL_RG_INTEGER || format == GL_RGB_INTEGER || format == GL_RGBA_INTEGER ||
-         format == GL_BGRA_INTEGER;
-}
 
 // The format and type glTexImage2D takes with no data for a sized format a framebuffer can
 // hold; false for others (compressed, unsized, luminance), which keep their immutable storage.
@@ -139,36 +107,6 @@ bool in_gles(GLenum internal_format) {
   }
 }
 
-// The real bindings a rescale touches, restored when it ends: the framebuffers, the
-// renderbuffer, the texture of `kind` on the active unit, no pixel-unpack buffer, no scissor.
-struct SavedBindings {
-  GLint draw = 0, read = 0, texture = 0, renderbuffer = 0, unpack = 0;
-  GLenum kind = GL_TEXTURE_2D;
-  bool scissor = false;
-  explicit SavedBindings(GLenum texture_kind = GL_TEXTURE_2D) : kind(texture_kind) {
-    const ApplyGl& g = agl();
-    g.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
-    g.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read);
-    g.GetIntegerv(TargetScaler::binding_of(kind), &texture);
-    g.GetIntegerv(GL_RENDERBUFFER_BINDING, &renderbuffer);
-    g.GetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &unpack);
-    scissor = g.IsEnabled(GL_SCISSOR_TEST);
-    if (unpack) reinterpret_cast<PFNGLBINDBUFFERPROC>(bind_buffer())(GL_PIXEL_UNPACK_BUFFER, 0);
-    if (scissor) g.Disable(GL_SCISSOR_TEST);  // a blit is clipped by the scissor box
-  }
-  ~SavedBindings() {
-    const ApplyGl& g = agl();
-    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
-    g.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read));
-    g.BindTexture(kind, static_cast<GLuint>(texture));
-    g.BindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(renderbuffer));
-    if (unpack)
-      reinterpret_cast<PFNGLBINDBUFFERPROC>(bind_buffer())(GL_PIXEL_UNPACK_BUFFER, static_cast<GLuint>(unpack));
-    if (scissor) g.Enable(GL_SCISSOR_TEST);
-  }
-  static void* bind_buffer();
-};
-
 }  // namespace
 
 }  // namespace glbudget
@@ -177,7 +115,29 @@ struct SavedBindings {
 
 namespace glbudget {
 
-void* SavedBindings::bind_buffer() {
+target_images::SavedBindings::SavedBindings(GLenum texture_kind) : kind(texture_kind) {
+  const ApplyGl& g = agl();
+  g.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+  g.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read);
+  g.GetIntegerv(TargetScaler::binding_of(kind), &texture);
+  g.GetIntegerv(GL_RENDERBUFFER_BINDING, &renderbuffer);
+  g.GetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &unpack);
+  scissor = g.IsEnabled(GL_SCISSOR_TEST);
+  if (unpack) reinterpret_cast<PFNGLBINDBUFFERPROC>(bind_buffer())(GL_PIXEL_UNPACK_BUFFER, 0);
+  if (scissor) g.Disable(GL_SCISSOR_TEST);  // a blit is clipped by the scissor box
+}
+
+target_images::SavedBindings::~SavedBindings() {
+  const ApplyGl& g = agl();
+  g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
+  g.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read));
+  g.BindTexture(kind, static_cast<GLuint>(texture));
+  g.BindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(renderbuffer));
+  if (unpack) reinterpret_cast<PFNGLBINDBUFFERPROC>(bind_buffer())(GL_PIXEL_UNPACK_BUFFER, static_cast<GLuint>(unpack));
+  if (scissor) g.Enable(GL_SCISSOR_TEST);
+}
+
+void* target_images::SavedBindings::bind_buffer() {
   static void* fn = resolve_gl("glBindBuffer");
   return fn;
 }
@@ -436,7 +396,7 @@ GLuint TargetScaler::single_sampled_window(bool depth) {
 }
 
 void TargetScaler::present() {
-  if (!window_.fbo) return;
+  if (!window_.fbo) return warm_present();
   if (!blits()) return present_without_blits();
   BlitState saved;
   const GLuint from = single_sampled_window(false);
@@ -700,6 +660,7 @@ void TargetScaler::on_draw(int pass) {
   const double before = f.scale;
   ensure_scale(draw_fbo_, f);
   if (f.scale != before) apply_viewport();
+  warm_rescales(draw_fbo_, f);
 }
 
 void TargetScaler::on_blit(GLuint read, GLuint draw) {
@@ -716,6 +677,7 @@ void TargetScaler::on_blit(GLuint read, GLuint draw) {
     agl().BindFramebuffer(GL_READ_FRAMEBUFFER, name);
     learn_attachments(f, GL_READ_FRAMEBUFFER);
     ensure_scale(name, f);
+    warm_rescales(name, f);
     agl().BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(bound));
   }
   if (draw_fbo_ && framebuffers_[draw_fbo_].scale != before) apply_viewport();
@@ -804,7 +766,7 @@ void TargetScaler::rescale(GLuint name, Image& image, double scale, bool carry_c
   const GLsizei old_w = image.stored_width(), old_h = image.stored_height();
   const GLenum point = attachment_point(image.internal_format);
   const GLbitfield mask = buffer_bits(image.internal_format);
-  const GLenum filter = mask == GL_COLOR_BUFFER_BIT && !is_integer_format(image.format) ? GL_LINEAR : GL_NEAREST;
+  const GLenum filter = stretch_filter(image.internal_format, image.format);
   // Contents are carried over (a clear made before the first draw that revealed the target,
   // or what a temporal effect keeps), except for multisampled images (blits between
   // multisampled images of different sizes do not exist).

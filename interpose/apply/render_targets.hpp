@@ -336,6 +336,13 @@ class TargetScaler {
   // an array. The texture is bound to its kind.
   static void specify_level(const Image& image, GLint level, GLsizei width, GLsizei height);
   bool cleared_before_drawn(const Framebuffer& f) const;
+  // Blits of each kind a later switch will make, made once on tiny images beforehand
+  // (blit_warmup.cpp): those that rescale `f`'s images, and the stand-in's present.
+  void warm_rescales(GLuint name, const Framebuffer& f);
+  void warm_present();
+  void warm_blit(const Image& image, bool pot_width, bool pot_height);
+  std::set<std::array<GLint, 7>> warmed_;
+  std::set<std::array<int, 2>> warmed_present_;
   void apply_viewport();
   // Keeps the app's box and gives the driver it scaled to the bound draw framebuffer.
   void set_box(std::array<GLint, 4>& box, void(APIENTRYP set)(GLint, GLint, GLsizei, GLsizei), GLint x, GLint y,

@@ -35,6 +35,7 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_TRANSITION_S",
     "GLBUDGET_FEEDBACK",
     "GLBUDGET_PROBE_STRETCH",
+    "GLBUDGET_WARM_BLITS",
     "GLBUDGET_DUMP_PROBES",
     "GLBUDGET_PROBE_SCALE",
     "GLBUDGET_PROBE_SSIM",
@@ -157,6 +158,8 @@ Options parse_options(char** env, std::string* warnings) {
       parse_switch(name, value, o.feedback, warnings);
     } else if (name == "GLBUDGET_PROBE_STRETCH") {
       parse_switch(name, value, o.probe_stretch, warnings);
+    } else if (name == "GLBUDGET_WARM_BLITS") {
+      parse_switch(name, value, o.warm_blits, warnings);
     } else if (name == "GLBUDGET_TEST_HIDE_EXTENSIONS") {
       for (std::string item : comma_items(value)) {
         while (!item.empty() && item.front() == ' ') item.erase(item.begin());

@@ -40,6 +40,10 @@ struct Options {
   // GLBUDGET_PROBE_STRETCH=0: the governor never asks for rarer probes (loop/governor.hpp,
   // probe_stretch_gain)
   bool probe_stretch = true;
+  // GLBUDGET_WARM_BLITS=0: the blits a switch of scale makes are not made once ahead on tiny
+  // images (apply/blit_warmup.cpp); the first switch to each scale then pays the driver's
+  // shader builds for them.
+  bool warm_blits = true;
   // GLBUDGET_TEST_HIDE_EXTENSIONS=GL_ARB_timer_query,...: a test switch (tests/interpose/
   // faults_test.cpp); the shim's capability probe (detect_caps) takes these extensions, and the
   // features they name even where the core version includes them, as absent.

@@ -6,6 +6,8 @@
 //   --blit-through 1  after each frame's drawing, the window is blitted into a window-sized
 //                 framebuffer of the app's, the window cleared, and the copy blitted back
 //                 (as a post-process that starts from a copy of the back buffer)
+//   --swapped-out PATH  after the last swap, the back buffer as a PPM: what was swapped, where
+//                 the driver keeps it (llvmpipe's GLX does; the spec leaves it undefined)
 #include <GL/glx.h>
 #include <X11/Xlib.h>
 
@@ -128,10 +130,12 @@ int main(int argc, char** argv) {
   int samples = 0;
   bool want_blit = false;
   bool want_slanted = false;
+  const char* swapped_out = nullptr;
   for (int i = 1; i + 1 < argc; ++i) {
     if (!strcmp(argv[i], "--samples")) samples = atoi(argv[i + 1]);
     if (!strcmp(argv[i], "--slanted")) want_slanted = atoi(argv[i + 1]) != 0;
     if (!strcmp(argv[i], "--blit-through")) want_blit = atoi(argv[i + 1]) != 0;
+    if (!strcmp(argv[i], "--swapped-out")) swapped_out = argv[i + 1];
   }
   std::vector<int> fb_attribs = {GLX_X_RENDERABLE,  True,
                                  GLX_DRAWABLE_TYPE, GLX_WINDOW_BIT,
@@ -187,6 +191,12 @@ int main(int argc, char** argv) {
         if (slanted) triangle.draw(gl);
         if (want_blit) blit.run();
       });
+  if (rc == 0 && swapped_out) {
+    std::vector<uint8_t> swapped(static_cast<size_t>(args.width) * args.height * 4);
+    glFinish();
+    glReadPixels(0, 0, args.width, args.height, GL_RGBA, GL_UNSIGNED_BYTE, swapped.data());
+    if (!write_ppm(swapped_out, swapped, args.width, args.height)) rc = 3;
+  }
   GLint window_samples = -1;
   glGetIntegerv(GL_SAMPLES, &window_samples);
   if (const GLenum error = glGetError(); rc == 0 && error != GL_NO_ERROR) {

@@ -277,6 +277,39 @@ TEST_CASE("the window at 60 % through GLX under Xvfb", "[integration]") {
   unlink(manifest.c_str());
 }
 
+// Where the configuration can change at run time, the present's stretch is blitted once at the
+// first swap, before any switch (blit_warmup.cpp), over a corner of the back buffer whose pixels
+// are kept aside and put back: what is swapped must be what the app drew. llvmpipe's GLX keeps
+// the back buffer after a swap, so the probe reads what it swapped (--swapped-out). A
+// multisampled window is not warmed: it must come out whole too.
+TEST_CASE("blits warmed ahead of a switch leave what the window shows as the app drew it", "[integration]") {
+  const XvfbServer xvfb(100 + (getpid() + 11) % 400, "256x256x24");
+  REQUIRE(xvfb.running());
+  for (const char* samples : {"0", "4"}) {
+    const std::string plain_img = temp_path("warm_plain.ppm"), shim_img = temp_path("warm_shim.ppm");
+    const std::vector<std::string> base = {
+        probe_path("probe_glx"), "--size", "128", "--frames", "1", "--samples", samples};
+    auto plain_args = base, shim_args = base;
+    plain_args.insert(plain_args.end(), {"--swapped-out", plain_img});
+    shim_args.insert(shim_args.end(), {"--swapped-out", shim_img});
+    REQUIRE(run_process(plain_args, {{"DISPLAY", xvfb.display()}}).exit_code == 0);
+    // Level 0 (100 %) for the whole run, a switch to 60 % possible: the blits are warmed.
+    const ProcessResult r = run_process(shim_args, {{"DISPLAY", xvfb.display()},
+                                                    {"LD_PRELOAD", shim_path()},
+                                                    {"GLBUDGET_SENSOR", "cpu"},
+                                                    {"GLBUDGET_FORCE", "0;2"},
+                                                    {"GLBUDGET_FORCE_EVERY", "100"}});
+    INFO("samples " << samples << "\n" << r.err);
+    REQUIRE(r.exit_code == 0);  // 4: a GL error reached the app
+    CHECK(r.err.find("glbudget:") == std::string::npos);
+    const Ppm a = read_ppm(plain_img), b = read_ppm(shim_img);
+    REQUIRE(!a.rgb.empty());
+    CHECK(a.rgb == b.rgb);
+    unlink(plain_img.c_str());
+    unlink(shim_img.c_str());
+  }
+}
+
 TEST_CASE("an app's window-sized framebuffers follow the window's scale, smaller ones keep their size",
           "[integration]") {
   // probe_offscreen draws the known scene into a window-sized framebuffer, a quarter-sized
