@@ -53,9 +53,9 @@ class TargetScaler {
  public:
   // Reads the viewport and scissor the context starts with (current, of `caps`).
   explicit TargetScaler(const GlCaps& caps);
-  // glBlitFramebuffer and separate read and draw bindings (GL 3.0, GLES 3.0); without them the
-  // window alone is scaled.
-  static bool has_blits(const GlCaps& caps) { return caps.major >= 3; }
+  // glBlitFramebuffer and separate read and draw bindings (GL 3.0, GLES 3.0, or desktop GL 2.x
+  // with ARB_framebuffer_object); without them the window alone is scaled (GLES 2.0).
+  static bool has_blits(const GlCaps& caps) { return caps.framebuffer_blit; }
   bool blits() const { return has_blits(caps_); }
 
   // The configuration in force; re-scales the framebuffers seen so far.

@@ -63,6 +63,7 @@ GlCaps detect_caps() {
   auto feature = [&](int M, int m, const char* extension) {
     return !extension_hidden(extension) && (at_least(M, m) || has_extension(caps, extension));
   };
+  caps.framebuffer_blit = caps.gles ? caps.major >= 3 : feature(3, 0, "GL_ARB_framebuffer_object");
   // GLES lacks pipeline statistics and GL_TIMESTAMP counters in core; there we count batches.
   if (!caps.gles && g.BeginQuery && g.EndQuery && g.GetQueryObjectui64v) {
     caps.pipeline_stats = feature(4, 6, "GL_ARB_pipeline_statistics_query");

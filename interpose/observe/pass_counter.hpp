@@ -20,6 +20,9 @@ struct GlCaps {
   bool pipeline_stats = false;  // ARB_pipeline_statistics_query / GL 4.6
   bool timer = false;           // ARB_timer_query / GL 3.3 (GL_TIMESTAMP counters)
   bool query_buffer = false;    // ARB_query_buffer_object / GL 4.4: a bound buffer redirects reads
+  // Framebuffer objects with glBlitFramebuffer under their core names: GL 3.0, GLES 3.0, or
+  // ARB_framebuffer_object (desktop GL 2.x drivers: vc4, lima, i915g).
+  bool framebuffer_blit = false;
 };
 GlCaps detect_caps();
 // The current context's driver has `name` (GL_EXTENSIONS), and GLBUDGET_TEST_HIDE_EXTENSIONS does

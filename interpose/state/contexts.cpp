@@ -66,8 +66,8 @@ void say_what_cannot_scale(const GlCaps& caps, bool blits, bool window_alone) {
       std::string(caps.gles ? "OpenGL ES " : "OpenGL ") + std::to_string(caps.major) + "." + std::to_string(caps.minor);
   if (!window_alone) {
     say_once("caps:scaling", "this context is " + version +
-                                 ", without framebuffer objects and blits in core: nothing is scaled (resolution "
-                                 "levels draw at full size)");
+                                 ", without framebuffer objects and blits (GL 3.0 or GL_ARB_framebuffer_object): "
+                                 "nothing is scaled (resolution levels draw at full size)");
     return;
   }
   if (manifest_scales_targets())
@@ -84,8 +84,9 @@ void initialise(ContextState& c, Registry& r) {
   c.index = r.next_index++;
   c.caps = detect_caps();
   c.counter = std::make_unique<PassCounter>(c.caps);
-  // Scaling needs framebuffer objects and blits: GL 3.0, GLES 3.0. GLES 2.0 has framebuffer
-  // objects without blits: there the window alone is scaled, its stand-in drawn.
+  // Scaling needs framebuffer objects and blits: GL 3.0, GLES 3.0, or ARB_framebuffer_object in
+  // a desktop GL 2.x context. GLES 2.0 has framebuffer objects without blits: there the window
+  // alone is scaled, its stand-in drawn.
   const bool blits = TargetScaler::has_blits(c.caps);
   const bool window_alone = c.caps.gles && c.caps.major == 2;
   const bool scales = manifest_scales_targets() || manifest_scales_window();

@@ -169,10 +169,15 @@ TEST_CASE("a GLES 2.0 context, without blits: the window scaled, drawn into the 
     check_scaled_probe("probe_getproc", {"--es", "2", "--size", "160"}, level, es2, said);
 }
 
-// A desktop GL 2.1 context (a driver without GL 3: Mesa's i915, vc4's desktop GL) has framebuffer
-// objects and blits only as extensions, under other names: it draws at full size, and says so
-// once, so that the log's configuration column is not taken for what drew.
-TEST_CASE("a desktop GL 2.1 context: the window drawn at full size, said once", "[integration]") {
+// A desktop GL 2.1 context (a driver without GL 3: vc4, lima and i915g give one) has framebuffer
+// objects and blits through ARB_framebuffer_object, under the core names: there it is scaled as
+// GL 3 is. Without the extension (EXT_framebuffer_object alone) it draws at full size, and says
+// so once, so that the log's configuration column is not taken for what drew.
+TEST_CASE("a desktop GL 2.1 context: scaled with ARB_framebuffer_object, else drawn at full size and said once",
+          "[integration]") {
+  check_scaled_probe("probe_compat", {"--size", "128"}, "2", {{"MESA_GL_VERSION_OVERRIDE", "2.1"}});
+  check_scaled_probe("probe_compat", {"--size", "128", "--push-attrib", "1", "--frames", "5"}, "2",
+                     {{"MESA_GL_VERSION_OVERRIDE", "2.1"}});
   const std::string plain_img = temp_path("gl21_plain.ppm"), shim_img = temp_path("gl21_shim.ppm");
   const std::vector<std::string> args = {probe_path("probe_compat"), "--size", "128", "--frames", "4", "--out"};
   auto plain_args = args, shim_args = args;
@@ -182,13 +187,14 @@ TEST_CASE("a desktop GL 2.1 context: the window drawn at full size, said once", 
   const ProcessResult r = run_process(shim_args, {{"MESA_GL_VERSION_OVERRIDE", "2.1"},
                                                   {"LD_PRELOAD", shim_path()},
                                                   {"GLBUDGET_SENSOR", "cpu"},
-                                                  {"GLBUDGET_FORCE", "2"}});
+                                                  {"GLBUDGET_FORCE", "2"},
+                                                  {"GLBUDGET_TEST_HIDE_EXTENSIONS", "GL_ARB_framebuffer_object"}});
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   CHECK(count_lines_with(r.err, "glbudget:") == 1);
   CHECK(count_lines_with(r.err,
-                         "this context is OpenGL 2.1, without framebuffer objects and blits in core: "
-                         "nothing is scaled") == 1);
+                         "this context is OpenGL 2.1, without framebuffer objects and blits (GL 3.0 or "
+                         "GL_ARB_framebuffer_object): nothing is scaled") == 1);
   const Ppm a = read_ppm(plain_img), b = read_ppm(shim_img);
   REQUIRE(!a.rgb.empty());
   CHECK(a.rgb == b.rgb);
