@@ -79,10 +79,10 @@ void TargetScaler::warm_blit(const Image& image, bool pot_width, bool pot_height
                                   pot_width,
                                   pot_height};
   if (!warmed_.insert(kind).second) return;
+  // Only single-sampled 2D images get here, so `image`'s own kind and samples are the tiny ones'.
   const ApplyGl& g = agl();
   SavedBindings saved(GL_TEXTURE_2D);
   const GLsizei w = tiny_side(pot_width), h = tiny_side(pot_height);
-  const GLenum point = attachment_point(image.internal_format);
   const GLbitfield mask = buffer_bits(image.internal_format);
   GLuint objects[3] = {0, 0, 0}, fbo[2] = {0, 0};
   if (image.renderbuffer)
@@ -90,28 +90,12 @@ void TargetScaler::warm_blit(const Image& image, bool pot_width, bool pot_height
   else
     g.GenTextures(3, objects);
   const GLsizei sizes[3][2] = {{w, h}, {2, 2}, {w, h}};
-  for (int i = 0; i < 3; ++i) {
-    if (image.renderbuffer) {
-      g.BindRenderbuffer(GL_RENDERBUFFER, objects[i]);
-      g.RenderbufferStorageMultisample(GL_RENDERBUFFER, 0, static_cast<GLenum>(image.internal_format), sizes[i][0],
-                                       sizes[i][1]);
-    } else {
-      g.BindTexture(GL_TEXTURE_2D, objects[i]);
-      specify_level(image, 0, sizes[i][0], sizes[i][1]);
-    }
-  }
+  for (int i = 0; i < 3; ++i) allocate_like(image, objects[i], sizes[i][0], sizes[i][1], 0);
   g.GenFramebuffers(2, fbo);
-  auto attach = [&](GLenum target, GLuint fb, GLuint object) {
-    g.BindFramebuffer(target, fb);
-    if (image.renderbuffer)
-      g.FramebufferRenderbuffer(target, point, GL_RENDERBUFFER, object);
-    else
-      g.FramebufferTexture2D(target, point, GL_TEXTURE_2D, object, 0);
-  };
-  attach(GL_READ_FRAMEBUFFER, fbo[0], objects[0]);
-  attach(GL_DRAW_FRAMEBUFFER, fbo[1], objects[1]);
+  attach_like(image, GL_READ_FRAMEBUFFER, fbo[0], objects[0], 0);
+  attach_like(image, GL_DRAW_FRAMEBUFFER, fbo[1], objects[1], 0);
   g.BlitFramebuffer(0, 0, w, h, 0, 0, 2, 2, mask, stretch_filter(image.internal_format, image.format));
-  attach(GL_DRAW_FRAMEBUFFER, fbo[1], objects[2]);
+  attach_like(image, GL_DRAW_FRAMEBUFFER, fbo[1], objects[2], 0);
   g.BlitFramebuffer(0, 0, w, h, 0, 0, w, h, mask, GL_NEAREST);
   g.DeleteFramebuffers(2, fbo);
   if (image.renderbuffer)

@@ -759,12 +759,32 @@ void attach_texture_layer(GLenum target, GLenum point, GLenum kind, GLuint textu
     g.FramebufferTextureLayer(target, point, texture, 0, layer);
 }
 
+void TargetScaler::allocate_like(const Image& image, GLuint object, GLsizei width, GLsizei height, int level) {
+  const ApplyGl& g = agl();
+  if (image.renderbuffer) {
+    g.BindRenderbuffer(GL_RENDERBUFFER, object);
+    g.RenderbufferStorageMultisample(GL_RENDERBUFFER, image.samples, static_cast<GLenum>(image.internal_format), width,
+                                     height);
+  } else {
+    g.BindTexture(image.kind, object);
+    specify_level(image, level, width, height);
+  }
+}
+
+void TargetScaler::attach_like(const Image& image, GLenum target, GLuint fbo, GLuint object, GLint layer) {
+  agl().BindFramebuffer(target, fbo);
+  const GLenum point = attachment_point(image.internal_format);
+  if (image.renderbuffer)
+    agl().FramebufferRenderbuffer(target, point, GL_RENDERBUFFER, object);
+  else
+    attach_texture_layer(target, point, image.kind, object, layer);
+}
+
 void TargetScaler::rescale(GLuint name, Image& image, double scale, bool carry_contents) {
   if (image.app_size.empty()) return;
   const ApplyGl& g = agl();
   SavedBindings saved(image.renderbuffer ? GL_TEXTURE_2D : image.kind);
   const GLsizei old_w = image.stored_width(), old_h = image.stored_height();
-  const GLenum point = attachment_point(image.internal_format);
   const GLbitfield mask = buffer_bits(image.internal_format);
   const GLenum filter = stretch_filter(image.internal_format, image.format);
   // Contents are carried over (a clear made before the first draw that revealed the target,
@@ -774,29 +794,11 @@ void TargetScaler::rescale(GLuint name, Image& image, double scale, bool carry_c
   const bool carry = carry_contents && image.samples == 0 &&
                      (layers == 1 || image.kind == GL_TEXTURE_CUBE_MAP || g.FramebufferTextureLayer != nullptr);
   GLuint fbo[2] = {0, 0}, copy = 0;
-  // `object`'s layer `layer` (a cube map's face) attached to `fb` bound to `target`.
-  auto attach = [&](GLenum target, GLuint fb, GLuint object, GLsizei layer) {
-    g.BindFramebuffer(target, fb);
-    if (image.renderbuffer)
-      g.FramebufferRenderbuffer(target, point, GL_RENDERBUFFER, object);
-    else
-      attach_texture_layer(target, point, image.kind, object, layer);
-  };
-  auto allocate = [&](GLuint object, GLsizei w, GLsizei h, int level) {
-    if (image.renderbuffer) {
-      g.BindRenderbuffer(GL_RENDERBUFFER, object);
-      g.RenderbufferStorageMultisample(GL_RENDERBUFFER, image.samples, static_cast<GLenum>(image.internal_format), w,
-                                       h);
-    } else {
-      g.BindTexture(image.kind, object);
-      specify_level(image, level, w, h);
-    }
-  };
   // Level 0, layer by layer, from `from` at its size into `to` at its own.
   auto blit_layers = [&](GLuint from, GLsizei fw, GLsizei fh, GLuint to, GLsizei tw, GLsizei th, GLenum how) {
     for (GLsizei layer = 0; layer < layers; ++layer) {
-      attach(GL_READ_FRAMEBUFFER, fbo[0], from, layer);
-      attach(GL_DRAW_FRAMEBUFFER, fbo[1], to, layer);
+      attach_like(image, GL_READ_FRAMEBUFFER, fbo[0], from, layer);  // a cube map's face, an array's layer
+      attach_like(image, GL_DRAW_FRAMEBUFFER, fbo[1], to, layer);
       g.BlitFramebuffer(0, 0, fw, fh, 0, 0, tw, th, mask, how);
     }
   };
@@ -808,14 +810,14 @@ void TargetScaler::rescale(GLuint name, Image& image, double scale, bool carry_c
       g.GenRenderbuffers(1, &copy);
     else
       g.GenTextures(1, &copy);
-    allocate(copy, new_w, new_h, 0);
+    allocate_like(image, copy, new_w, new_h, 0);
     blit_layers(name, old_w, old_h, copy, new_w, new_h, filter);
   }
   image.scale = scale;
   for (size_t level = 0; level < image.app_size.size(); ++level) {
     if (image.app_size[level][0] == 0) continue;
     const auto size = image.stored_level_size(level);
-    allocate(name, size[0], size[1], static_cast<int>(level));
+    allocate_like(image, name, size[0], size[1], static_cast<int>(level));
   }
   if (carry) {
     blit_layers(copy, new_w, new_h, name, new_w, new_h, GL_NEAREST);

@@ -335,6 +335,12 @@ class TargetScaler {
   // One level of a texture, with no data, at a size: every face of a cube map, every layer of
   // an array. The texture is bound to its kind.
   static void specify_level(const Image& image, GLint level, GLsizei width, GLsizei height);
+  // `object`, a renderbuffer or texture name of `image`'s kind, given level `level` (a
+  // renderbuffer: its storage) of `image`'s format and samples at a size; bound after.
+  static void allocate_like(const Image& image, GLuint object, GLsizei width, GLsizei height, int level);
+  // `object`'s level 0 (layer `layer` of a layered kind) attached to `fbo`, bound to `target`, at
+  // the point of `image`'s format.
+  static void attach_like(const Image& image, GLenum target, GLuint fbo, GLuint object, GLint layer);
   bool cleared_before_drawn(const Framebuffer& f) const;
   // Blits of each kind a later switch will make, made once on tiny images beforehand
   // (blit_warmup.cpp): those that rescale `f`'s images, and the stand-in's present.
