@@ -374,7 +374,7 @@ class GovernorThread {
       pass->counts.fragments += row.fragments < 0 ? std::nan("") : static_cast<double>(row.fragments);
     }
     const loop::Decision d = governor_.on_frame(record);
-    set_probe_period_wanted(governor_.probe_period_wanted());
+    set_probe_period_wanted(governor_.probe_period_wanted(), governor_.probe_bursts_spaced());
     // Observing only for the probes, the governor has nothing to tell.
     if (governor_.governing())
       for (; notes_said_ < governor_.notes().size(); ++notes_said_) say(governor_.notes()[notes_said_]);

@@ -34,13 +34,14 @@ const ProbeSettings& probe_settings() {
     const Options& o = options();
     // Probes measure what the governor chooses by: on by default only when it governs.
     s.period = o.probe_period >= 0 ? static_cast<uint64_t>(o.probe_period) : governor_steering() ? 10 : 0;
-    // The frame after a probe reads it back: its power is the probe's too. Probing every frame
-    // or every other one leaves the governor no frame whose power it can fit.
-    if (governor_steering() && (s.period == 1 || s.period == 2)) {
+    // The two frames after a probe read it back and finish its work: their power is the
+    // probe's too (ProbeOverhead). Probing more often than every fourth frame leaves the
+    // governor no frame whose power it can fit.
+    if (governor_steering() && s.period >= 1 && s.period <= 3) {
       say("GLBUDGET_PROBE_PERIOD=" + std::to_string(s.period) +
-          " leaves no frame whose power the budget can be kept by (each is a probe or reads one back); "
-          "probing every 3 frames");
-      s.period = 3;
+          " leaves no frame whose power the budget can be kept by (each is a probe or one of the two after it); "
+          "probing every 4 frames");
+      s.period = 4;
     }
     s.settled_factor = o.probe_period >= 0 ? 1 : 6;
     s.stretchable = o.probe_period < 0;
@@ -52,9 +53,13 @@ const ProbeSettings& probe_settings() {
 
 namespace {
 std::atomic<uint64_t> g_period_wanted{0}, g_period_in_force{0};
+std::atomic<bool> g_bursts_spaced{false};
 }  // namespace
 
-void set_probe_period_wanted(uint64_t frames) { g_period_wanted.store(frames, std::memory_order_relaxed); }
+void set_probe_period_wanted(uint64_t frames, bool bursts_too) {
+  g_period_wanted.store(frames, std::memory_order_relaxed);
+  g_bursts_spaced.store(bursts_too, std::memory_order_relaxed);
+}
 uint64_t probe_period_in_force() { return g_period_in_force.load(std::memory_order_relaxed); }
 
 namespace {
@@ -1254,10 +1259,11 @@ void ProbeFrames::after_swap(uint64_t next) {
   }
   const ProbeSettings& settings = probe_settings();
   uint64_t period = settings.period;
-  if (p.settled()) {
-    period *= settings.settled_factor;
-    if (settings.stretchable) period = std::max(period, g_period_wanted.load(std::memory_order_relaxed));
-  }
+  const uint64_t wanted = settings.stretchable ? g_period_wanted.load(std::memory_order_relaxed) : 0;
+  if (p.settled())
+    period = std::max(period * settings.settled_factor, wanted);
+  else if (g_bursts_spaced.load(std::memory_order_relaxed))
+    period = std::max(period, wanted);
   if (period != g_period_in_force.load(std::memory_order_relaxed))
     g_period_in_force.store(period, std::memory_order_relaxed);
   // Not the first frames: the app may still be setting up what it draws. A period just made

@@ -147,9 +147,10 @@ struct ProbeSettings {
 const ProbeSettings& probe_settings();
 
 // Governor thread: frames between settled probes it asks for at least (0: the settled period
-// of ProbeSettings). Render thread: the period its contexts plan probes at now, for the
-// governor's probe overhead (0: none planned yet).
-void set_probe_period_wanted(uint64_t frames);
+// of ProbeSettings), and whether bursts (every pass again after the scene moved) keep it too.
+// Render thread: the period its contexts plan probes at now, for the governor's probe overhead
+// (0: none planned yet).
+void set_probe_period_wanted(uint64_t frames, bool bursts_too);
 uint64_t probe_period_in_force();
 
 }  // namespace glbudget

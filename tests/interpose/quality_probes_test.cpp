@@ -381,7 +381,7 @@ TEST_CASE("bad probe settings are said once and the app runs on") {
   CHECK(count_lines_with(r.err, "GLBUDGET_PROBE_SCALE='3'") == 1);
   CHECK(count_lines_with(r.err, "GLBUDGET_PROBE_SSIM='fpga'") == 1);
   // Under a budget, probing every other frame leaves no frame whose power is the frame's own
-  // (the one after a probe reads it back): said, and raised to every third.
+  // (the two after a probe read it back): said, and raised to every fourth.
   const ProcessResult often = run_process(demo("hall", dir + "/often"), {{"LD_PRELOAD", shim_path()},
                                                                          {"GLBUDGET_CONFIG", manifest_path()},
                                                                          {"GLBUDGET_POWER", "50%"},

@@ -202,10 +202,10 @@ bool Governor::select(const FrameRecord& record) {
     const bool whole_range = settings_.power.kind == model::Budget::Kind::ShareOfRange && settings_.power.value >= 1.0;
     // Besides the spread's margin and the windows' overshoot, what the quality probes add to
     // the windows: the model's predictions leave them out, the user's meter not.
-    margin_w_ = whole_range
-                    ? 0.0
-                    : feedback_.margin_w() + overshoot_w_ +
-                          probe_overhead_.window_margin_w(settings_.feedback.window_s, settings_.feedback.keep_share);
+    probe_margin_w_ = whole_range
+                          ? std::numeric_limits<double>::infinity()
+                          : probe_overhead_.window_margin_w(settings_.feedback.window_s, settings_.feedback.keep_share);
+    margin_w_ = whole_range ? 0.0 : feedback_.margin_w() + overshoot_w_ + probe_margin_w_;
     if (!whole_range) want_probe_period(budget_w, feedback_.margin_w() + overshoot_w_);
   }
   const model::Selection selection = aim_ == Aim::power
@@ -379,13 +379,31 @@ void Governor::feed_back(const FrameRecord& record, Decision& decision) {
   if (std::isfinite(decision.predicted_w)) decision.predicted_w += feedback_.bias(record.configuration);
 }
 
+// Beyond the paper: probes came more often than the last selection planned for (a burst: a
+// probe found the scene moved, and every pass is probed again), so that each window may now
+// hold one's whole excess where the selection kept only their mean under the budget. Selecting
+// again at once keeps the burst's windows in the budget, instead of waiting for windows
+// measured over it.
+bool Governor::probes_outgrew_margin() const {
+  if (aim_ != Aim::power || selections_ == 0 || !std::isfinite(probe_margin_w_)) return false;
+  constexpr double kRise = 0.25;  // of a probe's whole excess in a window: not the excess's own drift
+  const double window_s = settings_.feedback.window_s;
+  return probe_overhead_.window_margin_w(window_s, settings_.feedback.keep_share) >
+         probe_margin_w_ + kRise * probe_overhead_.whole_excess_margin_w(window_s);
+}
+
 // Probes rare enough that windows keep their mean margin, where the selection would then show
-// a lower error by probe_stretch_gain; the shim's own period where that gain is under half of
-// it (a gap between the two thresholds keeps the period from flapping with the noise).
+// a lower error by probe_stretch_gain, or where no configuration is predicted to fit a probe's
+// whole excess under the budget (a narrow range at a low share: every window with a probe
+// would be over it, whatever is drawn, and reselecting cannot help); then a burst of probes
+// (the scene moved) is spaced so too. The shim's own period where that gain is under half of
+// it and a probe's excess fits (a gap between the two thresholds keeps the period from
+// flapping with the noise).
 void Governor::want_probe_period(double budget_w, double margin_without_probes_w) {
   const double gap = probe_overhead_.rare_gap(settings_.feedback.window_s, settings_.feedback.keep_share);
   if (!(settings_.probe_stretch_gain > 0.0) || gap <= 0.0 || probe_overhead_.probes_measured() == 0) {
     probe_period_wanted_ = 0;
+    probe_bursts_spaced_ = false;
     return;
   }
   const double whole = probe_overhead_.whole_excess_margin_w(settings_.feedback.window_s);
@@ -395,7 +413,10 @@ void Governor::want_probe_period(double budget_w, double margin_without_probes_w
   const model::Selection with_rare =
       model::select_configuration(power_, error_, budget_w, margin_without_probes_w + rare);
   const double gain = error_[with_whole.index] - error_[with_rare.index];
-  if (gain >= settings_.probe_stretch_gain)
+  const double whole_limit_w = budget_w - (margin_without_probes_w + whole);
+  const bool whole_fits = std::any_of(power_.begin(), power_.end(), [&](double p) { return p <= whole_limit_w; });
+  probe_bursts_spaced_ = !whole_fits;
+  if (!whole_fits || gain >= settings_.probe_stretch_gain)
     probe_period_wanted_ = static_cast<std::uint64_t>(gap);
   else if (gain < 0.5 * settings_.probe_stretch_gain)
     probe_period_wanted_ = 0;
@@ -405,9 +426,10 @@ Decision Governor::on_frame(const FrameRecord& frame) {
   if (!started_) start(frame);
   probe_overhead_.set_period_in_force(frame.probe_period);
   probe_overhead_.add(frame.probe, frame.power_w, frame.time_ns);
-  // The frame after a probe reads the probe's images back and compares them: part of its power
-  // is the probe's (counted by probe_overhead_), so neither the model nor the feedback takes
-  // it for its configuration's; it is seen as a frame without power.
+  // The frame after a probe reads the probe's images back and compares them, and the one after
+  // that still finishes some of its work: part of their power is the probe's (counted by
+  // probe_overhead_), so neither the model nor the feedback takes it for their configuration's;
+  // each is seen as a frame without power.
   const bool after_probe = !frame.probe && probe_overhead_.in_span();
   if (after_probe) {
     after_probe_record_ = frame;
@@ -449,6 +471,7 @@ Decision Governor::on_frame(const FrameRecord& frame) {
     const bool over = !record.probe && !transitioning_ && aim_ == Aim::power && std::isfinite(budget_w_) &&
                       record.configuration == target_ && decision.predicted_w > budget_w_;
     if (!record.probe) over_budget_frames_ = over ? over_budget_frames_ + 1 : 0;
+    if (probes_outgrew_margin()) reselect_now_ = true;
     if (selection_due(record)) {
       decision.event = select(record) ? Event::explore : Event::select;
       over_budget_frames_ = 0;

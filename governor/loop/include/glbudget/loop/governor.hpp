@@ -59,7 +59,9 @@ struct GovernorSettings {
   // price is staler estimates: every pass probed a few minutes apart, sooner when a probe
   // finds the scene changed; so only for a gain beyond the selection regret the estimates
   // are held to (0.005, issue 14; on Hall, whose errors change along its path, the stale
-  // estimates of a 0.002 threshold cost more than the margin gave back). 0: never.
+  // estimates of a 0.002 threshold cost more than the margin gave back). It asks for them
+  // whatever the gain where no configuration fits a probe's whole excess, bursts included
+  // (probe_bursts_spaced). 0: never.
   double probe_stretch_gain = 0.005;
   model::FitSettings fit = {};
   model::HistorySettings history = {};
@@ -127,6 +129,10 @@ class Governor {
   // Frames between quality probes the governor asks the shim to keep at least, once every
   // pass is probed (GovernorSettings::probe_stretch_gain); 0: the shim's own period.
   std::uint64_t probe_period_wanted() const { return probe_period_wanted_; }
+  // Whether the bursts of probes (every pass again when the scene moved) are to keep that
+  // period too: no configuration is predicted to fit a probe's whole excess in a window under
+  // the budget, so that each window holding a probe would be over it.
+  bool probe_bursts_spaced() const { return probe_bursts_spaced_; }
   // The last selection: every configuration's predicted power (corrected) and estimated
   // error, by ConfigurationSpace index, and the margin kept under the budget.
   struct SelectionTable {
@@ -163,6 +169,7 @@ class Governor {
   void feed_back(const FrameRecord& record, Decision& decision);
   double initial_budget_w() const;
   void want_probe_period(double budget_w, double margin_without_probes_w);
+  bool probes_outgrew_margin() const;
   double calibrated_scale(double best_now_w) const;
   double share_of_range_w() const;
   void set_calibrated_prior();
@@ -188,12 +195,16 @@ class Governor {
   std::uint64_t last_selection_frame_ = 0;
   double budget_w_ = 0.0;
   double margin_w_ = 0.0;
+  // What the last selection kept under the budget for the quality probes (infinite: nothing
+  // to keep, before a selection or at 100 % of the range).
+  double probe_margin_w_ = std::numeric_limits<double>::infinity();
   double overshoot_w_ = 0.0;  // windows' excess over the budget, less what later windows paid back
   std::size_t chosen_index_ = 0;
   bool within_budget_ = true;
   PowerFeedback feedback_;
   ProbeOverhead probe_overhead_;
   std::uint64_t probe_period_wanted_ = 0;
+  bool probe_bursts_spaced_ = false;
   FrameRecord after_probe_record_;  // reused: the frame after a probe, its power left out
   bool reselect_now_ = false;       // a window was measured over the budget
   bool exploring_ = false;          // drawing the cheapest configuration until a window measures it

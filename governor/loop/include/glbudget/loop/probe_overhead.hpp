@@ -3,8 +3,9 @@
 // not any configuration's and the model never learns from it; but the user's meter sees it,
 // in every window a probe falls into. ProbeOverhead measures what probes add to the mean
 // power of all frames, probe frames included: each probe's excess over the frames drawn just
-// before it, summed over the probe frame and the frame after it (the probe's image is
-// compared one frame late, behind a fence), times the share of frames that are probes. A
+// before it, summed over the probe frame and the two after it (the probe's image is compared
+// one frame late, behind a fence, and some of that work spills into the frame after), times
+// the share of frames that are probes. A
 // selection keeps it under the budget besides the spread's margin, and windows are held to
 // the budget with it.
 // The mean is what a long meter reading sees; a window of a second sees all of a probe or
@@ -14,6 +15,7 @@
 // (window_margin_w).
 // Probed rarely enough that at most that share of windows holds one (rare_gap), each window
 // keeps the mean again: the governor asks for that where it buys quality (governor.hpp).
+#include <array>
 #include <cstddef>
 #include <cstdint>
 
@@ -27,7 +29,7 @@ class ProbeOverhead {
   // The frames between probes the shim plans now (0: not known; the gaps measured then
   // tell). Probes may come rarer than planned, never more often.
   void set_period_in_force(double frames) { period_in_force_ = frames > 0.0 ? frames : 0.0; }
-  // The frame last added is a probe's or the one after it: its power is not its
+  // The frame last added is a probe's or one of the two after it: its power is not its
   // configuration's own.
   bool in_span() const { return last_in_span_; }
 
@@ -45,8 +47,11 @@ class ProbeOverhead {
   double window_margin_w(double window_s, double keep_share) const;
   // Frames in a window of window_s seconds at the recent frame rate (0: not known).
   double frames_per_window(double window_s) const;
-  // A probe's whole excess spread over one window's frames (0 while unknown).
+  // A probe's whole excess spread over one window's frames (0 while unknown): the largest of
+  // the last few probes', since each window must fit the probe it holds, not the mean probe
+  // (their excess scatters by a tenth with the configuration shown and the frame).
   double whole_excess_margin_w(double window_s) const;
+  double largest_recent_excess_w() const;
   // The frames between probes from which at most 1 - keep_share of the windows hold one, so
   // that window_margin_w is the mean (0: the frame rate is not known).
   double rare_gap(double window_s, double keep_share) const;
@@ -64,7 +69,8 @@ class ProbeOverhead {
   double span_excess_w_ = 0.0;
   bool span_measured_ = false;
   bool last_in_span_ = false;
-  double excess_w_ = 0.0;  // the probes' excess, exponentially (about 4 probes)
+  double excess_w_ = 0.0;                       // the probes' excess, exponentially (about 4 probes)
+  std::array<double, 4> recent_excess_w_ = {};  // the last probes' excess, by measured_ modulo 4
   std::size_t measured_ = 0;
   double probes_ = 0.0, frames_ = 0.0;  // decaying counts (about 200 frames), until a gap is seen
   // Frames between probes, exponentially (about 4 gaps), and since the last probe: sparse
