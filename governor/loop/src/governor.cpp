@@ -394,11 +394,10 @@ bool Governor::probes_outgrew_margin() const {
 
 // Probes rare enough that windows keep their mean margin, where the selection would then show
 // a lower error by probe_stretch_gain, or where no configuration is predicted to fit a probe's
-// whole excess under the budget (a narrow range at a low share: every window with a probe
-// would be over it, whatever is drawn, and reselecting cannot help); then a burst of probes
-// (the scene moved) is spaced so too. The shim's own period where that gain is under half of
-// it and a probe's excess fits (a gap between the two thresholds keeps the period from
-// flapping with the noise).
+// whole excess under the budget but some would fit rare probes' mean (a narrow range at a low
+// share: every window with a probe would be over it, whatever is drawn, and reselecting cannot
+// help); then a burst of probes (the scene moved) is spaced so too. The shim's own period where that gain is under half
+// of it and a probe's excess fits (a gap between the two thresholds keeps the period from flapping with the noise).
 void Governor::want_probe_period(double budget_w, double margin_without_probes_w) {
   const double gap = probe_overhead_.rare_gap(settings_.feedback.window_s, settings_.feedback.keep_share);
   if (!(settings_.probe_stretch_gain > 0.0) || gap <= 0.0 || probe_overhead_.probes_measured() == 0) {
@@ -413,10 +412,17 @@ void Governor::want_probe_period(double budget_w, double margin_without_probes_w
   const model::Selection with_rare =
       model::select_configuration(power_, error_, budget_w, margin_without_probes_w + rare);
   const double gain = error_[with_whole.index] - error_[with_rare.index];
-  const double whole_limit_w = budget_w - (margin_without_probes_w + whole);
-  const bool whole_fits = std::any_of(power_.begin(), power_.end(), [&](double p) { return p <= whole_limit_w; });
-  probe_bursts_spaced_ = !whole_fits;
-  if (!whole_fits || gain >= settings_.probe_stretch_gain)
+  const auto fits = [&](double margin_w) {
+    return std::any_of(power_.begin(), power_.end(), [&](double p) { return p <= budget_w - margin_w; });
+  };
+  // The probes' whole excess is what leaves no room beside the sensor's scatter (where nothing
+  // fits without it either, the predictions put every window over the budget, probes or not,
+  // and rarer probes would only leave the estimates staler). The windows' overshoot is left
+  // out: where probes leave no room, the windows they put over the budget are what run it up.
+  const double scatter_w = feedback_.margin_w();
+  const bool probes_leave_no_room = !fits(scatter_w + whole) && fits(scatter_w + rare);
+  probe_bursts_spaced_ = probes_leave_no_room;
+  if (probes_leave_no_room || gain >= settings_.probe_stretch_gain)
     probe_period_wanted_ = static_cast<std::uint64_t>(gap);
   else if (gain < 0.5 * settings_.probe_stretch_gain)
     probe_period_wanted_ = 0;

@@ -60,8 +60,8 @@ struct GovernorSettings {
   // finds the scene changed; so only for a gain beyond the selection regret the estimates
   // are held to (0.005, issue 14; on Hall, whose errors change along its path, the stale
   // estimates of a 0.002 threshold cost more than the margin gave back). It asks for them
-  // whatever the gain where no configuration fits a probe's whole excess, bursts included
-  // (probe_bursts_spaced). 0: never.
+  // whatever the gain where no configuration fits a probe's whole excess beside the sensor's
+  // scatter but some fit rare probes' mean, bursts included (probe_bursts_spaced). 0: never.
   double probe_stretch_gain = 0.005;
   model::FitSettings fit = {};
   model::HistorySettings history = {};
