@@ -202,11 +202,12 @@ bool Governor::select(const FrameRecord& record) {
     const bool whole_range = settings_.power.kind == model::Budget::Kind::ShareOfRange && settings_.power.value >= 1.0;
     // Besides the spread's margin and the windows' overshoot, what the quality probes add to
     // the windows: the model's predictions leave them out, the user's meter not.
+    const double margin_without_probes_w = feedback_.margin_w() + overshoot_w_;
     probe_margin_w_ = whole_range
                           ? std::numeric_limits<double>::infinity()
                           : probe_overhead_.window_margin_w(settings_.feedback.window_s, settings_.feedback.keep_share);
-    margin_w_ = whole_range ? 0.0 : feedback_.margin_w() + overshoot_w_ + probe_margin_w_;
-    if (!whole_range) want_probe_period(budget_w, feedback_.margin_w() + overshoot_w_);
+    margin_w_ = whole_range ? 0.0 : margin_without_probes_w + probe_margin_w_;
+    if (!whole_range) want_probe_period(budget_w, margin_without_probes_w);
   }
   const model::Selection selection = aim_ == Aim::power
                                          ? model::select_configuration(power_, error_, budget_w, margin_w_)
@@ -396,8 +397,9 @@ bool Governor::probes_outgrew_margin() const {
 // a lower error by probe_stretch_gain, or where no configuration is predicted to fit a probe's
 // whole excess under the budget but some would fit rare probes' mean (a narrow range at a low
 // share: every window with a probe would be over it, whatever is drawn, and reselecting cannot
-// help); then a burst of probes (the scene moved) is spaced so too. The shim's own period where that gain is under half
-// of it and a probe's excess fits (a gap between the two thresholds keeps the period from flapping with the noise).
+// help); then a burst of probes (the scene moved) is spaced so too. The shim's own period
+// where that gain is under half of it and a probe's excess fits (a gap between the two
+// thresholds keeps the period from flapping with the noise).
 void Governor::want_probe_period(double budget_w, double margin_without_probes_w) {
   const double gap = probe_overhead_.rare_gap(settings_.feedback.window_s, settings_.feedback.keep_share);
   if (!(settings_.probe_stretch_gain > 0.0) || gap <= 0.0 || probe_overhead_.probes_measured() == 0) {

@@ -5,9 +5,8 @@
 // power of all frames, probe frames included: each probe's excess over the frames drawn just
 // before it, summed over the probe frame and the two after it (the probe's image is compared
 // one frame late, behind a fence, and some of that work spills into the frame after), times
-// the share of frames that are probes. A
-// selection keeps it under the budget besides the spread's margin, and windows are held to
-// the budget with it.
+// the share of frames that are probes. A selection keeps it under the budget besides the
+// spread's margin, and windows are held to the budget with it.
 // The mean is what a long meter reading sees; a window of a second sees all of a probe or
 // none of it. Where more windows hold a probe than the probes' part of the share a budget may
 // leave over it (a probe every 60 frames at 10 frames a second: one window in six), each such
