@@ -1334,3 +1334,189 @@ TEST_CASE("power feedback: a prior per level corrects before any window, and win
   CHECK(feedback.bias(shadows) == Approx(-1.0).margin(0.2));
   CHECK(feedback.bias(Configuration{1, 0}) == Approx(3.0).margin(0.5));  // a level never drawn keeps its prior
 }
+
+TEST_CASE("power feedback: a refit moves the residuals by its change, and the open window with them",
+          "[loop][feedback]") {
+  PowerFeedback feedback{FeedbackSettings{}};
+  const Configuration a{0, 0}, b{1, 0};
+  std::int64_t t = 0;
+  // Two windows at a, residual +1 W; one at b, residual -0.5 W.
+  for (int w = 0; w < 2; ++w)
+    for (int k = 0; k <= 10; ++k, t += 100'000'000) feedback.add(a, t, 11.0, 10.0);
+  feedback.interrupt();
+  for (int k = 0; k <= 10; ++k, t += 100'000'000) feedback.add(b, t, 9.5, 10.0);
+  feedback.interrupt();
+  const double bias_a = feedback.bias(a), bias_b = feedback.bias(b);
+  // Half a window at a, then a refit predicts a 2 W higher and leaves b alone (NaN).
+  for (int k = 0; k < 5; ++k, t += 100'000'000) feedback.add(a, t, 11.0, 10.0);
+  feedback.rebase([&](const Configuration& c) { return c == a ? 2.0 : std::nan(""); });
+  CHECK(feedback.residual(a) == Approx(-1.0));
+  CHECK(feedback.residual(b) == Approx(-0.5));
+  // What is measured at a is predicted as before: the new prediction plus the moved bias.
+  CHECK(12.0 + feedback.bias(a) == Approx(10.0 + bias_a).margin(0.05));
+  // b keeps its own residual; a configuration never measured follows the offset, which moved.
+  CHECK(feedback.bias(b) == Approx(bias_b).margin(0.05));
+  CHECK(feedback.bias(Configuration{0, 1}) == Approx(-1.0).margin(0.05));
+  // The open window goes on: its first half was predicted at 10 W, now counted at 12 W like
+  // the frames that follow, and nothing within it scattered.
+  std::optional<PowerFeedback::Window> closed;
+  for (int k = 0; k < 6; ++k, t += 100'000'000) closed = feedback.add(a, t, 11.0, 12.0);
+  REQUIRE(closed);
+  CHECK(closed->frames == 11);
+  CHECK(closed->predicted_w == Approx(12.0));
+  CHECK(feedback.residual(a) == Approx(-1.0));
+  CHECK(feedback.spread_w() == Approx(0.0).margin(1e-9));
+  // A NaN change for the open window's configuration drops it; off: nothing moves.
+  for (int k = 0; k < 5; ++k, t += 100'000'000) feedback.add(a, t, 11.0, 12.0);
+  feedback.rebase([](const Configuration&) { return std::nan(""); });
+  CHECK(feedback.residual(a) == Approx(-1.0));
+  for (int k = 0; k < 6; ++k, t += 100'000'000) closed = feedback.add(a, t, 11.0, 12.0);
+  CHECK_FALSE(closed);
+  PowerFeedback off(FeedbackSettings{false});
+  off.rebase([](const Configuration&) { return 1.0; });
+  CHECK(off.bias(a) == 0.0);
+}
+
+TEST_CASE("power feedback: a first window's surprise is kept for the configurations not measured, and fades",
+          "[loop][feedback]") {
+  PowerFeedback feedback{FeedbackSettings{}};
+  const Configuration a{0, 0}, b{1, 0};
+  std::int64_t t = 0;
+  auto window = [&](const Configuration& c, double measured, double predicted) {
+    feedback.interrupt();
+    std::optional<PowerFeedback::Window> closed;
+    for (int k = 0; k <= 10; ++k, t += 100'000'000) closed = feedback.add(c, t, measured, predicted);
+    REQUIRE(closed);
+  };
+  // The run's first window is no surprise: nothing was counted on before it.
+  window(a, 10.0, 10.0);
+  CHECK(feedback.unmeasured_margin_w() == 0.0);
+  // b was counted on at 10 W (the offset, 0) and drew 13 W.
+  window(b, 13.0, 10.0);
+  constexpr double z = 1.6449;
+  CHECK(feedback.margin_w() == Approx(0.0).margin(1e-9));
+  CHECK(feedback.unmeasured_margin_w() == Approx(z * 3.0).epsilon(1e-3));
+  const std::vector<Configuration> measured = feedback.measured_configurations();
+  CHECK(measured == std::vector<Configuration>{a, b});
+  // Windows at measured configurations, no new surprise: it fades, a thirtieth of its square
+  // a window.
+  for (int w = 0; w < 30; ++w) window(a, 10.0, 10.0);
+  CHECK(feedback.unmeasured_margin_w() == Approx(z * 3.0 * std::pow(1.0 - 1.0 / 30.0, 15.0)).epsilon(1e-3));
+  // A configuration predicted right (or over its power) on its first window: the mean of the
+  // two surprises' squares.
+  const double before = feedback.unmeasured_margin_w();
+  window(Configuration{0, 1}, 8.0 + feedback.bias(Configuration{0, 1}), 10.0);
+  CHECK(feedback.unmeasured_margin_w() < before);
+  CHECK(feedback.unmeasured_margin_w() == Approx(before * std::sqrt((1.0 - 1.0 / 30.0) * 0.5)).epsilon(1e-3));
+  // Off: 0.
+  FeedbackSettings off;
+  off.guard_unmeasured = false;
+  PowerFeedback unguarded{off};
+  t = 0;
+  for (const auto& [c, m] : {std::pair{a, 10.0}, {b, 13.0}}) {
+    unguarded.interrupt();
+    for (int k = 0; k <= 10; ++k, t += 100'000'000) unguarded.add(c, t, m, 10.0);
+  }
+  CHECK(unguarded.unmeasured_margin_w() == 0.0);
+}
+
+TEST_CASE("configurations never measured are kept further under the budget once one surprised", "[loop][feedback]") {
+  // A cost the additive correction cannot learn from neighbours: the cheaper shadows draw 4 W
+  // more than the counts say, but only at full resolution (a level whose saving depends on
+  // another's). Each configuration combining them is predicted that much too cheap until a
+  // window measures it; after the first such surprise, the others not measured keep a margin
+  // of it, so fewer first windows go over the budget.
+  const auto unseen = [](const Configuration& c) { return c[0] == 0 && c[3] > 0 ? 4.0 : 0.0; };
+  auto run = [&](const char* budget, bool guard, int* first_over, int* firsts) {
+    GovernorSettings settings = power_budget(budget);
+    settings.feedback.guard_unmeasured = guard;
+    App app(settings, Configuration(6, 0), 11, 64, unseen);
+    const std::vector<Step> steps = app.run(120 * kFps);
+    // 1-s windows of one configuration: over its budget, and whether it was the first of that
+    // configuration.
+    std::set<Configuration> seen;
+    int windows = 0, within = 0;
+    for (std::size_t start = kConverged; start + kFps <= steps.size(); start += kFps) {
+      const Configuration& c = steps[start].record.configuration;
+      bool one = true;
+      double power = 0.0, limit = 0.0;
+      for (std::size_t k = start; k < start + kFps; ++k) {
+        one = one && steps[k].record.configuration == c;
+        power += steps[k].true_power_w / kFps;
+        limit += steps[k].decision.budget_w / kFps;
+      }
+      ++windows;
+      within += power <= limit;
+      if (!one) continue;
+      const bool first = seen.insert(c).second;
+      *firsts += first;
+      *first_over += first && power > limit;
+    }
+    return static_cast<double>(within) / windows;
+  };
+  int over_on = 0, over_off = 0, firsts_on = 0, firsts_off = 0;
+  double share_on = 0.0, share_off = 0.0;
+  for (const char* budget : {"40%", "50%", "60%"}) {
+    share_on += run(budget, true, &over_on, &firsts_on) / 3.0;
+    share_off += run(budget, false, &over_off, &firsts_off) / 3.0;
+  }
+  INFO("first windows of a configuration over the budget: "
+       << over_on << " of " << firsts_on << " guarded, " << over_off << " of " << firsts_off
+       << " not; windows within it " << share_on << " against " << share_off);
+  CHECK(over_off >= 3);
+  CHECK(over_on <= 0.7 * over_off);
+  CHECK(share_on >= share_off + 0.05);
+}
+
+TEST_CASE("a refit leaves the corrected prediction of the configuration drawn where its windows measured it",
+          "[loop][feedback]") {
+  // Costs the counts do not explain (every cheaper level 0.6 W more): each refit over the
+  // recent configurations explains them differently, and moves the prediction of the one being
+  // drawn, which its measured residual had corrected. Moved by as much, the residual keeps the
+  // corrected prediction where it was.
+  const auto unseen = [](const Configuration& c) {
+    double w = 0.0;
+    for (int level : c) w += 0.6 * level;
+    return w;
+  };
+  auto run = [&](bool rebase, double* jump, double* error) {
+    GovernorSettings settings = power_budget("50%");
+    settings.feedback.rebase_on_refit = rebase;
+    App app(settings, Configuration(6, 0), 7, 64, unseen);
+    const std::vector<Step> steps = app.run(90 * kFps);
+    // The step: the mean prediction of the 10 frames after the refit against the 10 before
+    // (the frames' 10 % jitter in counts averaged out), all in one configuration.
+    constexpr std::size_t kSpan = 10;
+    int refits = 0, frames = 0;
+    for (std::size_t k = kConverged; k + kSpan < steps.size(); ++k) {
+      const Step& s = steps[k];
+      if (std::isfinite(s.decision.predicted_w)) {
+        *error += std::pow(s.decision.predicted_w - s.true_power_w, 2);
+        ++frames;
+      }
+      if (s.decision.event != Event::refit) continue;
+      double before = 0.0, after = 0.0;
+      bool one = true;
+      for (std::size_t j = 1; j <= kSpan; ++j) {
+        one = one && steps[k - j].record.configuration == s.record.configuration &&
+              steps[k + j].record.configuration == s.record.configuration;
+        before += steps[k - j].decision.predicted_w / kSpan;
+        after += steps[k + j].decision.predicted_w / kSpan;
+      }
+      if (!one) continue;
+      *jump += std::abs(after - before);
+      ++refits;
+    }
+    REQUIRE(refits >= 5);
+    *jump /= refits;
+    *error = std::sqrt(*error / frames);
+  };
+  double jump_on = 0.0, jump_off = 0.0, error_on = 0.0, error_off = 0.0;
+  run(true, &jump_on, &error_on);
+  run(false, &jump_off, &error_off);
+  INFO("mean step of the corrected prediction at a refit "
+       << jump_on << " W moved, " << jump_off << " W not; prediction error " << error_on << " W against " << error_off
+       << " W");
+  CHECK(jump_on < 0.5 * jump_off);
+  CHECK(error_on <= error_off);
+}

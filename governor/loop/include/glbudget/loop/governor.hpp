@@ -165,6 +165,7 @@ class Governor {
   // Returns true when it chose to explore instead (explore_cheapest).
   bool select(const FrameRecord& record);
   bool explore_cheapest(double budget_w) const;
+  void guard_unmeasured(double extra_w);
   void hold(const FrameRecord& record);
   void feed_back(const FrameRecord& record, Decision& decision);
   double initial_budget_w() const;
@@ -218,6 +219,7 @@ class Governor {
   std::uint64_t fitted_frame_ = 0;   // the frame of the model's first fit
   std::vector<double> power_;        // reused by selections: corrected predictions
   std::vector<double> model_power_;  // and the model's own
+  std::vector<double> guarded_;      // and as the selection weighs them (guard_unmeasured)
   std::vector<double> error_;
   StepTimes times_;
   std::vector<std::string> notes_;

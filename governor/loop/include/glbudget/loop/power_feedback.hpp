@@ -4,9 +4,11 @@
 // it misjudges, a sensor's offset) shows as a residual between the power measured while a
 // configuration is drawn and the model's prediction of it. Over windows of window_s seconds
 // at a settled configuration, PowerFeedback keeps each configuration's residual (an average
-// over its windows) and the spread of window means about it. A selection adds the residual to
-// every configuration's prediction and keeps z * spread under the budget, z the normal
-// quantile of keep_share, so that about keep_share of the windows stay within the budget.
+// over its windows) and the spread of window means about it (over the last minute's
+// windows). A selection adds the residual to every configuration's prediction and keeps
+// z * spread under the budget, z the normal quantile of keep_share, so that about keep_share
+// of the windows stay within the budget; a configuration never measured is kept further
+// under it by what first windows have shown such predictions to miss (unmeasured_margin_w).
 // The residuals are explained additively, as the model's power is: an offset plus one term
 // per pass and level (a model that misjudges a pass's level misjudges every configuration
 // drawing that level; correcting only the configurations measured would make their
@@ -15,6 +17,7 @@
 // configurations measured, what they show goes mostly to the offset.
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <map>
 #include <vector>
@@ -31,6 +34,18 @@ struct FeedbackSettings {
   // A configuration's residual averages its last this-many windows (exponentially).
   double memory_windows = 4.0;
   double prior_share = 0.05;  // the typical size of a level's misjudged power, a share of the power
+  // The first window at a configuration never measured before tells how far under its power
+  // the corrected prediction of an unmeasured one can be (a level whose saving the model
+  // misjudges in combination with others); its square is remembered as the mean of the last
+  // surprise_memory such surprises (0 for one predicted over its power), and fades by
+  // 1 / surprise_fade_windows a window.
+  bool guard_unmeasured = true;  // false: unmeasured_margin_w() is 0
+  double surprise_memory = 4.0;
+  double surprise_fade_windows = 30.0;
+  // The governor moves the residual of the configuration being drawn by the change a refit
+  // makes to its prediction (rebase()); false: it stays as measured against the old
+  // coefficients until new windows replace it.
+  bool rebase_on_refit = true;
 };
 
 class PowerFeedback {
@@ -52,6 +67,13 @@ class PowerFeedback {
   // open window is dropped.
   void interrupt();
 
+  // The model's coefficients changed (a refit), and with them its prediction of each
+  // configuration by change(c) watts: the residuals measured against the old predictions are
+  // moved by as much, so that a measured configuration's corrected prediction stays what its
+  // windows measured, as does the window still open. A NaN change leaves a configuration as it
+  // was.
+  void rebase(const std::function<double(const model::Configuration&)>& change);
+
   // The correction of a configuration's prediction (0 before any window).
   double bias(const model::Configuration& configuration) const;
   // The measured residual of a configuration itself (0 if never measured).
@@ -61,6 +83,12 @@ class PowerFeedback {
   // window has closed.
   double margin_w() const;
   double spread_w() const;
+  // What a selection keeps under the budget beyond margin_w() for a configuration never
+  // measured: z * the typical surprise of first windows, less margin_w(), never negative. 0
+  // until a configuration measured after the first has closed a window.
+  double unmeasured_margin_w() const;
+  // The configurations with a measured residual.
+  std::vector<model::Configuration> measured_configurations() const;
   // Beyond the measured windows: what each pass's level is expected to add to the model's
   // prediction before any configuration drawing it is measured ([pass][level], watts; level 0
   // is the reference and ignored). The terms are drawn towards it instead of towards 0, as
@@ -105,6 +133,9 @@ class PowerFeedback {
   std::size_t between_count_ = 0;
   double within_sq_ = 0.0;
   std::size_t windows_ = 0;
+  // The remembered mean square of first windows' surprises (unmeasured_margin_w).
+  double surprise_sq_ = 0.0;
+  std::size_t surprises_ = 0;
 };
 
 }  // namespace glbudget::loop
