@@ -1335,8 +1335,7 @@ TEST_CASE("power feedback: a prior per level corrects before any window, and win
   CHECK(feedback.bias(Configuration{1, 0}) == Approx(3.0).margin(0.5));  // a level never drawn keeps its prior
 }
 
-TEST_CASE("power feedback: a refit moves the residuals by its change, and the open window with them",
-          "[loop][feedback]") {
+TEST_CASE("power feedback: a refit moves a residual by its change, and the open window with it", "[loop][feedback]") {
   PowerFeedback feedback{FeedbackSettings{}};
   const Configuration a{0, 0}, b{1, 0};
   std::int64_t t = 0;
@@ -1347,9 +1346,9 @@ TEST_CASE("power feedback: a refit moves the residuals by its change, and the op
   for (int k = 0; k <= 10; ++k, t += 100'000'000) feedback.add(b, t, 9.5, 10.0);
   feedback.interrupt();
   const double bias_a = feedback.bias(a), bias_b = feedback.bias(b);
-  // Half a window at a, then a refit predicts a 2 W higher and leaves b alone (NaN).
+  // Half a window at a, then a refit predicts a 2 W higher; b is left alone.
   for (int k = 0; k < 5; ++k, t += 100'000'000) feedback.add(a, t, 11.0, 10.0);
-  feedback.rebase([&](const Configuration& c) { return c == a ? 2.0 : std::nan(""); });
+  feedback.rebase(a, 2.0);
   CHECK(feedback.residual(a) == Approx(-1.0));
   CHECK(feedback.residual(b) == Approx(-0.5));
   // What is measured at a is predicted as before: the new prediction plus the moved bias.
@@ -1366,14 +1365,20 @@ TEST_CASE("power feedback: a refit moves the residuals by its change, and the op
   CHECK(closed->predicted_w == Approx(12.0));
   CHECK(feedback.residual(a) == Approx(-1.0));
   CHECK(feedback.spread_w() == Approx(0.0).margin(1e-9));
-  // A NaN change for the open window's configuration drops it; off: nothing moves.
+  // A NaN change for the open window's configuration drops it, as does a change of another
+  // configuration's (the window then is not the drawn configuration's); off: nothing moves.
   for (int k = 0; k < 5; ++k, t += 100'000'000) feedback.add(a, t, 11.0, 12.0);
-  feedback.rebase([](const Configuration&) { return std::nan(""); });
+  feedback.rebase(a, std::nan(""));
+  CHECK(feedback.residual(a) == Approx(-1.0));
+  for (int k = 0; k < 6; ++k, t += 100'000'000) closed = feedback.add(a, t, 11.0, 12.0);
+  CHECK_FALSE(closed);
+  for (int k = 0; k < 5; ++k, t += 100'000'000) feedback.add(a, t, 11.0, 12.0);
+  feedback.rebase(Configuration{2, 2}, 1.0);
   CHECK(feedback.residual(a) == Approx(-1.0));
   for (int k = 0; k < 6; ++k, t += 100'000'000) closed = feedback.add(a, t, 11.0, 12.0);
   CHECK_FALSE(closed);
   PowerFeedback off(FeedbackSettings{false});
-  off.rebase([](const Configuration&) { return 1.0; });
+  off.rebase(a, 1.0);
   CHECK(off.bias(a) == 0.0);
 }
 

@@ -156,15 +156,15 @@ model::OnlineFitter::Event Governor::see(const FrameRecord& record, Decision& de
     const double refitted_w = model_.predict_frame(sample_, record.configuration);
     if (fits_before > 0 && settings_.feedback.rebase_on_refit) {
       // The residual of the configuration being drawn was measured moments ago, at counts
-      // like this frame's: it follows the change of its prediction (power_feedback.hpp), and
-      // this frame joins its window as the new coefficients predict it. Those of the others
-      // were measured at other frames, where the change differs: moving them by this frame's
+      // like this frame's: it follows the change of its prediction for this frame, the old
+      // coefficients' being the one see() made above (power_feedback.hpp), and this frame
+      // joins its window as the new coefficients predict it. Those of the others were
+      // measured at other frames, where the change differs: moving them by this frame's
       // accumulates that difference refit after refit (on the synthetic scene of the loop's
       // tests it doubled the prediction error), so they wait for their next window.
-      feedback_.rebase([this, &record](const model::Configuration& c) {
-        return c == record.configuration ? model_.predict(c) - model_.predict_before_fit(c)
-                                         : std::numeric_limits<double>::quiet_NaN();
-      });
+      feedback_.rebase(record.configuration, space_.contains(record.configuration)
+                                                 ? refitted_w - decision.predicted_w
+                                                 : std::numeric_limits<double>::quiet_NaN());
       decision.predicted_w = refitted_w;
     }
   }

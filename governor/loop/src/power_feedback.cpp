@@ -100,29 +100,26 @@ std::optional<PowerFeedback::Window> PowerFeedback::add(const model::Configurati
 // every 60-100 frames moved the prediction of the configuration being drawn by 0.7-1.5 W on
 // average (up to 6 W), and selections counted on power that was not there; each such step
 // also entered the spread of windows as if it were the sensor's scatter.
-void PowerFeedback::rebase(const std::function<double(const model::Configuration&)>& change) {
+void PowerFeedback::rebase(const model::Configuration& configuration, double change_w) {
   if (!settings_.enabled) return;
-  bool moved = false;
-  for (auto& [configuration, residual] : residuals_) {
-    const double delta = change(configuration);
-    if (!std::isfinite(delta)) continue;
-    residual.value -= delta;
-    moved = true;
+  if (!std::isfinite(change_w)) {
+    open_.reset();
+    return;
   }
-  if (open_) {
-    const double delta = change(open_->configuration);
-    if (std::isfinite(delta)) {
-      // Its frames' predictions as the new coefficients would have made them, and the sum of
-      // their squared residuals with them: sum (r - delta)^2 = sum r^2 - 2 delta sum r + n delta^2.
-      Open& w = *open_;
-      const double n = static_cast<double>(w.frames);
-      w.frame_residual_sq += delta * (n * delta - 2.0 * (w.measured - w.predicted));
-      w.predicted += delta * n;
-    } else {
-      open_.reset();
-    }
+  if (open_ && open_->configuration == configuration) {
+    // Its frames' predictions as the new coefficients would have made them, and the sum of
+    // their squared residuals with them: sum (r - d)^2 = sum r^2 - 2 d sum r + n d^2.
+    Open& w = *open_;
+    const double n = static_cast<double>(w.frames);
+    w.frame_residual_sq += change_w * (n * change_w - 2.0 * (w.measured - w.predicted));
+    w.predicted += change_w * n;
+  } else {
+    open_.reset();
   }
-  if (moved) fit();
+  const auto it = residuals_.find(configuration);
+  if (it == residuals_.end()) return;
+  it->second.value -= change_w;
+  fit();
 }
 
 double PowerFeedback::residual(const model::Configuration& configuration) const {

@@ -42,11 +42,6 @@ double RunTimeModel::predict(const Configuration& configuration) const {
   return predictor_->predict(configuration);
 }
 
-double RunTimeModel::predict_before_fit(const Configuration& configuration) const {
-  if (!before_fit_ || !space_.contains(configuration)) return std::numeric_limits<double>::quiet_NaN();
-  return before_fit_->predict(configuration);
-}
-
 void RunTimeModel::predict_all(std::vector<double>& out) const {
   if (predictor_)
     predictor_->predict_all(out);
@@ -126,12 +121,10 @@ OnlineFitter::Event RunTimeModel::learn(const FrameSample& frame, const Configur
   }
   fitted_configuration_ = fitted_at;
   model_ = model;
-  if (predictor_) {
-    before_fit_ = *predictor_;
+  if (predictor_)
     predictor_->refit(model, fitted_at, reuse_);
-  } else {
+  else
     predictor_.emplace(space_, model, fitted_at, reuse_);
-  }
   // Beyond the paper, with the history: fragments at every render-scale or shadow-map level
   // seen in it as measured, not as the table's declared areas (fragment_scales.hpp).
   if (history_settings_.enabled) predictor_->set_fragment_scales(measure_fragment_scales(recent_history(), space_));

@@ -17,7 +17,6 @@
 // configurations measured, what they show goes mostly to the offset.
 #include <cstddef>
 #include <cstdint>
-#include <functional>
 #include <optional>
 #include <map>
 #include <vector>
@@ -67,12 +66,12 @@ class PowerFeedback {
   // open window is dropped.
   void interrupt();
 
-  // The model's coefficients changed (a refit), and with them its prediction of each
-  // configuration by change(c) watts: the residuals measured against the old predictions are
-  // moved by as much, so that a measured configuration's corrected prediction stays what its
-  // windows measured, as does the window still open. A NaN change leaves a configuration as it
-  // was.
-  void rebase(const std::function<double(const model::Configuration&)>& change);
+  // The model's coefficients changed (a refit), and with them its prediction of
+  // `configuration` by change_w watts: its residual measured against the old predictions is
+  // moved by as much, so that its corrected prediction stays what its windows measured, as
+  // does the window open at it. A window open at another configuration, or a change that is
+  // not finite, drops the open window and moves nothing.
+  void rebase(const model::Configuration& configuration, double change_w);
 
   // The correction of a configuration's prediction (0 before any window).
   double bias(const model::Configuration& configuration) const;

@@ -33,9 +33,6 @@ class RunTimeModel {
   // Another configuration for the frame last given to predict_frame().
   double predict(const Configuration& configuration) const;
   void predict_all(std::vector<double>& out) const;
-  // A configuration for the frame last given to predict_frame(), with the coefficients in use
-  // before the last fit; NaN before a second fit.
-  double predict_before_fit(const Configuration& configuration) const;
   // Beyond a fit: the fragments measured at every render-scale or shadow-map level the history
   // holds replace the declared ones now (fragment_scales.hpp), so that a level drawn since the
   // last fit predicts the others from what it was measured to draw.
@@ -70,7 +67,6 @@ class RunTimeModel {
   std::vector<ConfiguredSample> history_;
   PowerModel model_;
   std::optional<ConfigurationPredictor> predictor_;
-  std::optional<ConfigurationPredictor> before_fit_;  // predictor_ as it was before the last fit
   Configuration current_;
   Configuration fitted_configuration_;
   std::set<Configuration> fitted_configurations_;
