@@ -4,7 +4,8 @@ estimated error stays under E, on its four scenes.
 
 Per scene, as the paper's evaluation runs it (evaluate.py: paced at --fps, the cpu sensor, the
 levels' costs measured by `glbudget calibrate --app` first): the best configuration, then one
-governed run per error budget, every --every-th frame dumped. For each budget: the mean power
+governed run per error budget (and per --error-feedback setting, interleaved), every --every-th
+frame dumped. For each budget: the mean power
 after the first selection and its transition against the best's, the true error of what was
 shown (1 - SSIM of each dumped frame against the best configuration's image of the same frame,
 the demo's camera path being a function of the frame number), its mean, its largest and the
@@ -13,7 +14,7 @@ share of dumped frames at or under E, and the configuration the run ended in.
 Writes DIR/error-budgets.md.
 Usage: error_budgets.py BUILD_DIR --out DIR [--scenes hall,sponza,valley,subway]
        [--error-budgets 0.01,0.02,0.04] [--frames 200] [--fps 10] [--size 320x180] [--detail 0.2]
-       [--costs measure|off|PATH] [--every 10] [--quick]
+       [--costs measure|off|PATH] [--every 10] [--error-feedback 1|0|0,1] [--quick]
 """
 import os
 import sys
@@ -32,10 +33,12 @@ class ErrorBudgets(Evaluation):
         self.quiet(self.common(scene) + ["--dump", truth, "--dump-every", str(a.every)])
         best = frames_of(self.run(scene, "best", ["--force", "0,0,0,0,0,0", "--config", MANIFEST]))
         rows = []
-        for budget in a.error_budgets:
-            shown = os.path.join(self.tmp, f"{scene}_e{budget}_shown")
-            frames = frames_of(self.run(scene, f"e{budget}", ["--error", budget, "--profile", PROFILE, "--config",
-                                                             MANIFEST], governed=True, dump=shown))
+        for budget, feedback in [(b, f) for b in a.error_budgets for f in a.error_feedback]:
+            self.governed_env["GLBUDGET_ERROR_FEEDBACK"] = feedback
+            shown = os.path.join(self.tmp, f"{scene}_e{budget}_f{feedback}_shown")
+            frames = frames_of(self.run(scene, f"e{budget}_f{feedback}", ["--error", budget, "--profile", PROFILE,
+                                                                         "--config", MANIFEST], governed=True,
+                                        dump=shown))
             selected = [f for f, r in frames.items() if r.get("decision") in ("select", "explore")]
             start = (selected[0] if selected else a.frames) + int(a.fps) + 1
             settled = [f for f in frames if f >= start]
@@ -44,7 +47,7 @@ class ErrorBudgets(Evaluation):
             # Only frames shown after the first selection and its transition: before it the run
             # draws its best configuration, whose error is 0 by definition.
             errors = self.true_errors_after(truth, shown, start)
-            rows.append({"scene": scene, "budget": float(budget), "power_w": power, "best_w": best_w,
+            rows.append({"scene": scene, "budget": float(budget), "feedback": feedback, "power_w": power, "best_w": best_w,
                          "saved": 1.0 - power / best_w if best_w else float("nan"), "error": mean(errors),
                          "largest": max(errors) if errors else float("nan"),
                          "within": (sum(e <= float(budget) for e in errors) / len(errors)) if errors else float("nan"),
@@ -66,7 +69,7 @@ class ErrorBudgets(Evaluation):
 
 
 def format_row(r):
-    return (f"| {r['scene']} | {r['budget']:g} | {r['power_w']:.1f} | {r['best_w']:.1f} | {100 * r['saved']:.0f} % | "
+    return (f"| {r['scene']} | {r['budget']:g} | {'on' if r['feedback'] == '1' else 'off'} | {r['power_w']:.1f} | {r['best_w']:.1f} | {100 * r['saved']:.0f} % | "
             f"{r['error']:.4f} | {r['largest']:.4f} | {r['within']:.2f} ({r['frames']}) | {r['selections']} | "
             f"{r['final']} |")
 
@@ -78,10 +81,11 @@ def write(rows, a, command):
              "shim's default. Power and error from the first selection and its transition on; power against the "
              "best configuration's run over the same frames; true error: 1 − SSIM of every "
              f"{a.every}th frame shown against the best configuration's image of that frame; within: the share of "
-             "those frames whose true error is at or under the budget (their count in brackets).", "",
-             "| scene | error budget | power (W) | best (W) | saved | true error (mean) | largest | within | "
-             "selections | last configuration |",
-             "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|"]
+             "those frames whose true error is at or under the budget (their count in brackets). Error feedback: "
+             "GLBUDGET_ERROR_FEEDBACK, the estimates corrected by the errors probes measured of what was shown.",
+             "", "| scene | error budget | error feedback | power (W) | best (W) | saved | true error (mean) | largest "
+             "| within | selections | last configuration |",
+             "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---|"]
     lines += [format_row(r) for r in rows]
     lines.append("")
     with open(os.path.join(a.out, "error-budgets.md"), "w") as f:
@@ -92,8 +96,13 @@ def main():
     ap = study_arguments(__doc__.splitlines()[0], "hall,sponza,valley,subway")
     ap.add_argument("--error-budgets", default="0.01,0.02,0.04")
     ap.add_argument("--every", type=int, default=10, help="dump every K-th frame for the true error")
+    ap.add_argument("--error-feedback", default="1", help="GLBUDGET_ERROR_FEEDBACK of the governed runs: 1, 0, or "
+                    "0,1 for both, interleaved")
     a, command = parse_study_arguments(ap, "error_budgets.py")
     a.error_budgets = ("0.02" if a.quick else a.error_budgets).split(",")
+    a.error_feedback = a.error_feedback.split(",")
+    if any(f not in ("0", "1") for f in a.error_feedback):
+        ap.error("--error-feedback: 1, 0 or 0,1")
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         study = ErrorBudgets(a, tmp)

@@ -117,10 +117,20 @@ def parse_study_arguments(ap, script):
     a = ap.parse_args()
     if a.quick:
         a.scenes, a.size, a.detail, a.frames, a.select_frames, a.costs = "valley", "160x90", 0.05, 80, 20, "off"
-    a.build = os.path.abspath(a.build)
+    given_build, a.build = a.build, os.path.abspath(a.build)
     os.makedirs(a.out, exist_ok=True)
-    command = f"python3 bench/evaluation/{script} build --out " + os.path.relpath(a.out, ROOT) + (
-        " --quick" if a.quick else "")
+    # The other arguments as given, so that the page says how to make it again.
+    rest, skip, build_seen = [], False, False
+    for arg in sys.argv[1:]:
+        if skip:
+            skip = False
+        elif arg == "--out":
+            skip = True
+        elif arg == given_build and not build_seen:
+            build_seen = True
+        elif not arg.startswith("--out="):
+            rest.append(arg)
+    command = " ".join([f"python3 bench/evaluation/{script} build --out", os.path.relpath(a.out, ROOT)] + rest)
     return a, command
 
 

@@ -279,6 +279,13 @@ class GovernorThread {
       if (pass.levels.size() < 2 || pass_in_scene(pass, i, p.passes_drawn)) continue;
       for (int l = 1; l < static_cast<int>(pass.levels.size()); ++l) governor_.errors().set(i, l, 0.0);
     }
+    // After the table took this probe's errors: the estimate of what was shown as the next
+    // selection will make it.
+    if (result.shown_error && best != 0) {
+      model::Configuration shown(manifest_.passes.size(), 0);
+      for (size_t i = 0; i < shown.size(); ++i) shown[i] = p.shown[static_cast<int>(i)];
+      governor_.shown_error(shown, *result.shown_error);
+    }
     flush_held(nullptr, false);
   }
 
@@ -498,6 +505,7 @@ bool governor_start() {
     settings.select_frames = o.select_frames;
     settings.transition_s = o.transition_s;
     settings.feedback.enabled = o.feedback;
+    settings.error_feedback.enabled = o.error_feedback;
     if (!o.probe_stretch) settings.probe_stretch_gain = 0.0;
     const std::string path = default_profile_path();
     std::optional<model::PlatformProfile> profile;

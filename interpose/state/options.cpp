@@ -34,6 +34,7 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_SELECT_FRAMES",
     "GLBUDGET_TRANSITION_S",
     "GLBUDGET_FEEDBACK",
+    "GLBUDGET_ERROR_FEEDBACK",
     "GLBUDGET_PROBE_STRETCH",
     "GLBUDGET_WARM_BLITS",
     "GLBUDGET_DUMP_PROBES",
@@ -156,6 +157,8 @@ Options parse_options(char** env, std::string* warnings) {
         warn(warnings, "GLBUDGET_PROBE_LEVELS='" + value + "' is not cheapest or all; cheapest");
     } else if (name == "GLBUDGET_FEEDBACK") {
       parse_switch(name, value, o.feedback, warnings);
+    } else if (name == "GLBUDGET_ERROR_FEEDBACK") {
+      parse_switch(name, value, o.error_feedback, warnings);
     } else if (name == "GLBUDGET_PROBE_STRETCH") {
       parse_switch(name, value, o.probe_stretch, warnings);
     } else if (name == "GLBUDGET_WARM_BLITS") {

@@ -37,6 +37,9 @@ struct Options {
   // turn, not only its cheapest (`glbudget calibrate --app` measures the ratios k so).
   bool probe_every_level = false;
   bool feedback = true;  // GLBUDGET_FEEDBACK=0: no correction from measured power (the paper's open loop)
+  // GLBUDGET_ERROR_FEEDBACK=0: under an error budget, the estimates are not corrected by the
+  // error probes measured of the configuration shown
+  bool error_feedback = true;
   // GLBUDGET_PROBE_STRETCH=0: the governor never asks for rarer probes (loop/governor.hpp,
   // probe_stretch_gain)
   bool probe_stretch = true;

@@ -71,7 +71,8 @@ Governor::Governor(model::PlatformProfile profile, model::ConfigurationSpace spa
       settings_(settings),
       model_(profile, space_, settings.fit, settings.history),
       p_min_w_(profile.p_min_w),
-      feedback_(settings.feedback) {
+      feedback_(settings.feedback),
+      error_feedback_(settings.error_feedback) {
   if (!errors_.fits(space_)) {
     notes_.push_back("the error table does not match the configuration space (" + std::to_string(errors_.pass_count()) +
                      " passes for " + std::to_string(space_.pass_count()) + "); using the stand-in errors");
@@ -200,6 +201,10 @@ bool Governor::select(const FrameRecord& record) {
 
   start = Clock::now();
   errors_.estimate_all(error_);
+  // Under a power budget the selection ranks configurations by their estimates, and what the
+  // correction would do to that ranking is not measured; the dual problem holds the estimate
+  // itself to the budget.
+  if (aim_ == Aim::error) error_feedback_.correct_all(space_, error_);
   times_.estimate_errors.add(microseconds_since(start));
 
   start = Clock::now();
@@ -500,7 +505,7 @@ Decision Governor::on_frame(const FrameRecord& frame) {
   if (!governing_) {
     decision.next = record.configuration;
     decision.budget_w = budget_w_;
-    decision.est_error = errors_.estimate(record.configuration);
+    decision.est_error = estimated_error(record.configuration);
     return decision;
   }
 
@@ -526,9 +531,25 @@ Decision Governor::on_frame(const FrameRecord& frame) {
   }
   decision.next = current_;
   decision.budget_w = budget_w_;
-  decision.est_error = errors_.estimate(current_);
+  decision.est_error = estimated_error(current_);
   decision.within_budget = within_budget_;
   return decision;
+}
+
+double Governor::estimated_error(const model::Configuration& configuration) const {
+  const double estimate = errors_.estimate(configuration);
+  return aim_ == Aim::error ? error_feedback_.correct(configuration, estimate) : estimate;
+}
+
+// A probe frame's measurement of what is shown, against the estimate the table now makes of
+// it. Under an error budget, one over the budget at the settled target selects again at once
+// rather than showing it until the next selection is due.
+void Governor::shown_error(const model::Configuration& shown, double measured) {
+  if (!space_.contains(shown)) return;
+  error_feedback_.add(shown, errors_.estimate(shown), measured);
+  if (aim_ == Aim::error && error_feedback_.settings().enabled && selections_ > 0 && !transitioning_ &&
+      shown == target_ && measured > *settings_.error_budget)
+    reselect_now_ = true;
 }
 
 }  // namespace glbudget::loop

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "glbudget/loop/error_feedback.hpp"
 #include "glbudget/loop/error_table.hpp"
 #include "glbudget/loop/power_feedback.hpp"
 #include "glbudget/loop/probe_overhead.hpp"
@@ -41,6 +42,10 @@ struct GovernorSettings {
   // from the measured spread keeps windows within a power budget, and a window measured
   // over the budget selects again at once (power_feedback.hpp).
   FeedbackSettings feedback = {};
+  // Beyond the paper: under an error budget, the error each probe frame measured of the
+  // configuration shown corrects the estimates (error_feedback.hpp), and one measured over
+  // the budget selects again at once.
+  ErrorFeedbackSettings error_feedback = {};
   // Beyond the paper: the power `glbudget calibrate --app` measured at the best and the
   // cheapest configuration (the variant table's "power"). A share of the range then takes
   // the cheapest's saving from them rather than from the model, which has seen the cheapest
@@ -121,6 +126,10 @@ class Governor {
 
   // Quality probes update the errors through this; the next selection uses them.
   ErrorTable& errors() { return errors_; }
+  // A probe frame measured the error of the configuration shown (1 - SSIM against the best
+  // configuration's image of the frame); call after the same probe's errors are in errors().
+  void shown_error(const model::Configuration& shown, double measured);
+  const ErrorFeedback& error_feedback() const { return error_feedback_; }
   const ErrorTable& errors() const { return errors_; }
   const model::RunTimeModel& model() const { return model_; }
   const model::ConfigurationSpace& space() const { return space_; }
@@ -173,6 +182,7 @@ class Governor {
   bool probes_outgrew_margin() const;
   double calibrated_scale(double best_now_w) const;
   double share_of_range_w() const;
+  double estimated_error(const model::Configuration& configuration) const;
   void set_calibrated_prior();
 
   model::ConfigurationSpace space_;
@@ -203,6 +213,7 @@ class Governor {
   std::size_t chosen_index_ = 0;
   bool within_budget_ = true;
   PowerFeedback feedback_;
+  ErrorFeedback error_feedback_;
   ProbeOverhead probe_overhead_;
   std::uint64_t probe_period_wanted_ = 0;
   bool probe_bursts_spaced_ = false;
