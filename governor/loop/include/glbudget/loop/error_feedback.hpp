@@ -4,13 +4,13 @@
 // the probe measures the true error of the configuration drawn, not only those of the probe
 // configurations. The additive estimate (§6.2) misjudges it where the passes' errors do not
 // add up, and where the passes' errors, probed in turn, are stale: on the demo's Subway, whose
-// soldiers move, 0.38-0.47 of the frames shown under an error budget were over it. ErrorFeedback keeps, for each configuration shown
-// at a probe frame, the ratio of its measured error to its estimate at that frame (a mean of
-// logs over its last memory_probes probes), and over every such probe a common ratio for the
-// configurations never shown. A selection under an error budget multiplies each estimate by
-// its ratio and by exp(z * spread), z the normal quantile of keep_share and the spread that
-// of the logged ratios about their configuration's ratio before them, so that about
-// keep_share of the probed frames stay within the budget.
+// soldiers move, 0.38-0.47 of the frames shown under an error budget were over it.
+// ErrorFeedback keeps, for each configuration shown at a probe frame, the ratio of its measured
+// error to its estimate at that frame (a mean of logs over its last memory_probes probes), and
+// over every such probe a common ratio for the configurations never shown. A selection under an
+// error budget multiplies each estimate by its ratio and by exp(z * spread), z the normal
+// quantile of keep_share and the spread that of the logged ratios about the ratio each was
+// predicted by, so that about keep_share of the probed frames stay within the budget.
 //
 // Ratios, not differences: the errors of every configuration grow and shrink together along
 // a camera path, and a pass's share of the whole error is what the estimate gets wrong. The
