@@ -18,6 +18,7 @@
 // that a configuration whose estimate and measurement are both near 0 has ratio 1.
 #include <cstddef>
 #include <map>
+#include <vector>
 
 #include "glbudget/model/configuration_space.hpp"
 
@@ -49,7 +50,7 @@ class ErrorFeedback {
 
   // log of the ratio applied to a configuration (its own if shown at a probe, else the common one).
   double log_ratio(const model::Configuration& configuration) const;
-  double spread() const;  // of the log ratios, 0 until a configuration is probed a second time
+  double spread() const;  // of the log ratios about the ratio each was predicted by; 0 before a second probe
   std::size_t probes() const { return probes_; }
   const ErrorFeedbackSettings& settings() const { return settings_; }
 

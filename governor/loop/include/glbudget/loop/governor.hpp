@@ -126,11 +126,11 @@ class Governor {
 
   // Quality probes update the errors through this; the next selection uses them.
   ErrorTable& errors() { return errors_; }
+  const ErrorTable& errors() const { return errors_; }
   // A probe frame measured the error of the configuration shown (1 - SSIM against the best
   // configuration's image of the frame); call after the same probe's errors are in errors().
   void shown_error(const model::Configuration& shown, double measured);
   const ErrorFeedback& error_feedback() const { return error_feedback_; }
-  const ErrorTable& errors() const { return errors_; }
   const model::RunTimeModel& model() const { return model_; }
   const model::ConfigurationSpace& space() const { return space_; }
   const PowerFeedback& feedback() const { return feedback_; }
