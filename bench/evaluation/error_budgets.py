@@ -47,7 +47,8 @@ class ErrorBudgets(Evaluation):
             # Only frames shown after the first selection and its transition: before it the run
             # draws its best configuration, whose error is 0 by definition.
             errors = self.true_errors_after(truth, shown, start)
-            rows.append({"scene": scene, "budget": float(budget), "feedback": feedback, "power_w": power, "best_w": best_w,
+            rows.append({"scene": scene, "budget": float(budget), "feedback": feedback, "power_w": power,
+                         "best_w": best_w,
                          "saved": 1.0 - power / best_w if best_w else float("nan"), "error": mean(errors),
                          "largest": max(errors) if errors else float("nan"),
                          "within": (sum(e <= float(budget) for e in errors) / len(errors)) if errors else float("nan"),
@@ -69,9 +70,10 @@ class ErrorBudgets(Evaluation):
 
 
 def format_row(r):
-    return (f"| {r['scene']} | {r['budget']:g} | {'on' if r['feedback'] == '1' else 'off'} | {r['power_w']:.1f} | {r['best_w']:.1f} | {100 * r['saved']:.0f} % | "
-            f"{r['error']:.4f} | {r['largest']:.4f} | {r['within']:.2f} ({r['frames']}) | {r['selections']} | "
-            f"{r['final']} |")
+    feedback = "on" if r["feedback"] == "1" else "off"
+    return (f"| {r['scene']} | {r['budget']:g} | {feedback} | {r['power_w']:.1f} | {r['best_w']:.1f} | "
+            f"{100 * r['saved']:.0f} % | {r['error']:.4f} | {r['largest']:.4f} | {r['within']:.2f} ({r['frames']}) | "
+            f"{r['selections']} | {r['final']} |")
 
 
 def write(rows, a, command):

@@ -280,8 +280,8 @@ class GovernorThread {
       for (int l = 1; l < static_cast<int>(pass.levels.size()); ++l) governor_.errors().set(i, l, 0.0);
     }
     // After the table took this probe's errors: the estimate of what was shown as the next
-    // selection will make it.
-    if (result.shown_error && best != 0) {
+    // selection will make it. (The best configuration shown is ignored there: its error is 0.)
+    if (result.shown_error) {
       model::Configuration shown(manifest_.passes.size(), 0);
       for (size_t i = 0; i < shown.size(); ++i) shown[i] = p.shown[static_cast<int>(i)];
       governor_.shown_error(shown, *result.shown_error);
