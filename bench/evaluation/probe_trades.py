@@ -9,14 +9,15 @@ Per scene, each level's costs measured once by `glbudget calibrate --app`; then 
     error of the demo's own image of that frame (all 729): Spearman rho, mean absolute error,
     the worst selection regret over the budgets;
   - staleness, from that run's log: the share of frames that were probe frames, and how old
-    the estimates were at the last selection: frames since each of the last K probe frames
-    before it (each probe frame probes one pass's cheapest level, in turn, so these are where
-    the K passes' estimates came from; K = the manifest's passes), their mean and the oldest;
+    the estimates were at the last selection: frames since each pass's last probe at its
+    cheapest level before it (the logged probe streams; passes never probed, not being in the
+    scene, left out), their mean and the oldest;
   - cost: probe_overhead.py's measure, the demo unpaced at a middle configuration with the
     setting against the same without probes (a long run less a short one, so start-up cancels;
     rounds interleaved), the mean frame time's ratio.
 The period's default is 10 frames until every pass has been probed, then 60; the scale's is
-Wang's rule for the frame (1 below 384 pixels on the short side).
+Wang's rule for the frame (1 below 384 pixels on the short side); the order's (order=turn or
+weighted) is weighted: passes in turn until each has been probed, then the largest error × age.
 
 Writes DIR/probe-trades.md.
 Usage: probe_trades.py BUILD_DIR --out DIR [--scenes hall,subway] [--settings default,scale=2,...]
@@ -36,30 +37,40 @@ from evaluate import MANIFEST, parse_study_arguments, study_arguments  # noqa: E
 from demo_bench import clean_environment, run  # noqa: E402
 
 SETTINGS = "default,scale=2,scale=4,period=10,period=30,period=60,period=120"
-PASSES = 6  # the demo manifest's passes, each probed in turn
 MIDDLE = "1,0,0,1,0,0"  # probe_overhead.py's forced configuration: two probe streams drawn
 
 
+KNOBS = {"scale": "GLBUDGET_PROBE_SCALE", "period": "GLBUDGET_PROBE_PERIOD", "order": "GLBUDGET_PROBE_ORDER"}
+
+
 def setting_env(setting):
-    """GLBUDGET_* of a setting: 'default', 'scale=S' or 'period=P'."""
+    """GLBUDGET_* of a setting: 'default', 'scale=S', 'period=P' or 'order=turn|weighted'."""
     if setting == "default":
         return {}
     knob, _, value = setting.partition("=")
-    return {{"scale": "GLBUDGET_PROBE_SCALE", "period": "GLBUDGET_PROBE_PERIOD"}[knob]: value}
+    return {KNOBS[knob]: value}
 
 
 def staleness(log, frame):
-    """(share of probe frames, mean and oldest age of the last PASSES probes before frame)."""
-    probes, frames = [], set()
+    """(share of probe frames, mean and oldest age at `frame` of each pass's last probe before it).
+    Passes never probed (not in the scene) are left out."""
+    frames, last = set(), {}
+    probes = 0
     with open(log) as f:
         for row in csv.DictReader(f):
-            frames.add(int(row["frame"]))
-            if row.get("probe") == "1":
-                probes.append(int(row["frame"]))
-    probes = sorted(set(probes))
-    share = len(probes) / len(frames) if frames else float("nan")
-    ages = [frame - p for p in probes if p < frame][-PASSES:]
-    if len(ages) < PASSES:  # some pass never probed: its estimate is the stand-in
+            at = int(row["frame"])
+            frames.add(at)
+            if row.get("probe") != "1":
+                continue
+            probes += 1
+            for stream in filter(None, (row.get("probe_streams") or "").split(";")):
+                levels = stream.split("=")[0].split(":")
+                changed = [i for i, level in enumerate(levels) if level != "0"]
+                if len(changed) == 1 and at < frame:
+                    last[changed[0]] = max(last.get(changed[0], 0), at)
+    share = probes / len(frames) if frames else float("nan")
+    ages = [frame - at for at in last.values()]
+    if not ages:
         return share, float("nan"), float("inf")
     return share, statistics.mean(ages), max(ages)
 
@@ -77,7 +88,10 @@ class Trades(Study):
         return self.costs[scene]
 
     def overhead(self, scene, settings):
-        """{setting: mean unpaced frame time / the same without probes}, rounds interleaved."""
+        """{setting: mean unpaced frame time / the same without probes}, rounds interleaved; NaN
+        with --rounds 0 (settings that draw the same probes, as the order's, cost the same)."""
+        if self.a.rounds == 0:
+            return {s: float("nan") for s in settings}
         shim = os.path.join(self.a.build, "interpose/libglbudget.so")
         base = dict(clean_environment(), LD_PRELOAD=shim, GLBUDGET_SENSOR="cpu", GLBUDGET_CONFIG=MANIFEST,
                     GLBUDGET_FORCE=MIDDLE)
@@ -105,7 +119,7 @@ def main():
     ap.add_argument("--settings", default=SETTINGS)
     ap.add_argument("--budget", type=int, default=50, help="the governed runs' power budget, %%")
     ap.add_argument("--regret-budgets", default="30,40,50,60,70")
-    ap.add_argument("--rounds", type=int, default=2, help="rounds of the unpaced overhead runs")
+    ap.add_argument("--rounds", type=int, default=2, help="rounds of the unpaced overhead runs (0: none)")
     ap.add_argument("--overhead-frames", type=int, default=60)
     a, command = parse_study_arguments(ap, "probe_trades.py")
     if a.quick:
@@ -118,8 +132,7 @@ def main():
         for scene in a.scenes.split(","):
             cost = trades.overhead(scene, settings)
             for s in settings:
-                trades.governed_env = {k: v for k, v in trades.governed_env.items()
-                                       if k not in ("GLBUDGET_PROBE_SCALE", "GLBUDGET_PROBE_PERIOD")}
+                trades.governed_env = {k: v for k, v in trades.governed_env.items() if k not in KNOBS.values()}
                 trades.governed_env.update(setting_env(s))
                 r = trades.scene(scene)
                 row = {"scene": scene, "setting": s, "overhead": cost[s]}
@@ -147,7 +160,7 @@ def format_row(r):
 
 
 def write(rows, a, command):
-    lines = ["# The quality probes' knobs: scale and period against cost, staleness and accuracy", "",
+    lines = ["# The quality probes' knobs: scale, period and order against cost, staleness and accuracy", "",
              "```sh", command, "```", "",
              f"Each scene at {a.size}, detail {a.detail}. Accuracy and staleness from a governed run of {a.frames} "
              f"frames paced at {a.fps:g} fps under `--power {a.budget}%` with the setting (the cpu sensor, level "
@@ -157,10 +170,10 @@ def write(rows, a, command):
              f"demo unpaced, forced to {MIDDLE.replace(',', ':')}, {a.overhead_frames} frames less 5 (start-up "
              f"cancels), median of {a.rounds} interleaved rounds, against the same without probes (a setting "
              "without a period probes every 60 frames there: ungoverned, the shim's default is none). Age: frames "
-             f"from each of the last {PASSES} probe frames (one pass's cheapest level each, in turn) to the "
-             "selection; \"never probed\": fewer probes than passes before it, so some estimate was the stand-in. "
-             "default: probes every 10 frames until each pass was probed, then every 60; SSIM at Wang's scale "
-             "(1 at this size).", "",
+             "from each pass's last probe at its cheapest level to the selection (passes never probed, not in the "
+             "scene, left out; \"never probed\": no pass was). default: probes every 10 frames until each pass was "
+             "probed, then every 60, the pass with the largest error × age; SSIM at Wang's scale (1 at this size).",
+             "",
              "| scene | setting | frame time vs none | probe frames | mean age | oldest | Spearman ρ | mean abs. error "
              "| worst regret |",
              "|---|---|---:|---:|---:|---:|---:|---:|---:|"]

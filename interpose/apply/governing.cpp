@@ -269,6 +269,7 @@ class GovernorThread {
         g_drift.fetch_add(1, std::memory_order_relaxed);
       probed_[static_cast<size_t>(pass)] = true;
       table.set(static_cast<size_t>(pass), lmax, e);
+      set_probe_pass_error(static_cast<size_t>(pass), e);
       for (int l = 1; l < lmax; ++l) table.set(static_cast<size_t>(pass), l, level_ratio(pass, l) * e);
     }
     // A pass whose programs drew in neither this probe frame nor the one before is not in the
@@ -278,6 +279,7 @@ class GovernorThread {
       const manifest::Pass& pass = manifest_.passes[i];
       if (pass.levels.size() < 2 || pass_in_scene(pass, i, p.passes_drawn)) continue;
       for (int l = 1; l < static_cast<int>(pass.levels.size()); ++l) governor_.errors().set(i, l, 0.0);
+      set_probe_pass_error(i, 0.0);
     }
     // After the table took this probe's errors: the estimate of what was shown as the next
     // selection will make it. (The best configuration shown is ignored there: its error is 0.)

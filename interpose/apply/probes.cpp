@@ -11,6 +11,7 @@
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
+#include <vector>
 
 #include "app_space_uniforms.hpp"
 #include "apply_gl.hpp"
@@ -19,6 +20,7 @@
 #include "governing.hpp"
 #include "hook_table.hpp"
 #include "messages.hpp"
+#include "glbudget/loop/probe_order.hpp"
 #include "glbudget/quality/ssim.hpp"
 #include "options.hpp"
 #include "probe_ssim.hpp"
@@ -54,7 +56,13 @@ const ProbeSettings& probe_settings() {
 namespace {
 std::atomic<uint64_t> g_period_wanted{0}, g_period_in_force{0};
 std::atomic<bool> g_bursts_spaced{false};
+std::atomic<float> g_pass_error[kMaxPasses];  // set_probe_pass_error
 }  // namespace
+
+void set_probe_pass_error(size_t pass, double error) {
+  if (pass < static_cast<size_t>(kMaxPasses))
+    g_pass_error[pass].store(static_cast<float>(error), std::memory_order_relaxed);
+}
 
 void set_probe_period_wanted(uint64_t frames, bool bursts_too) {
   g_period_wanted.store(frames, std::memory_order_relaxed);
@@ -246,7 +254,9 @@ struct ProbeFrames::Impl {
   Stream streams[kMaxStreams];
   uint64_t passes_drawn = ~uint64_t{0};  // in the last probe frame (all before the first)
   uint64_t passes_now = 0;
-  size_t next_pass = 0;  // round robin over the (pass, level) pairs probed
+  size_t next_pass = 0;               // round robin over the (pass, level) pairs probed
+  std::vector<uint64_t> pair_probed;  // per (pass, level) pair: the frame it was last probed at
+  std::vector<loop::ProbeCandidate> candidates;
   bool disabled = false;
 
   // The duplicate in progress.
@@ -1156,8 +1166,9 @@ struct ProbeFrames::Impl {
     }
   }
 
-  // The streams of a probe frame: s0, unless the frame is drawn in it, and s_i^lmax for the
-  // next pass in turn that has levels and drew in the last probe frame.
+  // The streams of a probe frame: s0, unless the frame is drawn in it, and s_i^lmax for a pass
+  // that has levels and drew in the last probe frame: the next in turn until each has been
+  // probed (settled), then the one whose error × age is largest (GLBUDGET_PROBE_ORDER).
   void plan(uint64_t next) {
     const manifest::Manifest& m = active_manifest();
     const int passes = std::min<int>(static_cast<int>(m.passes.size()), kMaxPasses);
@@ -1172,14 +1183,32 @@ struct ProbeFrames::Impl {
       const int lmax = static_cast<int>(m.passes[i].levels.size()) - 1;
       for (int l = options().probe_every_level ? 1 : lmax; l <= lmax && l >= 1; ++l) order.emplace_back(i, l);
     }
-    for (size_t tries = 0; tries < order.size(); ++tries) {
-      const auto [i, level] = order[next_pass++ % order.size()];
-      if (i >= static_cast<size_t>(kMaxPasses) || !pass_in_scene(m.passes[i], i, passes_drawn)) continue;
+    const auto probeable = [&](size_t i) {
+      return i < static_cast<size_t>(kMaxPasses) && pass_in_scene(m.passes[i], i, passes_drawn);
+    };
+    pair_probed.resize(order.size());
+    size_t pick = order.size();
+    if (options().probe_order_weighted && settled()) {
+      candidates.resize(order.size());
+      for (size_t k = 0; k < order.size(); ++k) {
+        const size_t i = order[k].first;
+        candidates[k] = {probeable(i) ? g_pass_error[i].load(std::memory_order_relaxed) : 0.0, pair_probed[k],
+                         probeable(i)};
+      }
+      pick = loop::next_probe(candidates, next);
+    } else {
+      for (size_t tries = 0; tries < order.size() && pick == order.size(); ++tries) {
+        const size_t k = next_pass++ % order.size();
+        if (probeable(order[k].first)) pick = k;
+      }
+    }
+    if (pick < order.size()) {
+      const auto [i, level] = order[pick];
+      pair_probed[pick] = next;
       Levels probed = best;
       probed.level[i] = static_cast<int8_t>(level);
       if (i < 64 && level + 1 == static_cast<int>(m.passes[i].levels.size())) passes_probed |= uint64_t{1} << i;
       if (!(probed == c.config)) streams[stream_count++].config = probed;
-      break;
     }
     if (stream_count == 0) return;
     for (int s = 0; s < stream_count; ++s) {

@@ -7,7 +7,8 @@
 // keeps and reads back is never touched.
 //
 // Streams: the best configuration s0 (unless the frame is drawn in it) and one configuration
-// with every pass best but one at its cheapest level (s_i^lmax), the pass chosen in turn. At
+// with every pass best but one at its cheapest level (s_i^lmax), the pass chosen in turn until
+// each has been probed, then by its last error × the frames since (loop/probe_order.hpp). At
 // the swap each stream's window image and the app's own are captured at window size and read
 // back behind a fence (never a stall); the governor thread turns them into errors
 // (apply/governing.hpp).
@@ -152,5 +153,8 @@ const ProbeSettings& probe_settings();
 // (0: none planned yet).
 void set_probe_period_wanted(uint64_t frames, bool bursts_too);
 uint64_t probe_period_in_force();
+// Governor thread: manifest pass `pass`'s latest error at its cheapest level (0 where it is not
+// in the scene), by which settled probes choose the pass they take (loop/probe_order.hpp).
+void set_probe_pass_error(size_t pass, double error);
 
 }  // namespace glbudget

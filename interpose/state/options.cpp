@@ -155,6 +155,11 @@ Options parse_options(char** env, std::string* warnings) {
         o.probe_every_level = value == "all";
       else
         warn(warnings, "GLBUDGET_PROBE_LEVELS='" + value + "' is not cheapest or all; cheapest");
+    } else if (name == "GLBUDGET_PROBE_ORDER") {
+      if (value == "weighted" || value == "turn")
+        o.probe_order_weighted = value == "weighted";
+      else
+        warn(warnings, "GLBUDGET_PROBE_ORDER='" + value + "' is not weighted or turn; weighted");
     } else if (name == "GLBUDGET_FEEDBACK") {
       parse_switch(name, value, o.feedback, warnings);
     } else if (name == "GLBUDGET_ERROR_FEEDBACK") {

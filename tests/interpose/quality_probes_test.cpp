@@ -4,6 +4,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -296,12 +297,15 @@ TEST_CASE("passes not in the scene estimate no error at any level; passes in it 
   unlink((log + ".selections.csv").c_str());
 }
 
-TEST_CASE("settled probes come back to their first period when a pass's error moves") {
+TEST_CASE(
+    "settled probes take the pass of largest error × age, and come back to their first period when a "
+    "pass's error moves") {
   // The governor's bookkeeping over a governed demo run: under a sanitizer its paths are the
   // other demo cases' (probe frames, the governor thread), so it runs in the plain build only.
   if (kSanitizedRun) return;
   // Under a budget at the default period, probes come every 10 frames until every pass is
-  // probed, then every 60. When a pass's fresh error is far from its previous probe's (the
+  // probed, then every 60, each taking the pass whose last error × frames since is largest
+  // (loop/probe_order.hpp). When a pass's fresh error is far from its previous probe's (the
   // scene changed beneath every pass's estimate), probes go back to every 10 frames until each
   // pass is probed again. Subway's camera moves: base shading's error falls from 0.040 to
   // 0.008 between its probes at frames 20 and 180 at this size (frame numbers decide what is
@@ -323,36 +327,59 @@ TEST_CASE("settled probes come back to their first period when a pass's error mo
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   std::map<long, std::string> streams;  // probe frames' probe_streams
+  std::map<long, std::string> shown;    // and what they showed, with its probed error
   for (const auto& row : read_csv_rows_by_name(log))
-    if (row.at("probe") == "1") streams[std::stol(row.at("frame"))] = row.at("probe_streams");
+    if (row.at("probe") == "1") {
+      streams[std::stol(row.at("frame"))] = row.at("probe_streams");
+      shown[std::stol(row.at("frame"))] = row.at("configuration") + "=" + row.at("probe_error");
+    }
   unlink(log.c_str());
-  // Each probe frame's pass at its cheapest level and its error ("0:2:0:0:0:0=0.040227").
+  std::string all;
+  for (const auto& [frame, text] : streams) all += std::to_string(frame) + " " + shown[frame] + " " + text + "\n";
+  INFO(all);
+  // Each probe frame's pass at its cheapest level and its error ("0:2:0:0:0:0=0.040227"). A
+  // frame shown in the configuration the probe planned draws no stream for it: what was shown
+  // is that pass's probe then.
   std::map<long, std::pair<int, double>> probed;
   for (const auto& [frame, text] : streams) {
-    std::stringstream entries(text);
+    std::stringstream entries(text + ";" + shown[frame]);
     for (std::string entry; std::getline(entries, entry, ';');) {
       const size_t equals = entry.find('=');
+      if (equals == std::string::npos) continue;
       int pass = -1;
       for (size_t i = 0; i < equals; i += 2)
-        if (entry[i] != '0') pass = static_cast<int>(i / 2);
-      if (pass >= 0) probed[frame] = {pass, std::stod(entry.substr(equals + 1))};
+        if (entry[i] != '0') pass = pass == -1 && entry[i] == '2' ? static_cast<int>(i / 2) : -2;
+      if (pass >= 0 && !probed.count(frame)) probed[frame] = {pass, std::stod(entry.substr(equals + 1))};
     }
   }
   auto moved = [](double before, double now) {  // the shim's test: a quarter, above 0.003
     return std::abs(now - before) > std::max(0.003, 0.25 * std::max(before, now));
   };
-  std::map<int, double> last;  // by pass
-  long previous = 0;           // the probe frame before, whatever it measured
-  int settled = 0, drifted = 0;
+  std::map<int, double> last;      // by pass
+  std::map<int, long> last_frame;  // by pass
+  long previous = 0;               // the probe frame before, whatever it measured
+  int settled = 0, drifted = 0, weighed = 0;
+  bool order_known = true;  // every probe frame so far logged the pass it took
   for (const auto& [frame, text] : streams) {
     const bool was_settled = frame - previous == 60;
     previous = frame;
-    // A probe frame whose pass's cheapest level is what is shown draws no stream for it.
     const auto it = probed.find(frame);
-    if (it == probed.end()) continue;
+    if (it == probed.end()) {
+      order_known = false;
+      continue;
+    }
     const auto [pass, error] = it->second;
     INFO("probe frame " << frame << ", pass " << pass << ", error " << error);
     const auto next = streams.upper_bound(frame);
+    if (was_settled && last.count(pass) && order_known) {
+      // The pass taken has the largest error × age of those probed before (errors under a
+      // tenth of the largest count as a tenth; the scene's passes are all probed by then).
+      double largest = 0.0;
+      for (const auto& [p, e] : last) largest = std::max(largest, e);
+      const auto priority = [&](int p) { return std::max({last[p], largest / 10, 0.002}) * (frame - last_frame[p]); };
+      for (const auto& [p, e] : last) CHECK(priority(pass) >= priority(p) * (1 - 1e-3));  // errors logged to 6 decimals
+      ++weighed;
+    }
     if (was_settled && last.count(pass)) {
       ++settled;
       if (moved(last[pass], error)) {
@@ -364,8 +391,10 @@ TEST_CASE("settled probes come back to their first period when a pass's error mo
       }
     }
     last[pass] = error;
+    last_frame[pass] = frame;
   }
   CHECK(settled >= 1);
+  CHECK(weighed >= 1);
   CHECK(drifted >= 1);
 }
 
