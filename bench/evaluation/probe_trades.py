@@ -54,21 +54,20 @@ def setting_env(setting):
 def staleness(log, frame):
     """(share of probe frames, mean and oldest age at `frame` of each pass's last probe before it).
     Passes never probed (not in the scene) are left out."""
-    frames, last = set(), {}
-    probes = 0
+    frames, probes, last = set(), set(), {}
     with open(log) as f:
-        for row in csv.DictReader(f):
+        for row in csv.DictReader(f):  # a row per pass and frame
             at = int(row["frame"])
             frames.add(at)
             if row.get("probe") != "1":
                 continue
-            probes += 1
+            probes.add(at)
             for stream in filter(None, (row.get("probe_streams") or "").split(";")):
                 levels = stream.split("=")[0].split(":")
                 changed = [i for i, level in enumerate(levels) if level != "0"]
                 if len(changed) == 1 and at < frame:
                     last[changed[0]] = max(last.get(changed[0], 0), at)
-    share = probes / len(frames) if frames else float("nan")
+    share = len(probes) / len(frames) if frames else float("nan")
     ages = [frame - at for at in last.values()]
     if not ages:
         return share, float("nan"), float("inf")
