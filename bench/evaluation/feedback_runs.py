@@ -14,10 +14,12 @@ levels are calibrated once (`glbudget calibrate --app`, as evaluate.py does), th
 - power, budget and the governor's estimated error of what it drew, means from the first
   selection on.
 
-Run it at two commits (a `git worktree` of the older one, built) for a before and after.
+Run it at two commits (a `git worktree` of the older one, built) for a before and after, or
+with --settings for a switch of one build (each round runs every setting in turn, interleaved).
 Writes DIR/feedback-runs.md.
 Usage: feedback_runs.py BUILD_DIR --out DIR [--runs sponza:50,hall:40,valley:40] [--rounds 3]
-       [--frames 600] [--fps 10] [--size 320x180] [--detail 0.2]
+       [--settings default,GLBUDGET_FEEDBACK=0] [--frames 600] [--fps 10] [--size 320x180]
+       [--detail 0.2]
 """
 import argparse
 import csv
@@ -94,6 +96,8 @@ def main():
     ap.add_argument("--out", required=True)
     ap.add_argument("--runs", default="sponza:50,hall:40,valley:40", help="scene:budget, comma separated")
     ap.add_argument("--rounds", type=int, default=3)
+    ap.add_argument("--settings", default="default",
+                    help="comma separated: 'default' or GLBUDGET_X=V[;GLBUDGET_Y=W] for the governed runs")
     ap.add_argument("--frames", type=int, default=600)
     ap.add_argument("--fps", type=float, default=10.0)
     ap.add_argument("--size", default="320x180")
@@ -105,6 +109,10 @@ def main():
     command = "python3 bench/evaluation/feedback_runs.py " + " ".join(
         os.path.relpath(x, ROOT) if os.path.isabs(x) and x.startswith(ROOT) else x for x in sys.argv[1:])
     specs = [tuple(s.split(":")) for s in a.runs.split(",")]
+    settings = a.settings.split(",")
+
+    def setting_env(setting):
+        return {} if setting == "default" else dict(kv.split("=", 1) for kv in setting.split(";"))
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         ev = Evaluation(a, tmp)
@@ -112,19 +120,22 @@ def main():
         for scene, budget in specs:
             if scene not in costs:
                 costs[scene] = ev.level_costs(scene)
+        plain_env = dict(ev.governed_env)
         for r in range(a.rounds):
             for scene, budget in specs:
-                ev.governed_env["GLBUDGET_COSTS"] = costs[scene]
-                log = ev.run(scene, f"p{budget}_{r}", ["--power", f"{budget}%", "--profile", PROFILE, "--config",
-                                                       MANIFEST], governed=True)
-                s = summarise(log, a.fps)
-                if s is None:
-                    print(f"{scene} {budget}% round {r}: no selection", flush=True)
-                    continue
-                rows.append(dict(s, scene=scene, share=budget, round=r))
-                print(f"{scene} {budget}% round {r}: windows {s['within']:.2f} of {s['windows']}, refit step "
-                      f"{s['step']:.2f} W ({s['refits']}), residual {s['residual']:.2f} W, margin {s['margin']:.2f} W, "
-                      f"{s['power']:.1f} W against {s['budget']:.1f} W, estimated error {s['est_error']:.4f}", flush=True)
+                for k, setting in enumerate(settings):
+                    ev.governed_env = dict(plain_env, GLBUDGET_COSTS=costs[scene], **setting_env(setting))
+                    log = ev.run(scene, f"p{budget}_{r}_{k}", ["--power", f"{budget}%", "--profile", PROFILE,
+                                                               "--config", MANIFEST], governed=True)
+                    s = summarise(log, a.fps)
+                    if s is None:
+                        print(f"{scene} {budget}% {setting} round {r}: no selection", flush=True)
+                        continue
+                    rows.append(dict(s, scene=scene, share=budget, round=r, setting=setting))
+                    print(f"{scene} {budget}% {setting} round {r}: windows {s['within']:.2f} of {s['windows']}, "
+                          f"refit step {s['step']:.2f} W ({s['refits']}), residual {s['residual']:.2f} W, margin "
+                          f"{s['margin']:.2f} W, {s['power']:.1f} W against {s['budget']:.1f} W, estimated error "
+                          f"{s['est_error']:.4f}", flush=True)
     lines = ["# Repeated governed runs: the power feedback", "", "```sh", command, "```", "",
              f"The demo at {a.size}, detail {a.detail}, {a.frames} frames paced at {a.fps:g} fps, cpu sensor, level "
              f"costs from `glbudget calibrate --app` (once per scene), selections every {a.select_frames} frames. "
@@ -132,23 +143,28 @@ def main():
              "of the drawn configuration's corrected prediction across a refit (10 frames each side). Residual: RMS "
              "of measured less corrected prediction over 1-s windows of one configuration. Margin: mean kept under "
              "the budget at the selections.", "",
-             "| scene | budget | round | windows | refit step W | residual W | margin W | mean W | budget W | est. error |",
-             "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+             "| scene | budget | setting | round | windows | refit step W | residual W | margin W | mean W | budget W "
+             "| est. error |",
+             "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for x in rows:
-        lines.append(f"| {x['scene']} | {x['share']} % | {x['round']} | {x['within']:.2f} | {x['step']:.2f} | "
+        lines.append(f"| {x['scene']} | {x['share']} % | {x['setting']} | {x['round']} | {x['within']:.2f} | "
+                     f"{x['step']:.2f} | "
                      f"{x['residual']:.2f} | {x['margin']:.2f} | {x['power']:.1f} | {x['budget']:.1f} | "
                      f"{x['est_error']:.4f} |")
     lines += ["", "Means over the rounds:", "",
-              "| scene | budget | windows (lowest) | refit step W | residual W | margin W | est. error |",
-              "|---|---:|---:|---:|---:|---:|---:|"]
+              "| scene | budget | setting | windows (lowest) | refit step W | residual W | margin W | mean W | "
+              "est. error |",
+              "|---|---:|---|---:|---:|---:|---:|---:|---:|"]
     for scene, budget in specs:
-        sel = [x for x in rows if x["scene"] == scene and x["share"] == budget]
-        if not sel:
-            continue
-        m = lambda k: statistics.fmean(x[k] for x in sel if not math.isnan(x[k])) if any(
-            not math.isnan(x[k]) for x in sel) else float("nan")
-        lines.append(f"| {scene} | {budget} % | {m('within'):.2f} ({min(x['within'] for x in sel):.2f}) | "
-                     f"{m('step'):.2f} | {m('residual'):.2f} | {m('margin'):.2f} | {m('est_error'):.4f} |")
+        for setting in settings:
+            sel = [x for x in rows if x["scene"] == scene and x["share"] == budget and x["setting"] == setting]
+            if not sel:
+                continue
+            m = lambda k: statistics.fmean(x[k] for x in sel if not math.isnan(x[k])) if any(
+                not math.isnan(x[k]) for x in sel) else float("nan")
+            lines.append(f"| {scene} | {budget} % | {setting} | {m('within'):.2f} ({min(x['within'] for x in sel):.2f}) "
+                         f"| {m('step'):.2f} | {m('residual'):.2f} | {m('margin'):.2f} | {m('power'):.1f} | "
+                         f"{m('est_error'):.4f} |")
     with open(os.path.join(a.out, "feedback-runs.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     print(f"written {os.path.join(a.out, 'feedback-runs.md')}")

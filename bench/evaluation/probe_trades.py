@@ -17,7 +17,7 @@ Per scene, each level's costs measured once by `glbudget calibrate --app`; then 
     rounds interleaved), the mean frame time's ratio.
 The period's default is 10 frames until every pass has been probed, then 60; the scale's is
 Wang's rule for the frame (1 below 384 pixels on the short side); the order's (order=turn or
-weighted) is weighted: passes in turn until each has been probed, then the largest error × age.
+weighted) is turn (weighted: in turn until each has been probed, then the largest error × age).
 
 Writes DIR/probe-trades.md.
 Usage: probe_trades.py BUILD_DIR --out DIR [--scenes hall,subway] [--settings default,scale=2,...]
@@ -171,7 +171,7 @@ def write(rows, a, command):
              "without a period probes every 60 frames there: ungoverned, the shim's default is none). Age: frames "
              "from each pass's last probe at its cheapest level to the selection (passes never probed, not in the "
              "scene, left out; \"never probed\": no pass was). default: probes every 10 frames until each pass was "
-             "probed, then every 60, the pass with the largest error × age; SSIM at Wang's scale (1 at this size).",
+             "probed, then every 60, the passes in turn; SSIM at Wang's scale (1 at this size).",
              "",
              "| scene | setting | frame time vs none | probe frames | mean age | oldest | Spearman ρ | mean abs. error "
              "| worst regret |",

@@ -1167,8 +1167,8 @@ struct ProbeFrames::Impl {
   }
 
   // The streams of a probe frame: s0, unless the frame is drawn in it, and s_i^lmax for a pass
-  // that has levels and drew in the last probe frame: the next in turn until each has been
-  // probed (settled), then the one whose error × age is largest (GLBUDGET_PROBE_ORDER).
+  // that has levels and drew in the last probe frame: the next in turn (GLBUDGET_PROBE_ORDER=
+  // weighted: until each has been probed, then the one whose error × age is largest).
   void plan(uint64_t next) {
     const manifest::Manifest& m = active_manifest();
     const int passes = std::min<int>(static_cast<int>(m.passes.size()), kMaxPasses);

@@ -7,8 +7,9 @@
 // keeps and reads back is never touched.
 //
 // Streams: the best configuration s0 (unless the frame is drawn in it) and one configuration
-// with every pass best but one at its cheapest level (s_i^lmax), the pass chosen in turn until
-// each has been probed, then by its last error × the frames since (loop/probe_order.hpp). At
+// with every pass best but one at its cheapest level (s_i^lmax), the pass chosen in turn (or,
+// with GLBUDGET_PROBE_ORDER=weighted, in turn until each has been probed, then by its last
+// error × the frames since: loop/probe_order.hpp). At
 // the swap each stream's window image and the app's own are captured at window size and read
 // back behind a fence (never a stall); the governor thread turns them into errors
 // (apply/governing.hpp).

@@ -159,7 +159,7 @@ Options parse_options(char** env, std::string* warnings) {
       if (value == "weighted" || value == "turn")
         o.probe_order_weighted = value == "weighted";
       else
-        warn(warnings, "GLBUDGET_PROBE_ORDER='" + value + "' is not weighted or turn; weighted");
+        warn(warnings, "GLBUDGET_PROBE_ORDER='" + value + "' is not weighted or turn; turn");
     } else if (name == "GLBUDGET_FEEDBACK") {
       parse_switch(name, value, o.feedback, warnings);
     } else if (name == "GLBUDGET_ERROR_FEEDBACK") {

@@ -36,9 +36,9 @@ struct Options {
   // GLBUDGET_PROBE_LEVELS=all: probe frames take every level below the best of each pass in
   // turn, not only its cheapest (`glbudget calibrate --app` measures the ratios k so).
   bool probe_every_level = false;
-  // GLBUDGET_PROBE_ORDER=turn: once every pass is probed, probes take the passes in turn rather
-  // than by their error × age (loop/probe_order.hpp).
-  bool probe_order_weighted = true;
+  // GLBUDGET_PROBE_ORDER=weighted: once every pass is probed, probes take the pass of largest
+  // error × age (loop/probe_order.hpp) rather than the passes in turn.
+  bool probe_order_weighted = false;
   bool feedback = true;  // GLBUDGET_FEEDBACK=0: no correction from measured power (the paper's open loop)
   // GLBUDGET_ERROR_FEEDBACK=0: under an error budget, the estimates are not corrected by the
   // error probes measured of the configuration shown

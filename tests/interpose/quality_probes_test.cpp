@@ -298,14 +298,15 @@ TEST_CASE("passes not in the scene estimate no error at any level; passes in it 
 }
 
 TEST_CASE(
-    "settled probes take the pass of largest error × age, and come back to their first period when a "
-    "pass's error moves") {
+    "weighted settled probes take the pass of largest error × age, and come back to their first period "
+    "when a pass's error moves") {
   // The governor's bookkeeping over a governed demo run: under a sanitizer its paths are the
   // other demo cases' (probe frames, the governor thread), so it runs in the plain build only.
   if (kSanitizedRun) return;
   // Under a budget at the default period, probes come every 10 frames until every pass is
-  // probed, then every 60, each taking the pass whose last error × frames since is largest
-  // (loop/probe_order.hpp). When a pass's fresh error is far from its previous probe's (the
+  // probed, then every 60, with GLBUDGET_PROBE_ORDER=weighted each taking the pass whose last
+  // error × frames since is largest (loop/probe_order.hpp). When a pass's fresh error is far
+  // from its previous probe's (the
   // scene changed beneath every pass's estimate), probes go back to every 10 frames until each
   // pass is probed again. Subway's camera moves: base shading's error falls from 0.040 to
   // 0.008 between its probes at frames 20 and 180 at this size (frame numbers decide what is
@@ -323,6 +324,7 @@ TEST_CASE(
        // The shim's own periods: the governor's request for rarer probes, where it finds
        // that they cost the budget, is loop_test's.
        {"GLBUDGET_PROBE_STRETCH", "0"},
+       {"GLBUDGET_PROBE_ORDER", "weighted"},
        {"GLBUDGET_LOG", log}});
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
