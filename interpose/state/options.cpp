@@ -41,6 +41,7 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_PROBE_SCALE",
     "GLBUDGET_PROBE_SSIM",
     "GLBUDGET_PROBE_LEVELS",
+    "GLBUDGET_PROBE_ORDER",
     "GLBUDGET_SHIM",
     "GLBUDGET_COSTS",
     // A test switch, to be documented in README's options table: GL extensions the shim

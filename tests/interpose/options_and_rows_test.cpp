@@ -2,6 +2,8 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <fstream>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -37,6 +39,27 @@ TEST_CASE("unknown GLBUDGET_ variables are named; others are ignored", "[unit]")
       {"GLBUDGET_LOG=/tmp/x.csv", "GLBUDGET_LGO=/tmp/y.csv", "HOME=/root", "GLBUDGET", "GLBUDGET_POWER=40%"}, &w);
   CHECK(o.log_path == "/tmp/x.csv");
   CHECK(w == "glbudget: unknown variable GLBUDGET_LGO ignored\n");
+}
+
+TEST_CASE("every variable of the README's options table is one the shim knows", "[unit]") {
+  // A variable missing from the shim's list is said to be unknown and ignored: the option a
+  // user sets (or a study's A/B switch) would silently do nothing.
+  std::ifstream readme(GLBUDGET_README);
+  REQUIRE(readme);
+  const std::regex name("GLBUDGET_[A-Z0-9_]+");
+  int checked = 0;
+  for (std::string line; std::getline(readme, line);) {
+    if (line.rfind("| `GLBUDGET_", 0) != 0) continue;
+    const std::string first_cell = line.substr(0, line.find(" | ", 2));
+    for (std::sregex_iterator it(first_cell.begin(), first_cell.end(), name), end; it != end; ++it) {
+      std::string w;
+      parse_env({it->str() + "="}, &w);
+      INFO(it->str() << ": " << w);
+      CHECK(w.find("unknown variable") == std::string::npos);
+      ++checked;
+    }
+  }
+  CHECK(checked >= 15);  // the table names 18 today
 }
 
 TEST_CASE("frame-log rows: empty fields for what was not measured", "[unit]") {

@@ -328,6 +328,7 @@ TEST_CASE(
        {"GLBUDGET_LOG", log}});
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
+  CHECK(count_lines_with(r.err, "unknown variable") == 0);
   std::map<long, std::string> streams;  // probe frames' probe_streams
   std::map<long, std::string> shown;    // and what they showed, with its probed error
   for (const auto& row : read_csv_rows_by_name(log))
@@ -408,12 +409,14 @@ TEST_CASE("bad probe settings are said once and the app runs on") {
                                                                    {"GLBUDGET_PROBE_PERIOD", "-3"},
                                                                    {"GLBUDGET_PROBE_SCALE", "3"},
                                                                    {"GLBUDGET_PROBE_SSIM", "fpga"},
+                                                                   {"GLBUDGET_PROBE_ORDER", "random"},
                                                                    {"GLBUDGET_DUMP_PROBES", "/nonexistent/glbudget"}});
   INFO(r.err);
   CHECK(r.exit_code == 0);
   CHECK(count_lines_with(r.err, "GLBUDGET_PROBE_PERIOD='-3'") == 1);
   CHECK(count_lines_with(r.err, "GLBUDGET_PROBE_SCALE='3'") == 1);
   CHECK(count_lines_with(r.err, "GLBUDGET_PROBE_SSIM='fpga'") == 1);
+  CHECK(count_lines_with(r.err, "GLBUDGET_PROBE_ORDER='random' is not weighted or turn; turn") == 1);
   // Under a budget, probing every other frame leaves no frame whose power is the frame's own
   // (the two after a probe read it back): said, and raised to every fourth.
   const ProcessResult often = run_process(demo("hall", dir + "/often"), {{"LD_PRELOAD", shim_path()},
