@@ -305,12 +305,12 @@ TEST_CASE(
   if (kSanitizedRun) return;
   // Under a budget at the default period, probes come every 10 frames until every pass is
   // probed, then every 60, with GLBUDGET_PROBE_ORDER=weighted each taking the pass whose last
-  // error × frames since is largest (loop/probe_order.hpp). When a pass's fresh error is far
-  // from its previous probe's (the
-  // scene changed beneath every pass's estimate), probes go back to every 10 frames until each
-  // pass is probed again. Subway's camera moves: base shading's error falls from 0.040 to
-  // 0.008 between its probes at frames 20 and 180 at this size (frame numbers decide what is
-  // drawn and what is probed, so the run is the same each time).
+  // error × frames since is largest (loop/probe_order.hpp; in this run the passes in turn
+  // would be the same ones, so the rule itself is probe_order_test's). When a pass's fresh
+  // error is far from its previous probe's (the scene changed beneath every pass's estimate),
+  // probes go back to every 10 frames until each pass is probed again. Subway's camera moves: base shading's error
+  // falls from 0.040 to 0.008 between its probes at frames 20 and 180 at this size (frame numbers decide what is drawn
+  // and what is probed, so the run is the same each time).
   const std::string log = temp_path("subway_drift.csv");
   unlink(log.c_str());
   const ProcessResult r = run_process(
