@@ -313,8 +313,11 @@ struct ProbeFrames::Impl {
       if (out.app_width <= 0 || out.app_height <= 0) return false;
       // As many samples as the window: the best stream must antialias as the app's image does.
       const GLsizei samples = t.window_samples();
-      out.images = {{GL_COLOR_ATTACHMENT0, true, 0, 0, GL_RGBA8, samples},
-                    {GL_DEPTH_STENCIL_ATTACHMENT, true, 0, 0, GL_DEPTH24_STENCIL8, samples}};
+      // Depth and stencil as the window's own where it is drawn unscaled: a blit of depth or
+      // stencil between different formats is an error (the stand-in's is GL_DEPTH24_STENCIL8).
+      const std::pair<GLenum, GLint> stand_in{GL_DEPTH_STENCIL_ATTACHMENT, GL_DEPTH24_STENCIL8};
+      const auto [point, format] = t.window_scaled() ? stand_in : window_depth_stencil();
+      out.images = {{GL_COLOR_ATTACHMENT0, true, 0, 0, GL_RGBA8, samples}, {point, true, 0, 0, format, samples}};
     } else {
       double sx = 1.0, sy = 1.0;
       t.stored_scale(app, &sx, &sy);
@@ -642,6 +645,34 @@ struct ProbeFrames::Impl {
       g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, s.fbo);
     }
     p.DrawBuffers(count, draw_buffers);
+  }
+
+  // The real window's depth and stencil as an attachment point and a sized format; a window
+  // with neither gets GL_DEPTH24_STENCIL8 (nothing is copied into it: the app clears it).
+  std::pair<GLenum, GLint> window_depth_stencil() {
+    const ApplyGl& g = agl();
+    const GLint draw = get(GL_DRAW_FRAMEBUFFER_BINDING);
+    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    // Only the object type may be asked of an absent buffer; any other parameter is an error.
+    GLint depth_type = GL_NONE, stencil_type = GL_NONE, depth_bits = 0, stencil_bits = 0, component = GL_NONE;
+    g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE,
+                                          &depth_type);
+    g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_STENCIL, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE,
+                                          &stencil_type);
+    if (depth_type != GL_NONE) {
+      g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE,
+                                            &depth_bits);
+      g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE,
+                                            &component);
+    }
+    if (stencil_type != GL_NONE)
+      g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_STENCIL, GL_FRAMEBUFFER_ATTACHMENT_STENCIL_SIZE,
+                                            &stencil_bits);
+    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
+    if (depth_bits <= 0 && stencil_bits > 0) return {GL_STENCIL_ATTACHMENT, GL_STENCIL_INDEX8};
+    const GLint format = depth_bits > 0 ? sized_depth_format(depth_bits, stencil_bits, component == GL_FLOAT) : 0;
+    if (!format) return {GL_DEPTH_STENCIL_ATTACHMENT, GL_DEPTH24_STENCIL8};
+    return {stencil_bits > 0 ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT, format};
   }
 
   bool window_has_depth() {

@@ -219,6 +219,29 @@ TEST_CASE("glxgears and es2gears_x11 with their window at 60 %", "[integration]"
   }
 }
 
+// Probes at the window's full size (no level scales it): each probe frame copies the real
+// window's depth into its shadows, which must then be of the window's own depth format. They
+// were always GL_DEPTH24_STENCIL8, glxgears' window is not, and Mesa reported a GL error on every
+// probe frame (MESA_DEBUG; the app's glGetError never saw it, a debug callback would).
+TEST_CASE("glxgears probed at its full size: no GL error", "[integration]") {
+  const std::string log = temp_path("glxgears_probed.csv");
+  unlink(log.c_str());
+  const ProcessResult r = run_under_xvfb(
+      {"timeout", "-s", "INT", "3"}, {"glxgears"},
+      {{"GLBUDGET_LOG", log}, {"GLBUDGET_SENSOR", "cpu"}, {"GLBUDGET_PROBE_PERIOD", "3"}, {"MESA_DEBUG", "1"}});
+  INFO(r.err);
+  CHECK(r.exit_code == 124);  // still drawing when stopped
+  CHECK(count_lines_with(r.err, "glbudget:") == 0);
+  CHECK(count_lines_with(r.err + r.out, "Mesa: User error") == 0);
+  size_t probes = 0;
+  for (const auto& row : read_csv_rows_by_name(log)) {
+    CHECK(row.at("configuration") == "0");
+    probes += !row.at("probe_error").empty();
+  }
+  CHECK(probes >= 3);
+  unlink(log.c_str());
+}
+
 TEST_CASE("glmark2 at 60 %, probed: offscreen passes, blur, shadow maps and terrain run to the end, no GL error",
           "[integration]") {
   // Its window-sized framebuffers scaled with the window, quality probes every other frame (at
