@@ -251,27 +251,24 @@ class GovernorThread {
       result.shown_error = *e;
     for (size_t s = 0; s < p.streams.size(); ++s) {
       if (s + 1 == best) continue;
-      int pass = -1;
-      for (int i = 0; i < p.streams[s].count; ++i)
-        if (p.streams[s].level[i] != 0) pass = pass < 0 ? i : -2;
-      if (pass < 0 || static_cast<size_t>(pass) >= manifest_.passes.size()) continue;
+      const int pass = only_pass_changed(p.streams[s]);
+      if (pass < 0) continue;
       const std::optional<double> measured = error(best, s + 1);
       if (!measured) continue;
       std::string& streams = result.streams;
       char text[32];
       std::snprintf(text, sizeof text, "=%.6f", *measured);
       streams += (streams.empty() ? "" : ";") + format_levels(p.streams[s]) + text;
-      const int lmax = static_cast<int>(manifest_.passes[static_cast<size_t>(pass)].levels.size()) - 1;
-      if (p.streams[s].level[pass] != lmax) continue;  // GLBUDGET_PROBE_LEVELS=all: logged only
-      const double e = *measured;
-      loop::ErrorTable& table = governor_.errors();
-      if (probed_[static_cast<size_t>(pass)] && moved(table.error(static_cast<size_t>(pass), lmax), e))
-        g_drift.fetch_add(1, std::memory_order_relaxed);
-      probed_[static_cast<size_t>(pass)] = true;
-      table.set(static_cast<size_t>(pass), lmax, e);
-      set_probe_pass_error(static_cast<size_t>(pass), e);
-      for (int l = 1; l < lmax; ++l) table.set(static_cast<size_t>(pass), l, level_ratio(pass, l) * e);
+      // Other levels (GLBUDGET_PROBE_LEVELS=all) are logged only.
+      take_cheapest_level_error(pass, p.streams[s].level[pass], *measured);
     }
+    // A frame shown with one pass at its cheapest level and the others at their best is that
+    // pass's probe itself (the probe draws no stream for it): its error against the best is
+    // that level's. Without this a pass kept at its cheapest (an app whose one knob is the
+    // window's resolution) kept the error its probe measured before, however the scene went on.
+    if (best != 0 && result.shown_error)
+      if (const int pass = only_pass_changed(p.shown); pass >= 0)
+        take_cheapest_level_error(pass, p.shown.level[pass], *result.shown_error);
     // A pass whose programs drew in neither this probe frame nor the one before is not in the
     // scene: no level of it changes the image, so its error is 0 rather than the stand-in
     // (which would rank configurations that differ only there apart) until it is probed again.
@@ -289,6 +286,29 @@ class GovernorThread {
       governor_.shown_error(shown, *result.shown_error);
     }
     flush_held(nullptr, false);
+  }
+
+  // The one pass whose level is not its best in `levels` (within the manifest); -1 if none
+  // or several.
+  int only_pass_changed(const Levels& levels) const {
+    int pass = -1;
+    for (int i = 0; i < levels.count; ++i)
+      if (levels.level[i] != 0) pass = pass < 0 ? i : -2;
+    return pass >= 0 && static_cast<size_t>(pass) < manifest_.passes.size() ? pass : -1;
+  }
+
+  // A pass's error measured at `level`: at its cheapest level, the pass's error in the table
+  // (and the levels between by their ratio), and a drift if it moved from the last probe's.
+  void take_cheapest_level_error(int pass, int level, double e) {
+    const int lmax = static_cast<int>(manifest_.passes[static_cast<size_t>(pass)].levels.size()) - 1;
+    if (level != lmax) return;
+    loop::ErrorTable& table = governor_.errors();
+    if (probed_[static_cast<size_t>(pass)] && moved(table.error(static_cast<size_t>(pass), lmax), e))
+      g_drift.fetch_add(1, std::memory_order_relaxed);
+    probed_[static_cast<size_t>(pass)] = true;
+    table.set(static_cast<size_t>(pass), lmax, e);
+    set_probe_pass_error(static_cast<size_t>(pass), e);
+    for (int l = 1; l < lmax; ++l) table.set(static_cast<size_t>(pass), l, level_ratio(pass, l) * e);
   }
 
   // Whether a pass's fresh error is far enough from its last probe's to say the scene changed
@@ -507,6 +527,7 @@ bool governor_start() {
     settings.select_frames = o.select_frames;
     settings.transition_s = o.transition_s;
     settings.feedback.enabled = o.feedback;
+    settings.feedback.own_residuals = o.feedback_own;
     settings.error_feedback.enabled = o.error_feedback;
     if (!o.probe_stretch) settings.probe_stretch_gain = 0.0;
     const std::string path = default_profile_path();

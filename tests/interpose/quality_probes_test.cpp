@@ -297,6 +297,45 @@ TEST_CASE("passes not in the scene estimate no error at any level; passes in it 
   unlink((log + ".selections.csv").c_str());
 }
 
+TEST_CASE("a frame shown with one pass at its cheapest is that pass's probe: its error reaches the estimates") {
+  // The shadows at their cheapest, every other pass at its best: the probe planned for the
+  // shadows draws no stream (it would draw what is shown), so its error is the shown image's
+  // against the best. Once estimated from it, the shown configuration's estimate is each
+  // probe's measured error, never the stand-in kept before (an app whose one knob is the
+  // window's resolution, kept at its cheapest, kept the error of its first probe for good).
+  if (kSanitizedRun) return;  // the probes' paths are the other demo cases'
+  const std::string log = temp_path("one_pass_cheapest.csv");
+  unlink(log.c_str());
+  const ProcessResult r = run_process(
+      {DEMO_PATH, "--scene", "hall", "--detail", "0.05", "--width", "160", "--height", "90", "--frames", "16"},
+      {{"LD_PRELOAD", shim_path()},
+       {"GLBUDGET_CONFIG", manifest_path()},
+       {"GLBUDGET_FORCE", "0,0,0,2,0,0"},
+       {"GLBUDGET_PROBE_PERIOD", "3"},
+       {"GLBUDGET_LOG", log}});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  std::map<long, std::pair<std::string, std::string>> frames;  // frame -> (est_error, probe_error)
+  for (const auto& row : read_csv_rows_by_name(log))
+    frames.emplace(std::stol(row.at("frame")), std::make_pair(row.at("est_error"), row.at("probe_error")));
+  std::vector<double> measured;
+  for (const auto& [frame, values] : frames)
+    if (!values.second.empty()) measured.push_back(std::stod(values.second));
+  REQUIRE(measured.size() >= 4);
+  REQUIRE(frames.size() == 16);
+  // A probe's result comes a frame or more after it, when it comes: the last frames' estimates
+  // are the probes' measured errors, several probes on.
+  for (long frame = 14; frame <= 16; ++frame) {
+    const std::string& text = frames.at(frame).first;
+    INFO("frame " << frame << ": est_error " << text);
+    REQUIRE(!text.empty());
+    const double estimate = std::stod(text);
+    CHECK(std::any_of(measured.begin(), measured.end(), [&](double e) { return std::abs(e - estimate) < 2e-6; }));
+    CHECK(estimate != Approx(0.01));  // the stand-in
+  }
+  unlink(log.c_str());
+}
+
 TEST_CASE(
     "weighted settled probes take the pass of largest error × age, and come back to their first period "
     "when a pass's error moves") {
