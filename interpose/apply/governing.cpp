@@ -28,6 +28,7 @@
 #include "glbudget/sensors/profile_path.hpp"
 #include "options.hpp"
 #include "probes.hpp"
+#include "signals_blocked.hpp"
 #include "glbudget/quality/luma_image.hpp"
 #include "glbudget/quality/ssim.hpp"
 
@@ -132,7 +133,10 @@ class GovernorThread {
     probed_.assign(manifest_.passes.size(), false);
   }
 
-  void start() { pthread_create(&thread_, nullptr, &GovernorThread::main, this); }
+  void start() {
+    const SignalsBlocked blocked;  // the governor takes none of the app's signals
+    pthread_create(&thread_, nullptr, &GovernorThread::main, this);
+  }
 
   // Render threads never wait on the governor thread: what finds its queues locked waits in
   // `waiting_` (guarded by waiting_mu_, which only render threads and stop() take) until the
@@ -268,7 +272,7 @@ class GovernorThread {
     // window's resolution) kept the error its probe measured before, however the scene went on.
     if (best != 0 && result.shown_error)
       if (const int pass = only_pass_changed(p.shown); pass >= 0)
-        take_cheapest_level_error(pass, p.shown.level[pass], *result.shown_error);
+        take_cheapest_level_error(pass, p.shown.level[pass], *result.shown_error, false);
     // A pass whose programs drew in neither this probe frame nor the one before is not in the
     // scene: no level of it changes the image, so its error is 0 rather than the stand-in
     // (which would rank configurations that differ only there apart) until it is probed again.
@@ -298,12 +302,15 @@ class GovernorThread {
   }
 
   // A pass's error measured at `level`: at its cheapest level, the pass's error in the table
-  // (and the levels between by their ratio), and a drift if it moved from the last probe's.
-  void take_cheapest_level_error(int pass, int level, double e) {
+  // (and the levels between by their ratio), and, from a probe's stream (`drift`), a drift if it
+  // moved from the last probe's. The shown image's error counts no drift: it is measured at
+  // every probe frame, not in turn, and would call bursts of probes (each costing about five
+  // frames' power) where the streams' own turns would not.
+  void take_cheapest_level_error(int pass, int level, double e, bool drift = true) {
     const int lmax = static_cast<int>(manifest_.passes[static_cast<size_t>(pass)].levels.size()) - 1;
     if (level != lmax) return;
     loop::ErrorTable& table = governor_.errors();
-    if (probed_[static_cast<size_t>(pass)] && moved(table.error(static_cast<size_t>(pass), lmax), e))
+    if (drift && probed_[static_cast<size_t>(pass)] && moved(table.error(static_cast<size_t>(pass), lmax), e))
       g_drift.fetch_add(1, std::memory_order_relaxed);
     probed_[static_cast<size_t>(pass)] = true;
     table.set(static_cast<size_t>(pass), lmax, e);
