@@ -18,6 +18,7 @@
 #include "probes.hpp"
 #include "render_targets.hpp"
 #include "shader_instrumentation.hpp"
+#include "signals_blocked.hpp"
 #include "window_size.hpp"
 #include "glbudget/sensors/sensor.hpp"
 
@@ -143,6 +144,7 @@ void frame_output_started() {
     if (FrameLog::get().enabled() || governed) {
       install_signal_flush(SIGTERM);
       install_signal_flush(SIGINT);
+      const SignalsBlocked blocked;  // its sampling thread takes none of the app's signals
       g_sensor = sensors::open_sensor_from_environment().release();
     }
   });

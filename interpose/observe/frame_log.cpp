@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "glbudget/sensors/power_log.hpp"
+#include "signals_blocked.hpp"
 
 namespace glbudget {
 
@@ -137,6 +138,7 @@ void FrameLog::push(const FrameRow& row) {
   m.queue.push_back(row);
   if (!m.thread_started) {
     m.thread_started = true;
+    const SignalsBlocked blocked;  // the writer takes none of the app's signals
     pthread_create(&m.thread, nullptr, &FrameLog::writer_main, this);
     pthread_detach(m.thread);
   }
