@@ -1,8 +1,6 @@
 // glbudget run [options] -- APP [ARGS...]: runs an unmodified GL app under the shim. Sets up
 // LD_PRELOAD and the GLBUDGET_* variables from the options, finds the platform profile (or
 // says how to make one), and passes the app's exit status and the signals sent to it through.
-#include <signal.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -33,12 +31,7 @@ void print_help() {
       "frames (power is only saved when the GPU idles between them). --config names the\n"
       "variant manifest (default $XDG_CONFIG_HOME/glbudget/<exe>.toml). --force draws one\n"
       "configuration (a level per manifest pass). --log writes the per-frame CSV. The exit\n"
-      "status is APP's; signals sent to glbudget reach APP.\n");
-}
-
-pid_t g_child = 0;
-void forward(int sig) {
-  if (g_child > 0) kill(g_child, sig);
+      "status is APP's: glbudget runs it in its own place, so the signals sent to it reach APP.\n");
 }
 
 }  // namespace
@@ -143,39 +136,12 @@ int run_main(std::span<char* const> args) {
 
   std::vector<char*> argv(args.begin() + static_cast<std::ptrdiff_t>(i), args.end());
   argv.push_back(nullptr);
-  // Signals sent to us (Ctrl-C reaches the whole process group anyway; kill does not) go to
-  // the app; we wait for it and exit as it did.
-  struct sigaction sa {};
-  sa.sa_handler = forward;
-  sigemptyset(&sa.sa_mask);
-  for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2}) sigaction(sig, &sa, nullptr);
-  g_child = fork();
-  if (g_child < 0) {
-    std::fprintf(stderr, "glbudget: run: fork: %s\n", std::strerror(errno));
-    return 2;
-  }
-  if (g_child == 0) {
-    struct sigaction dfl {};
-    dfl.sa_handler = SIG_DFL;
-    for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2}) sigaction(sig, &dfl, nullptr);
-    execvp(argv[0], argv.data());
-    std::fprintf(stderr, "glbudget: run: cannot run %s: %s\n", argv[0], std::strerror(errno));
-    _exit(127);
-  }
-  int status = 0;
-  while (waitpid(g_child, &status, 0) < 0 && errno == EINTR) {
-  }
-  if (WIFEXITED(status)) return WEXITSTATUS(status);
-  if (WIFSIGNALED(status)) {
-    // Die of the same signal, so whoever runs us sees what the app saw.
-    const int sig = WTERMSIG(status);
-    struct sigaction dfl {};
-    dfl.sa_handler = SIG_DFL;
-    sigaction(sig, &dfl, nullptr);
-    kill(getpid(), sig);
-    return 128 + sig;
-  }
-  return 1;
+  // The app takes our place: its exit status and the signals that reach it are its own. A
+  // parent that forwarded signals delivered those sent to the whole process group twice (Ctrl-C,
+  // `timeout` without --foreground), and ioquake3 died of its "DOUBLE SIGNAL FAULT".
+  execvp(argv[0], argv.data());
+  std::fprintf(stderr, "glbudget: run: cannot run %s: %s\n", argv[0], std::strerror(errno));
+  return 127;
 }
 
 }  // namespace glbudget::cli
