@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "apply_gl.hpp"
 #include "configuration.hpp"
 #include "context_state.hpp"
 #include "hooks_generated.hpp"
@@ -46,26 +47,59 @@ void answer_for_app(GLenum pname, T* params) {
     for (int i = 0; i < 4; ++i) params[i] = static_cast<T>(box[i]);
   }
 }
+
+// What the app asks of the framebuffer drawn into, where that is the window: the window's own
+// answer, not the stand-in's (an FBO, single-buffered: GL_DOUBLEBUFFER 0 made Warzone 2100 refuse
+// to start at a scaled resolution).
+bool describes_draw_framebuffer(GLenum pname) {
+  switch (pname) {
+    case GL_DOUBLEBUFFER:
+    case GL_STEREO:
+    case GL_SAMPLES:
+    case GL_SAMPLE_BUFFERS:
+    case GL_RED_BITS:
+    case GL_GREEN_BITS:
+    case GL_BLUE_BITS:
+    case GL_ALPHA_BITS:
+    case GL_DEPTH_BITS:
+    case GL_STENCIL_BITS:
+      return true;
+    default:
+      return false;
+  }
+}
+
+template <typename Ask>
+void ask_of_window(GLenum pname, Ask ask) {
+  TargetScaler* s = describes_draw_framebuffer(pname) ? scaler() : nullptr;
+  if (!s || !s->window_scaled() || s->app_draw_framebuffer() != 0) return ask();
+  const ApplyGl& g = agl();
+  GLint draw = 0;
+  g.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+  g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  ask();
+  g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
+}
 }  // namespace
 
 void handle_glGetIntegerv(pfn_glGetIntegerv real, GLenum pname, GLint* data) {
-  real(pname, data);
+  ask_of_window(pname, [&] { real(pname, data); });
   answer_for_app(pname, data);
 }
 void handle_glGetInteger64v(pfn_glGetInteger64v real, GLenum pname, GLint64* data) {
-  real(pname, data);
+  ask_of_window(pname, [&] { real(pname, data); });
   answer_for_app(pname, data);
 }
 void handle_glGetFloatv(pfn_glGetFloatv real, GLenum pname, GLfloat* data) {
-  real(pname, data);
+  ask_of_window(pname, [&] { real(pname, data); });
   answer_for_app(pname, data);
 }
 void handle_glGetDoublev(pfn_glGetDoublev real, GLenum pname, GLdouble* data) {
-  real(pname, data);
+  ask_of_window(pname, [&] { real(pname, data); });
   answer_for_app(pname, data);
 }
 void handle_glGetBooleanv(pfn_glGetBooleanv real, GLenum pname, GLboolean* data) {
-  real(pname, data);
+  ask_of_window(pname, [&] { real(pname, data); });
   if (pname == GL_CURRENT_PROGRAM) answer_for_app(pname, data);  // boxes as booleans mean nothing
 }
 

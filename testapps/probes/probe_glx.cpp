@@ -1,7 +1,8 @@
 // A GLX window under X (run it under Xvfb): glXCreateContextAttribsARB and every GL function
 // from glXGetProcAddressARB, as GLFW and SDL do on X11.
 //   --samples N   a multisampled window (as SDL_GL_MULTISAMPLESAMPLES asks); exits 5 when
-//                 GL_SAMPLES of the default framebuffer does not answer N at the end
+//                 GL_SAMPLES of the default framebuffer does not answer N at the end (or
+//                 GL_DOUBLEBUFFER, always asked, not 1: Warzone 2100 refuses to run then)
 //   --slanted 1   after the known scene, a slanted triangle whose edges antialiasing shows
 //   --blit-through 1  after each frame's drawing, the window is blitted into a window-sized
 //                 framebuffer of the app's, the window cleared, and the copy blitted back
@@ -197,14 +198,22 @@ int main(int argc, char** argv) {
     glReadPixels(0, 0, args.width, args.height, GL_RGBA, GL_UNSIGNED_BYTE, swapped.data());
     if (!write_ppm(swapped_out, swapped, args.width, args.height)) rc = 3;
   }
-  GLint window_samples = -1;
+  GLint window_samples = -1, double_buffered = -1;
+  GLboolean double_buffered_bool = GL_FALSE;
   glGetIntegerv(GL_SAMPLES, &window_samples);
+  glGetIntegerv(GL_DOUBLEBUFFER, &double_buffered);
+  glGetBooleanv(GL_DOUBLEBUFFER, &double_buffered_bool);
   if (const GLenum error = glGetError(); rc == 0 && error != GL_NO_ERROR) {
     fprintf(stderr, "probe_glx: GL error 0x%04x\n", error);
     rc = 4;
   }
   if (rc == 0 && samples > 0 && window_samples != samples) {
     fprintf(stderr, "probe_glx: the window answers %d samples, made with %d\n", window_samples, samples);
+    rc = 5;
+  }
+  if (rc == 0 && (double_buffered != 1 || double_buffered_bool != GL_TRUE)) {
+    fprintf(stderr, "probe_glx: the window answers GL_DOUBLEBUFFER %d (%d as a boolean), made double-buffered\n",
+            double_buffered, double_buffered_bool);
     rc = 5;
   }
   glXMakeCurrent(dpy, None, nullptr);

@@ -264,8 +264,9 @@ TEST_CASE("the window at 60 % through GLX under Xvfb", "[integration]") {
   REQUIRE(xvfb.running());
   const std::string display = xvfb.display();
   check_scaled_probe("probe_glx", {"--size", "128"}, "2", {{"DISPLAY", display}});
-  // A multisampled window (4 samples): its stand-in has as many, the app's GL_SAMPLES query
-  // answers them (the probe exits 5 if not, 4 on any GL error), and the swap resolves it.
+  // The window's GL_DOUBLEBUFFER is the window's, not the stand-in's (an FBO: 0), or the probe
+  // exits 5. A multisampled window (4 samples): its stand-in has as many, the app's GL_SAMPLES
+  // query answers them (the probe exits 5 if not, 4 on any GL error), and the swap resolves it.
   check_scaled_probe("probe_glx", {"--size", "128", "--samples", "4"}, "2", {{"DISPLAY", display}});
   check_probes_of_multisampled_window(display);
   // A framebuffer of the app's kept at its size (a manifest whose render scale is the window's
