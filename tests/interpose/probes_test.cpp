@@ -137,6 +137,16 @@ TEST_CASE("compatibility profile: glBegin/glEnd and display lists form the fixed
   require_mostly_measured(check_log(r.log, 6, 1, passes));
 }
 
+TEST_CASE("the app's signals are taken by the app's threads, never the shim's", "[integration]") {
+  // probe_signals sends itself a process-directed SIGUSR1 each frame while its thread blocks
+  // it; a thread of the shim's that did not block it (the log writer, the governor with its
+  // probes, the sensor's sampler) would run the app's handler, and the probe exits 6. The log
+  // writer once did: ioquake3's SIGINT handler ran SDL_Quit there.
+  auto r = run_both("probe_signals", {}, {{"GLBUDGET_PROBE_PERIOD", "2"}});
+  INFO(r.shim.err);
+  CHECK(r.shim.err.find("SIGUSR1 taken 6 times on the main thread, 0 on others") != std::string::npos);
+}
+
 TEST_CASE("the app's own queries, on our targets too, and its pending GL errors", "[integration]") {
   // probe_queries checks its own query results, GL_CURRENT_QUERY and glGetError itself.
   auto r = run_both("probe_queries", {});
