@@ -34,6 +34,7 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_SELECT_FRAMES",
     "GLBUDGET_TRANSITION_S",
     "GLBUDGET_FEEDBACK",
+    "GLBUDGET_FEEDBACK_OWN",
     "GLBUDGET_ERROR_FEEDBACK",
     "GLBUDGET_PROBE_STRETCH",
     "GLBUDGET_WARM_BLITS",
@@ -64,14 +65,14 @@ std::vector<std::string> comma_items(const std::string& value) {
   }
   return items;
 }
-// A switch that is on by default: 1/on or 0/off; anything else is said and leaves it on.
+// A switch: 1/on or 0/off; anything else is said and leaves it as it was (its default).
 void parse_switch(std::string_view name, const std::string& value, bool& on, std::string* warnings) {
   if (value == "1" || value == "on")
     on = true;
   else if (value == "0" || value == "off")
     on = false;
   else
-    warn(warnings, std::string(name) + "='" + value + "' is not 0/1/on/off; on");
+    warn(warnings, std::string(name) + "='" + value + "' is not 0/1/on/off; " + (on ? "on" : "off"));
 }
 }  // namespace
 
@@ -163,6 +164,8 @@ Options parse_options(char** env, std::string* warnings) {
         warn(warnings, "GLBUDGET_PROBE_ORDER='" + value + "' is not weighted or turn; turn");
     } else if (name == "GLBUDGET_FEEDBACK") {
       parse_switch(name, value, o.feedback, warnings);
+    } else if (name == "GLBUDGET_FEEDBACK_OWN") {
+      parse_switch(name, value, o.feedback_own, warnings);
     } else if (name == "GLBUDGET_ERROR_FEEDBACK") {
       parse_switch(name, value, o.error_feedback, warnings);
     } else if (name == "GLBUDGET_PROBE_STRETCH") {

@@ -40,6 +40,9 @@ struct Options {
   // error × age (loop/probe_order.hpp) rather than the passes in turn.
   bool probe_order_weighted = false;
   bool feedback = true;  // GLBUDGET_FEEDBACK=0: no correction from measured power (the paper's open loop)
+  // GLBUDGET_FEEDBACK_OWN=1: a measured configuration's correction moves from the additive fit
+  // towards its own windows' residual (loop/power_feedback.hpp, own_residuals)
+  bool feedback_own = false;
   // GLBUDGET_ERROR_FEEDBACK=0: under an error budget, the estimates are not corrected by the
   // error probes measured of the configuration shown
   bool error_feedback = true;

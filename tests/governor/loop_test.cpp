@@ -1578,3 +1578,51 @@ TEST_CASE("a refit leaves the corrected prediction of the configuration drawn wh
   CHECK(jump_on < 0.5 * jump_off);
   CHECK(error_on <= error_off);
 }
+
+TEST_CASE("power feedback: a measured configuration's correction follows its own windows where the terms cannot",
+          "[loop][feedback]") {
+  // Two passes whose cheaper levels each cost what the model predicts, alone; drawn together
+  // they draw 3 W more (a saving that depends on the other pass's level, as Sponza's shadow
+  // map at a scaled resolution). No offset and terms explain all four residuals: the additive
+  // fit puts (1, 1) at about 2.25 W and its neighbours 0.75 W off. Its own windows say 3 W.
+  const Configuration best{0, 0}, first{1, 0}, second{0, 1}, both{1, 1};
+  auto measure = [](PowerFeedback& feedback, std::int64_t& t, const Configuration& c, double residual_w, int windows,
+                    double scatter_w) {
+    for (int w = 0; w < windows; ++w) {
+      const double r = residual_w + (w % 2 ? scatter_w : -scatter_w);
+      for (int k = 0; k <= 10; ++k, t += 100'000'000) feedback.add(c, t, 20.0 + r, 20.0);
+      feedback.interrupt();
+    }
+  };
+  auto run = [&](bool own, double scatter_w) {
+    FeedbackSettings settings;
+    settings.own_residuals = own;
+    PowerFeedback feedback{settings};
+    std::int64_t t = 0;
+    for (const Configuration& c : {best, first, second}) measure(feedback, t, c, 0.0, 4, scatter_w);
+    measure(feedback, t, both, 3.0, 4, scatter_w);
+    return feedback;
+  };
+  const PowerFeedback own = run(true, 0.2), fit = run(false, 0.2);
+  INFO("(1, 1): own " << own.bias(both) << " W, fit alone " << fit.bias(both) << " W; spread " << own.spread_w());
+  CHECK(fit.bias(both) < 2.5);
+  CHECK(own.bias(both) == Approx(3.0).margin(0.3));
+  CHECK(std::abs(own.bias(best)) < 0.3);
+  CHECK(std::abs(own.bias(first)) < 0.3);
+  CHECK(own.fitted_bias(both) == Approx(fit.bias(both)));
+  // A configuration never measured is the fit's, with or without.
+  CHECK(own.bias(Configuration{2, 1}) == Approx(fit.bias(Configuration{2, 1})));
+  // Windows scattering far beyond the prior's scale (1 W of 20 W) leave it to the fit: one
+  // window is not believed over it.
+  FeedbackSettings own_settings;
+  own_settings.own_residuals = true;
+  PowerFeedback noisy{own_settings};
+  std::int64_t t = 0;
+  for (const Configuration& c : {best, first, second}) measure(noisy, t, c, 0.0, 4, 4.0);
+  measure(noisy, t, both, 3.0, 1, 4.0);
+  INFO("noisy: spread " << noisy.spread_w() << ", residual " << noisy.residual(both) << ", fit "
+                        << noisy.fitted_bias(both) << ", bias " << noisy.bias(both));
+  CHECK(noisy.spread_w() > 3.0);
+  CHECK(std::abs(noisy.bias(both) - noisy.fitted_bias(both)) <
+        0.1 * std::abs(noisy.residual(both) - noisy.fitted_bias(both)));
+}

@@ -112,6 +112,28 @@ void PowerFeedback::set_prior(std::vector<std::vector<double>> terms) {
 }
 
 double PowerFeedback::bias(const model::Configuration& configuration) const {
+  const double fitted = fitted_bias(configuration);
+  if (!settings_.enabled || !settings_.own_residuals) return fitted;
+  const auto it = residuals_.find(configuration);
+  if (it == residuals_.end()) return fitted;
+  return fitted + own_weight(it->second.windows) * (it->second.value - fitted);
+}
+
+// The residual is the mean of a configuration's windows up to memory_windows of them, then an
+// exponential average with weight 1/m, whose variance is that of a mean of 2m - 1 windows.
+// Shrinkage as a normal prior of scale tau on the configuration's own deviation from the fit
+// would give, with the windows' spread as each window's scatter.
+double PowerFeedback::own_weight(std::size_t windows) const {
+  if (windows == 0) return 0.0;
+  const double memory = std::max(1.0, settings_.memory_windows);
+  const double n = std::min(static_cast<double>(windows), 2.0 * memory - 1.0);
+  const double tau = std::max(1e-6, settings_.prior_share * mean_power_w_);
+  const double spread = spread_w();
+  const double weight = n * tau * tau / (n * tau * tau + spread * spread);
+  return std::isfinite(weight) ? weight : 0.0;
+}
+
+double PowerFeedback::fitted_bias(const model::Configuration& configuration) const {
   if (!settings_.enabled || (residuals_.empty() && prior_.empty())) return 0.0;
   double b = offset_;
   for (std::size_t i = 0; i < configuration.size() && i < terms_.size(); ++i) {

@@ -45,6 +45,14 @@ struct FeedbackSettings {
   // makes to its prediction (rebase()); false: it stays as measured against the old
   // coefficients until new windows replace it.
   bool rebase_on_refit = true;
+  // A measured configuration's correction moves from the additive fit towards its own
+  // windows' residual by n * tau^2 / (n * tau^2 + spread^2), n its windows (the residual's
+  // memory caps it), tau prior_share of the power: what the additive terms cannot explain (a
+  // level whose saving depends on the others') is believed once its windows show it beyond
+  // their scatter. Off by default (GLBUDGET_FEEDBACK_OWN=1): in interleaved 600-frame runs it
+  // kept as many windows within the budget as the fit alone, within their scatter
+  // (docs/evaluation/feedback/own-residuals.md).
+  bool own_residuals = false;
 };
 
 class PowerFeedback {
@@ -73,8 +81,11 @@ class PowerFeedback {
   // not finite, drops the open window and moves nothing.
   void rebase(const model::Configuration& configuration, double change_w);
 
-  // The correction of a configuration's prediction (0 before any window).
+  // The correction of a configuration's prediction (0 before any window): the additive fit's,
+  // moved towards the configuration's own residual where it has one (own_residuals).
   double bias(const model::Configuration& configuration) const;
+  // The additive fit's correction alone.
+  double fitted_bias(const model::Configuration& configuration) const;
   // The measured residual of a configuration itself (0 if never measured).
   double residual(const model::Configuration& configuration) const;
   bool measured(const model::Configuration& configuration) const { return residuals_.count(configuration) > 0; }
@@ -116,6 +127,8 @@ class PowerFeedback {
   double z_ = 0.0;
   std::optional<Open> open_;
   void fit();
+  // How far a configuration measured over `windows` windows is moved to its own residual.
+  double own_weight(std::size_t windows) const;
 
   std::map<model::Configuration, Residual> residuals_;
   // The fitted correction: offset + terms_[pass][level] (levels beyond a pass's size: 0).
