@@ -416,9 +416,12 @@ class GovernorThread {
       for (; notes_said_ < governor_.notes().size(); ++notes_said_) say(governor_.notes()[notes_said_]);
     if (d.event == loop::Event::select) write_selection();
     publish(d.next);
+    // Observing for the probes alone, the model runs on no profile of the machine's: its
+    // predictions are not watts, and there is no budget.
+    const bool steering = governor_.governing();
     for (FrameRow& row : f.rows) {
-      row.predicted_w = d.predicted_w;
-      row.budget_w = d.budget_w;
+      row.predicted_w = steering ? d.predicted_w : std::nan("");
+      row.budget_w = steering ? d.budget_w : std::nan("");
       row.est_error = d.est_error;
       row.decision = loop::event_name(d.event);
     }
