@@ -316,13 +316,8 @@ TEST_CASE("a frame shown with one pass at its cheapest is that pass's probe: its
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   std::map<long, std::pair<std::string, std::string>> frames;  // frame -> (est_error, probe_error)
-  size_t watts_without_a_budget = 0;
-  for (const auto& row : read_csv_rows_by_name(log)) {
+  for (const auto& row : read_csv_rows_by_name(log))
     frames.emplace(std::stol(row.at("frame")), std::make_pair(row.at("est_error"), row.at("probe_error")));
-    // Probes without a budget: the model has no profile of the machine, so no watts and no budget.
-    watts_without_a_budget += !row.at("predicted_w").empty() || !row.at("budget_w").empty();
-  }
-  CHECK(watts_without_a_budget == 0);
   std::vector<double> measured;
   for (const auto& [frame, values] : frames)
     if (!values.second.empty()) measured.push_back(std::stod(values.second));
