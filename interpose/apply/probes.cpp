@@ -650,41 +650,14 @@ struct ProbeFrames::Impl {
   // The real window's depth and stencil as an attachment point and a sized format; a window
   // with neither gets GL_DEPTH24_STENCIL8 (nothing is copied into it: the app clears it).
   std::pair<GLenum, GLint> window_depth_stencil() {
-    const ApplyGl& g = agl();
-    const GLint draw = get(GL_DRAW_FRAMEBUFFER_BINDING);
-    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-    // Only the object type may be asked of an absent buffer; any other parameter is an error.
-    GLint depth_type = GL_NONE, stencil_type = GL_NONE, depth_bits = 0, stencil_bits = 0, component = GL_NONE;
-    g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE,
-                                          &depth_type);
-    g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_STENCIL, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE,
-                                          &stencil_type);
-    if (depth_type != GL_NONE) {
-      g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE,
-                                            &depth_bits);
-      g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE,
-                                            &component);
-    }
-    if (stencil_type != GL_NONE)
-      g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_STENCIL, GL_FRAMEBUFFER_ATTACHMENT_STENCIL_SIZE,
-                                            &stencil_bits);
-    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
-    if (depth_bits <= 0 && stencil_bits > 0) return {GL_STENCIL_ATTACHMENT, GL_STENCIL_INDEX8};
-    const GLint format = depth_bits > 0 ? sized_depth_format(depth_bits, stencil_bits, component == GL_FLOAT) : 0;
+    const TargetScaler::DepthStencil& w = targets()->window_depth_stencil();
+    if (w.depth_bits <= 0 && w.stencil_bits > 0) return {GL_STENCIL_ATTACHMENT, GL_STENCIL_INDEX8};
+    const GLint format = w.depth_bits > 0 ? sized_depth_format(w.depth_bits, w.stencil_bits, w.floating_depth) : 0;
     if (!format) return {GL_DEPTH_STENCIL_ATTACHMENT, GL_DEPTH24_STENCIL8};
-    return {stencil_bits > 0 ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT, format};
+    return {w.stencil_bits > 0 ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT, format};
   }
 
-  bool window_has_depth() {
-    GLint type = GL_NONE;
-    const GLint draw = get(GL_DRAW_FRAMEBUFFER_BINDING);
-    agl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-    // Any other parameter of an absent buffer is an error the app would see.
-    agl().GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE,
-                                              &type);
-    agl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
-    return type != GL_NONE;
-  }
+  bool window_has_depth() { return targets()->window_depth_stencil().depth_bits > 0; }
 
   // The stream's shadow of the app's framebuffer, made and filled for this frame if needed.
   // The caller saved the draw and read bindings; both may change.

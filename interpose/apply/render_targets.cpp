@@ -234,6 +234,18 @@ void TargetScaler::check_window() {
                                         &stencil);
   g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, caps_.gles ? GL_BACK : GL_BACK_LEFT,
                                         GL_FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING, &encoding);
+  DepthStencil& ds = window_.depth_stencil;
+  GLint component = GL_NONE;
+  if (depth != GL_NONE) {
+    g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE,
+                                          &ds.depth_bits);
+    g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE,
+                                          &component);
+  }
+  if (stencil != GL_NONE)
+    g.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_STENCIL, GL_FRAMEBUFFER_ATTACHMENT_STENCIL_SIZE,
+                                          &ds.stencil_bits);
+  ds.floating_depth = component == GL_FLOAT;
   g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
   window_.samples = std::max(0, samples);
   window_.has_depth = depth != GL_NONE || stencil != GL_NONE;
@@ -243,6 +255,11 @@ void TargetScaler::check_window() {
 int TargetScaler::window_samples() {
   check_window();
   return window_.samples;
+}
+
+const TargetScaler::DepthStencil& TargetScaler::window_depth_stencil() {
+  check_window();
+  return window_.depth_stencil;
 }
 
 void TargetScaler::update_window() {

@@ -79,6 +79,12 @@ class TargetScaler {
   bool window_scaled() const { return window_.fbo != 0; }
   // The window's samples (0: single-sampled), asked of the driver once.
   int window_samples();
+  // The window's own depth and stencil (0 bits: none), asked of the driver once.
+  struct DepthStencil {
+    int depth_bits = 0, stencil_bits = 0;
+    bool floating_depth = false;
+  };
+  const DepthStencil& window_depth_stencil();
   GLuint app_draw_framebuffer() const { return draw_fbo_; }
   GLuint app_read_framebuffer() const { return read_fbo_; }
   // Runs `read` (a glReadPixels or glCopyTex* of the app, of the rectangle x, y, w, h in its
@@ -266,6 +272,7 @@ class TargetScaler {
     ImageSet resolve;                      // a multisampled stand-in resolved, at its size
     GLenum color_format = GL_RGBA8;
     int samples = 0;
+    DepthStencil depth_stencil;
     bool has_depth = false, checked = false;
     // Without blits: the colour is a texture; depth in what the driver has, and stencil in an
     // image of its own where it has no packed depth-stencil.

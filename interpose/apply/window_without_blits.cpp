@@ -2,6 +2,7 @@
 // one framebuffer binding for reading and drawing, no multisampled renderbuffers, no sized
 // colour formats. The stand-in's colour is a texture, drawn into the back buffer at each swap
 // and into a window-sized copy for reads (glReadPixels, glCopyTex* of the window).
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
@@ -36,6 +37,7 @@ void TargetScaler::check_window_without_blits() {
   if (bound) g.BindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(bound));
   window_.samples = samples > 0 ? samples : 0;
   window_.has_depth = depth_bits > 0 || stencil_bits > 0;
+  window_.depth_stencil = {std::max(0, depth_bits), std::max(0, stencil_bits), false};
   // Where the window has stencil: a depth-stencil image, else one of each.
   const bool packed = stencil_bits > 0 && has_extension(caps_, "GL_OES_packed_depth_stencil");
   window_.depth_format = packed                                                      ? GL_DEPTH24_STENCIL8
