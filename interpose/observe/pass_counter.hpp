@@ -60,6 +60,13 @@ class PassCounter : public DrawCounter {
   bool app_holds(GLenum target) const;
   bool our_query_active(GLenum target) const;
 
+  // Ends our queries before the context stops being current here (released, or destroyed while
+  // current): llvmpipe frees a query that is still active at destruction without waiting for
+  // the rasterizer threads that write it. The frame goes on; its next draw opens a new segment.
+  void suspend() {
+    if (open_) close_segment();
+  }
+
   // Frame boundary (before the real swap): closes the open segment and queues the frame.
   void end_frame(uint64_t frame, int64_t time_ns, int context_index, const sensors::FrameEnergy& energy);
   // Turns queued frames into rows, never waiting on the GPU:

@@ -168,6 +168,7 @@ void context_will_change(void* handle) {
   // A context that stops being current here cannot be asked later from this thread: harvest
   // what the GPU has finished while it still is (no waiting).
   if (t_ctx && t_ctx->handle != handle) {
+    if (t_ctx->counter) t_ctx->counter->suspend();
     flush_pending_frames(*t_ctx, FlushMode::kCollect);
     // Instrumentation counters cannot be read from another thread or context: read them now.
     instrumentation_release(*t_ctx);
@@ -178,6 +179,7 @@ void context_destroyed(void* handle) {
   Registry& r = registry();
   std::lock_guard lock(r.mu);
   bool current_here = t_ctx && t_ctx->handle == handle;
+  if (current_here && t_ctx->counter) t_ctx->counter->suspend();
   if (current_here) instrumentation_release(*t_ctx);  // called before the real destroy
   if (current_here && t_ctx->probes) t_ctx->probes->abandon_frame();
   retire(r, handle, current_here);
