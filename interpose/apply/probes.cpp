@@ -13,6 +13,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "app_signals.hpp"
 #include "app_space_uniforms.hpp"
 #include "apply_gl.hpp"
 #include "context_state.hpp"
@@ -1319,6 +1320,8 @@ bool ProbeFrames::was_probe_frame(uint64_t frame) const {
 }
 
 void ProbeFrames::prepare() {
+  const AppSignalsDeferred deferred;
+  hold_app_signals();  // until the swap (app_signals.hpp)
   if (impl_->frame) impl_->prepare();
 }
 
@@ -1334,6 +1337,8 @@ bool ProbeFrames::next() { return impl_->advance(); }
 void ProbeFrames::end() { impl_->end_duplicate(); }
 
 void ProbeFrames::generate_mipmap(GLuint texture) {
+  const AppSignalsDeferred deferred;
+  hold_app_signals();  // until the swap (app_signals.hpp)
   Impl& p = *impl_;
   if (!p.frame || !pgl().GenerateMipmap) return;
   const OwnGlWork own(p.c);
@@ -1353,6 +1358,7 @@ void ProbeFrames::generate_mipmap(GLuint texture) {
 }
 
 void ProbeFrames::blit(const GLint* src, const GLint* dst, GLbitfield mask, GLenum filter) {
+  const AppSignalsDeferred deferred;
   Impl& p = *impl_;
   if (!p.frame) return;
   const OwnGlWork own(p.c);

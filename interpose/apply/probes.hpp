@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "app_signals.hpp"
 #include "configuration.hpp"
 #include "gl_types.hpp"
 #include "glbudget/manifest/manifest.hpp"
@@ -119,6 +120,7 @@ extern thread_local ProbeFrames* t_probe __attribute__((tls_model("initial-exec"
 
 template <typename F>
 void ProbeFrames::clear(F&& call) {
+  const AppSignalsDeferred deferred;
   if (!first()) return;
   do call();
   while (next());
@@ -129,6 +131,7 @@ void ProbeFrames::clear(F&& call) {
 template <typename F>
 inline void probe_draw(F&& draw) {
   ProbeFrames* p = t_probe;
+  const AppSignalsDeferred deferred;  // a duplicate may wait in the driver (app_signals.hpp)
   if (!p->first()) return;
   do draw();
   while (p->next());

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <mutex>
 
+#include "app_signals.hpp"
 #include "configuration.hpp"
 #include "governing.hpp"
 #include "context_state.hpp"
@@ -155,6 +156,7 @@ void swap_begin() {
   if (!c) return;
   // Pacing sleeps before the frame is presented, so frames reach the screen evenly spaced.
   if (options().fps > 0) pace(*c, options().fps);
+  const AppSignalsDeferred deferred;
   InFrameCode guard;
   const int64_t now = sensors::monotonic_now_ns();
   c->counter->end_frame(++c->frame, now, c->index, frame_energy(now));
@@ -164,11 +166,15 @@ void swap_begin() {
     c->targets->end_frame();
   }
   if (c->probes) c->probes->after_present();
+  // A probe frame's hold ends before the app's own swap, which may block for long (a hidden
+  // window's vsync): the app's handler must be able to interrupt it, as without the shim.
+  release_app_signals();
 }
 
 void swap_end() {
   ContextState* c = current_context();
   if (!c) return;
+  const AppSignalsDeferred deferred;
   flush_pending_frames(*c, FlushMode::kCollect);
   instrumentation_swap(*c);
   if (c->targets) {

@@ -3,6 +3,7 @@
 #include <unordered_map>
 
 #include "context_state.hpp"
+#include "app_signals.hpp"
 #include "app_space_uniforms.hpp"
 #include "frame_log.hpp"
 #include "frame_output.hpp"
@@ -168,14 +169,18 @@ void context_will_change(void* handle) {
   // A context that stops being current here cannot be asked later from this thread: harvest
   // what the GPU has finished while it still is (no waiting).
   if (t_ctx && t_ctx->handle != handle) {
+    const AppSignalsDeferred deferred;
     if (t_ctx->counter) t_ctx->counter->suspend();
     flush_pending_frames(*t_ctx, FlushMode::kCollect);
+    release_app_signals();  // this thread's probe frame stops here
     // Instrumentation counters cannot be read from another thread or context: read them now.
     instrumentation_release(*t_ctx);
   }
 }
 
 void context_destroyed(void* handle) {
+  // Ends after the lock: a handler run at its end may destroy a context (app_signals.hpp).
+  const AppSignalsDeferred deferred;
   Registry& r = registry();
   std::lock_guard lock(r.mu);
   bool current_here = t_ctx && t_ctx->handle == handle;
@@ -189,6 +194,7 @@ void context_destroyed(void* handle) {
     t_ctx = nullptr;
     t_draw = nullptr;
     t_probe = nullptr;
+    release_app_signals();
   }
 }
 

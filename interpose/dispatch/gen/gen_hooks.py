@@ -277,7 +277,7 @@ def main():
         f.write('\n'.join(cpp) + '\n')
     with open(f'{outdir}/exports.map', 'w') as f:
         f.write('{\n  global:\n')
-        for n in all_hooks + ['dlsym', '_exit', '_Exit']:
+        for n in all_hooks + ['dlsym', '_exit', '_Exit', 'sigaction', 'signal', 'bsd_signal']:
             f.write(f'    {n};\n')
         f.write('  local: *;\n};\n')
 
