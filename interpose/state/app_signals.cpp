@@ -91,9 +91,7 @@ void trampoline(int sig, siginfo_t* info, void* context) {
   run_app_handler(sig, info, context);
 }
 
-bool is_trampoline(const struct sigaction& sa) {
-  return (sa.sa_flags & SA_SIGINFO) && sa.sa_sigaction == trampoline;
-}
+bool is_trampoline(const struct sigaction& sa) { return (sa.sa_flags & SA_SIGINFO) && sa.sa_sigaction == trampoline; }
 
 bool is_function(const struct sigaction* act) {
   if (act->sa_flags & SA_SIGINFO) return act->sa_sigaction != nullptr;
@@ -165,7 +163,8 @@ int app_sigaction(int sig, const struct sigaction* act, struct sigaction* old) {
 // signal()'s BSD semantics, as glibc gives them: the signal blocked in its handler, and
 // system calls restarted.
 sighandler_t app_signal(int sig, sighandler_t handler) {
-  struct sigaction act {}, old{};
+  struct sigaction act {
+  }, old{};
   act.sa_handler = handler;
   sigemptyset(&act.sa_mask);
   sigaddset(&act.sa_mask, sig);
@@ -197,7 +196,8 @@ void app_signals_detail::run_deferred() {
 
 using namespace glbudget;
 
-GLBUDGET_SIGNAL_EXPORT int sigaction(int sig, const struct sigaction* __restrict act, struct sigaction* __restrict old) noexcept {
+GLBUDGET_SIGNAL_EXPORT int sigaction(int sig, const struct sigaction* __restrict act,
+                                     struct sigaction* __restrict old) noexcept {
   return app_sigaction(sig, act, old);
 }
 

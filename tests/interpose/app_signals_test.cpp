@@ -127,7 +127,8 @@ TEST_CASE("app signals: sigaction reports the app's own action, never the trampo
   CHECK((now.sa_flags & SA_RESTART));
   CHECK(sigismember(&now.sa_mask, SIGUSR2) == 1);
   // Replacing it returns the previous one as the app installed it.
-  struct sigaction next {}, previous{};
+  struct sigaction next {
+  }, previous{};
   next.sa_sigaction = on_info;
   next.sa_flags = SA_SIGINFO;
   sigemptyset(&next.sa_mask);
