@@ -121,6 +121,7 @@ ApplyGl load_all() {
   load(g.IsEnabled, "glIsEnabled");
   load(g.GetIntegerv, "glGetIntegerv");
   load(g.ReadBuffer, "glReadBuffer");
+  load(g.DrawBuffer, "glDrawBuffer");
   return g;
 }
 }  // namespace

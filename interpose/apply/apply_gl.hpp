@@ -119,6 +119,7 @@ struct ApplyGl {
   GLboolean(APIENTRYP IsEnabled)(GLenum) = nullptr;
   void(APIENTRYP GetIntegerv)(GLenum, GLint*) = nullptr;
   void(APIENTRYP ReadBuffer)(GLenum) = nullptr;
+  void(APIENTRYP DrawBuffer)(GLenum) = nullptr;  // not in GLES
 };
 
 const ApplyGl& agl();                  // resolves on first use (a context is current)

@@ -488,8 +488,9 @@ void handle_glPushAttrib(pfn_glPushAttrib real, GLbitfield mask) {
 }
 
 void handle_glPopAttrib(pfn_glPopAttrib real) {
-  real();
-  if (TargetScaler* s = scaler()) s->attrib_popped();
+  TargetScaler* s = scaler();
+  if (!s) return real();
+  s->pop_attrib(real);
 }
 
 void handle_glReadPixels(pfn_glReadPixels real, GLint x, GLint y, GLsizei width, GLsizei height, GLenum format,

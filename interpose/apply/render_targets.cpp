@@ -899,7 +899,50 @@ void TargetScaler::attrib_pushed(GLbitfield mask) {
   // Nothing pushed (a full stack, or a push compiled into a display list): as deep as GL's.
   if (now <= attrib_stack_.size()) return attrib_stack_.resize(now);
   attrib_stack_.resize(now - 1);  // pushes made where the shim did not see them hold nothing
-  attrib_stack_.push_back({mask, viewport_, scissor_, viewports_, scissors_});
+  attrib_stack_.push_back({mask, window_scaled(), viewport_, scissor_, viewports_, scissors_});
+}
+
+GLenum TargetScaler::window_name(GLenum attachment_buffer, bool double_buffered) {
+  if (attachment_buffer == GL_COLOR_ATTACHMENT0) return double_buffered ? GL_BACK : GL_FRONT;
+  return attachment_buffer;
+}
+
+void TargetScaler::pop_attrib(void (*pop)()) {
+  const ApplyGl& g = agl();
+  GLint depth = 0;
+  g.GetIntegerv(GL_ATTRIB_STACK_DEPTH, &depth);
+  const bool seen = depth > 0 && static_cast<size_t>(depth) == attrib_stack_.size();
+  const GLbitfield mask = seen ? attrib_stack_.back().mask & (GL_COLOR_BUFFER_BIT | GL_PIXEL_MODE_BIT) : 0;
+  const bool draw_window = draw_fbo_ == 0 && (mask & GL_COLOR_BUFFER_BIT);
+  const bool read_window = read_fbo_ == 0 && (mask & GL_PIXEL_MODE_BIT);
+  if (!seen || (!draw_window && !read_window) || attrib_stack_.back().window_scaled == window_scaled() ||
+      !g.DrawBuffer) {
+    pop();
+    return attrib_popped();
+  }
+  const bool scaled_then = attrib_stack_.back().window_scaled;
+  if (scaled_then && !attrib_fbo_) g.GenFramebuffers(1, &attrib_fbo_);
+  const GLuint then = scaled_then ? attrib_fbo_ : 0;
+  if (draw_window) g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, then);
+  if (read_window) g.BindFramebuffer(GL_READ_FRAMEBUFFER, then);
+  pop();
+  GLint draw = GL_NONE, read = GL_NONE, double_buffered = GL_TRUE;
+  if (draw_window) g.GetIntegerv(GL_DRAW_BUFFER, &draw);
+  if (read_window) g.GetIntegerv(GL_READ_BUFFER, &read);
+  if (!window_scaled()) {
+    // Asked of the window itself: the shim answers the app GL_DOUBLEBUFFER from it too.
+    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    g.GetIntegerv(GL_DOUBLEBUFFER, &double_buffered);
+  }
+  g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, real_framebuffer(draw_fbo_));
+  g.BindFramebuffer(GL_READ_FRAMEBUFFER, real_framebuffer(read_fbo_));
+  const auto now = [&](GLint buffer) {
+    const GLenum b = static_cast<GLenum>(buffer);
+    return window_scaled() ? window_buffer(b) : window_name(b, double_buffered != GL_FALSE);
+  };
+  if (draw_window) g.DrawBuffer(now(draw));
+  if (read_window) g.ReadBuffer(now(read));
+  attrib_popped();
 }
 
 void TargetScaler::attrib_popped() {

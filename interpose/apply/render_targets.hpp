@@ -110,6 +110,12 @@ class TargetScaler {
   // are kept on a stack of the same depth and given again after the pop, scaled for the
   // framebuffer bound then (a push before a swap that switched the scale, popped after it).
   void attrib_pushed(GLbitfield mask);
+  // The app's glPopAttrib (`pop`, the real call) and then attrib_popped. Draw and read buffers
+  // pushed with the window bound name the window as it was then, GL_BACK or the stand-in's
+  // GL_COLOR_ATTACHMENT0: where a swap has switched its scale since (a governor's transition),
+  // the driver would reject them on what the window is now. They are popped onto a framebuffer
+  // of the kind they name, and the window given their equivalent.
+  void pop_attrib(void (*pop)());
   void attrib_popped();
   // glDrawBuffer(s)/glReadBuffer of the window while the stand-in is bound: GL_BACK and the
   // like become GL_COLOR_ATTACHMENT0.
@@ -309,6 +315,7 @@ class TargetScaler {
   void agl_bind_read_framebuffer(GLuint app);
   struct SavedBoxes {
     GLbitfield mask = 0;
+    bool window_scaled = false;  // at the push
     std::array<GLint, 4> viewport{}, scissor{};
     std::vector<std::array<GLfloat, 4>> viewports;
     std::vector<std::array<GLint, 4>> scissors;
@@ -324,7 +331,10 @@ class TargetScaler {
   }
   void apply_indexed_boxes(double sx, double sy);
   std::vector<SavedBoxes> attrib_stack_;  // as deep as GL's (GL_ATTRIB_STACK_DEPTH)
-  std::set<GLuint> viewed_;               // textures made immutable for glTextureView: never scaled
+  GLuint attrib_fbo_ = 0;                 // attachment-less: takes a pushed GL_COLOR_ATTACHMENT0
+  // GL_BACK, or GL_FRONT for a single-buffered window, for the stand-in's GL_COLOR_ATTACHMENT0.
+  static GLenum window_name(GLenum attachment_buffer, bool double_buffered);
+  std::set<GLuint> viewed_;  // textures made immutable for glTextureView: never scaled
   struct ReadCopy {
     GLuint fbo = 0, image = 0;
     GLenum format = 0;

@@ -5,8 +5,8 @@
 // --push-attrib 1: the fixed-function quads drawn as a HUD is, between glPushAttrib(GL_ALL_
 // ATTRIB_BITS) and glPopAttrib with a viewport and scissor box of their own (SFML's
 // pushGLStates, older engines' overlays), and every other frame a push made before the swap
-// popped after it. After each pop GL_VIEWPORT must be the app's again (else exit 5), and no GL
-// error may have been raised (else exit 4).
+// popped after it, the window bound again first. After each pop GL_VIEWPORT must be the app's
+// again (else exit 5), and no GL error may have been raised (else exit 4).
 #define GL_GLEXT_PROTOTYPES 1
 #include <cstdio>
 #include <cstdlib>
@@ -48,11 +48,21 @@ int main(int argc, char** argv) {
     glGetIntegerv(GL_VIEWPORT, v);
     return v[0] == 0 && v[1] == 0 && v[2] == args.width && v[3] == args.height;
   };
+  if (push_attrib) {
+    // Named as apps name them (SDL and engines set both at start).
+    glDrawBuffer(GL_BACK);
+    glReadBuffer(GL_BACK);
+  }
   for (int f = 0; f < args.frames; ++f) {
     const bool across_swap = push_attrib && f % 2 == 1;
-    if (across_swap) glPopAttrib();  // pushed before the last swap
-    if (push_attrib && !viewport_is_the_apps()) return 5;
     scene.draw_frame(f);
+    if (across_swap) {
+      // Popped with the window bound, after this frame has drawn into it (extremetuxracer): the
+      // read and draw buffers pushed name the window as it was before the swap.
+      glBindFramebuffer(GL_FRAMEBUFFER, 0);
+      glPopAttrib();  // pushed before the last swap
+    }
+    if (push_attrib && !viewport_is_the_apps()) return 5;
     gl.UseProgram(0);
     if (push_attrib) {
       glPushAttrib(GL_ALL_ATTRIB_BITS);

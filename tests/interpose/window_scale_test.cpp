@@ -206,7 +206,10 @@ TEST_CASE("a desktop GL 2.1 context: scaled with ARB_framebuffer_object, else dr
 // apps save theirs with glGetIntegerv(GL_VIEWPORT) to set it again: both must see the app's
 // own box, never the scaled one the driver holds (set again, it would be scaled twice). The
 // probe exits 5 when GL_VIEWPORT after a pop is not its own, 4 on a GL error; every other frame
-// its push is made before the swap and popped after it, while the scale switches each frame.
+// its push is made before the swap and popped after it, with the window bound after the frame
+// drew into it, while the scale switches each frame: the read and draw buffers pushed name the
+// window as it was (GL_COLOR_ATTACHMENT0 of the stand-in, popped onto the unscaled window, was
+// a GL error; extremetuxracer under a governor hit the reverse, GL_BACK onto the stand-in).
 TEST_CASE("an app's viewport across glPushAttrib/glPopAttrib and glGetIntegerv, scaled window", "[integration]") {
   check_scaled_probe("probe_compat", {"--size", "128", "--push-attrib", "1", "--frames", "5"}, "2");
   for (const char* force : {"0;2", "2;0"}) {
