@@ -189,7 +189,8 @@ TEST_CASE("under an error budget, the probes' error of the image shown corrects 
   // The first probe of a configuration other than the best: with no spread measured yet, its
   // corrected estimate is its measurement, and the log's est_error says so from the frame the
   // governor learnt it (the images are compared a frame or two late, and frames' counters
-  // reach the governor later still, so that may be the probe frame's own row).
+  // reach the governor later still, so that may be the probe frame's own row; on a loaded
+  // machine, beside another test, it took more than 4 frames once).
   const auto first = std::find_if(closed.begin(), closed.end(), [&](const auto& r) {
     return r.second.probe_error >= 0.0 && r.second.configuration != best;
   });
@@ -197,7 +198,7 @@ TEST_CASE("under an error budget, the probes' error of the image shown corrects 
   INFO("first probe of " << first->second.configuration << " at frame " << first->first << ": "
                          << first->second.probe_error);
   bool corrected = false;
-  for (long k = first->first; k <= first->first + 4; ++k) {
+  for (long k = first->first; k <= first->first + 8; ++k) {
     const auto it = closed.find(k);
     if (it != closed.end() && it->second.configuration == first->second.configuration)
       corrected = corrected || std::abs(it->second.est_error - first->second.probe_error) < 2e-6;
