@@ -98,18 +98,28 @@ bool is_function(const struct sigaction* act) {
   return act->sa_handler != SIG_DFL && act->sa_handler != SIG_IGN && act->sa_handler != SIG_ERR;
 }
 
-// What the app installed, as sigaction() reports it.
-void app_view(int sig, const struct sigaction& kernel, struct sigaction* out) {
-  *out = kernel;
-  if (!is_trampoline(kernel)) return;
+// An AppAction's contents at one moment.
+struct AppRecord {
+  void* handler = nullptr;
+  int flags = 0;
+  sigset_t mask{};
+};
+AppRecord record_of(int sig) {
   const AppAction& a = g_actions[sig];
-  const int flags = a.flags.load(std::memory_order_relaxed);
-  if (flags & SA_SIGINFO)
-    out->sa_sigaction = reinterpret_cast<void (*)(int, siginfo_t*, void*)>(a.handler.load());
+  return {a.handler.load(std::memory_order_acquire), a.flags.load(std::memory_order_relaxed), a.mask};
+}
+
+// What the app installed, as sigaction() reports it: the kernel's action, unless that is the
+// trampoline standing for `app`.
+void app_view(const struct sigaction& kernel, const AppRecord& app, struct sigaction* out) {
+  *out = kernel;
+  if (!is_trampoline(kernel) || !app.handler) return;
+  if (app.flags & SA_SIGINFO)
+    out->sa_sigaction = reinterpret_cast<void (*)(int, siginfo_t*, void*)>(app.handler);
   else
-    out->sa_handler = reinterpret_cast<void (*)(int)>(a.handler.load());
-  out->sa_flags = flags;
-  out->sa_mask = a.mask;
+    out->sa_handler = reinterpret_cast<void (*)(int)>(app.handler);
+  out->sa_flags = app.flags;
+  out->sa_mask = app.mask;
 }
 
 int app_sigaction(int sig, const struct sigaction* act, struct sigaction* old) {
@@ -119,25 +129,15 @@ int app_sigaction(int sig, const struct sigaction* act, struct sigaction* old) {
     return -1;
   }
   if (!deferrable(sig)) return real(sig, act, old);
+  // Taken before the change, for the previous action where the kernel held the trampoline.
+  const AppRecord before = record_of(sig);
   struct sigaction kernel_old {};
-  if (!act) {
-    const int rc = real(sig, nullptr, &kernel_old);
-    if (rc == 0 && old) app_view(sig, kernel_old, old);
-    return rc;
-  }
-  // Kept as it was, to report the previous action if the kernel held the trampoline.
-  AppAction& a = g_actions[sig];
-  struct sigaction previous_app {};
-  const bool had_handler = a.handler.load() != nullptr;
-  if (had_handler) {
-    struct sigaction tramp {};
-    tramp.sa_flags = SA_SIGINFO;
-    tramp.sa_sigaction = trampoline;
-    app_view(sig, tramp, &previous_app);
-  }
   int rc;
-  if (is_function(act)) {
+  if (!act) {
+    rc = real(sig, nullptr, &kernel_old);
+  } else if (is_function(act)) {
     // Recorded before the kernel may deliver through the trampoline.
+    AppAction& a = g_actions[sig];
     a.mask = act->sa_mask;
     a.flags.store(act->sa_flags, std::memory_order_relaxed);
     a.handler.store((act->sa_flags & SA_SIGINFO) ? reinterpret_cast<void*>(act->sa_sigaction)
@@ -149,14 +149,9 @@ int app_sigaction(int sig, const struct sigaction* act, struct sigaction* old) {
     rc = real(sig, &mine, &kernel_old);
   } else {
     rc = real(sig, act, &kernel_old);
-    if (rc == 0) a.handler.store(nullptr, std::memory_order_release);
+    if (rc == 0) g_actions[sig].handler.store(nullptr, std::memory_order_release);
   }
-  if (rc == 0 && old) {
-    if (is_trampoline(kernel_old) && had_handler)
-      *old = previous_app;
-    else
-      *old = kernel_old;
-  }
+  if (rc == 0 && old) app_view(kernel_old, before, old);
   return rc;
 }
 
