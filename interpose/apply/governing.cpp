@@ -2,10 +2,12 @@
 #include "messages.hpp"
 
 #include <pthread.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <condition_variable>
 #include <cstdio>
@@ -16,6 +18,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <unordered_map>
 #include <vector>
 
@@ -121,6 +124,12 @@ using FrameKey = std::pair<int, uint64_t>;
 
 std::atomic<uint64_t> g_drift{0};  // probe_drift_count()
 
+size_t image_bytes(const ProbeCapture& capture) {
+  size_t bytes = 0;
+  for (const std::vector<uint8_t>& image : capture.images) bytes += image.size();
+  return bytes;
+}
+
 class GovernorThread {
  public:
   GovernorThread(loop::Governor governor, manifest::Manifest manifest,
@@ -147,9 +156,16 @@ class GovernorThread {
     hand_over_waiting();
   }
   void push_probe(ProbeCapture&& capture) {
+    unmeasured_.fetch_add(1, std::memory_order_relaxed);
+    unmeasured_bytes_.fetch_add(image_bytes(capture), std::memory_order_relaxed);
     std::lock_guard lock(waiting_mu_);
     waiting_probes_.push_back(std::move(capture));
     hand_over_waiting();
+  }
+
+  bool backlogged() const {
+    return unmeasured_.load(std::memory_order_relaxed) >= kProbeBacklog ||
+           unmeasured_bytes_.load(std::memory_order_relaxed) >= kProbeBacklogBytes;
   }
 
   bool levels(Levels* out) const {
@@ -169,6 +185,18 @@ class GovernorThread {
     }
     wake_.notify_one();
     pthread_join(thread_, nullptr);
+  }
+
+  // From a signal handler that ends the process: every frame handed over is decided and its
+  // rows (held ones too) go to the log, within `limit`. Waits by polling, never by a lock.
+  void drain_from_signal(std::chrono::nanoseconds limit) {
+    drained_.store(false, std::memory_order_release);
+    drain_asked_.store(true, std::memory_order_release);
+    const timespec step{0, 1'000'000};
+    for (auto waited = std::chrono::nanoseconds(0); waited < limit; waited += std::chrono::milliseconds(1)) {
+      if (drained_.load(std::memory_order_acquire)) return;
+      nanosleep(&step, nullptr);
+    }
   }
 
   void note_program(PassId program, int pass) {
@@ -205,15 +233,34 @@ class GovernorThread {
     for (;;) {
       {
         std::unique_lock lock(mu_);
-        wake_.wait(lock, [&] { return stopping_ || !queue_.empty() || !probes_.empty(); });
+        // A signal handler cannot notify a condition variable: a drain it asks for is looked
+        // for at every kDrainPoll.
+        wake_.wait_for(lock, kDrainPoll, [&] {
+          return stopping_ || !queue_.empty() || !probes_.empty() || drain_asked_.load(std::memory_order_acquire);
+        });
+        if (drain_asked_.load(std::memory_order_acquire) && waiting_mu_.try_lock()) {
+          move_waiting();
+          waiting_mu_.unlock();
+        }
         work.swap(queue_);
         probes.swap(probes_);
-        if (work.empty() && probes.empty() && stopping_) {
-          flush_held(nullptr, true);
-          return;
+        if (work.empty() && probes.empty()) {
+          if (stopping_) {
+            flush_held(nullptr, true);
+            return;
+          }
+          if (drain_asked_.exchange(false, std::memory_order_acq_rel)) {
+            flush_held(nullptr, true);
+            drained_.store(true, std::memory_order_release);
+          }
+          continue;
         }
       }
-      for (ProbeCapture& p : probes) measure(p);
+      for (ProbeCapture& p : probes) {
+        measure(p);
+        unmeasured_bytes_.fetch_sub(image_bytes(p), std::memory_order_relaxed);
+        unmeasured_.fetch_sub(1, std::memory_order_relaxed);
+      }
       probes.clear();
       for (Frame& f : work) decide(f);
       work.clear();
@@ -227,6 +274,8 @@ class GovernorThread {
   // frames to come (averaging with it lowered the rank correlation on subway and valley).
   // Every stream's error is logged (probe_streams).
   void measure(const ProbeCapture& p) {
+    if (const uint64_t delay_ms = options().test_measure_delay_ms)
+      std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
     if (p.width <= 0 || p.height <= 0) return;
     // Compared on the GPU in the app's context, or here from the images read back.
     const bool compared = !p.errors.empty();
@@ -483,6 +532,9 @@ class GovernorThread {
   std::unordered_map<PassId, int> pass_of_program_;
   size_t notes_said_ = 0;
   std::deque<ProbeCapture> probes_;
+  std::atomic<size_t> unmeasured_{0}, unmeasured_bytes_{0};  // probes pushed, not yet measured
+  std::atomic<bool> drain_asked_{false}, drained_{false};    // drain_from_signal()
+  static constexpr std::chrono::milliseconds kDrainPoll{20};
   std::mutex waiting_mu_;
   std::vector<Frame> waiting_frames_;
   std::vector<ProbeCapture> waiting_probes_;
@@ -594,6 +646,12 @@ void governor_stop() {
   if (!g_thread || !g_governing.exchange(false)) return;
   governor_rows_done();
   g_thread->stop();
+}
+
+bool governor_probes_backlogged() { return g_thread && g_thread->backlogged(); }
+
+void governor_drain_from_signal() {
+  if (g_thread && g_governing.load(std::memory_order_relaxed)) g_thread->drain_from_signal(std::chrono::seconds(2));
 }
 
 uint64_t probe_drift_count() { return g_drift.load(std::memory_order_relaxed); }

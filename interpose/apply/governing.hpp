@@ -26,6 +26,9 @@ bool governor_levels(Levels* out);
 
 // Exit: every queued frame is decided and logged, then the thread stops.
 void governor_stop();
+// A signal that ends the process, from its handler: the frames handed over are decided and
+// logged, held rows too, waiting at most 2 s (async-signal-safe: polls, takes no lock).
+void governor_drain_from_signal();
 
 // A program of the app (by its hash in the frame log) belongs to this manifest pass.
 void note_program_pass(PassId program, int pass);
@@ -38,5 +41,13 @@ void governor_probe(ProbeCapture&& capture);
 // scene changed, so every pass's error is stale). Settled probes, rare, go back to their first
 // period whenever it grows, until each pass in the scene is probed again.
 uint64_t probe_drift_count();
+// Render thread: whether probe frames handed over and not yet measured are as many as may
+// wait: kProbeBacklog of them, or kProbeBacklogBytes of images (read back for the CPU's SSIM).
+// A new probe waits until then: where the governor's SSIM is slower than the probes come (a big
+// window, a fast app, a slow CPU), probing slows to what it can measure, rather than queueing
+// images without bound and deciding on ever staler frames.
+bool governor_probes_backlogged();
+inline constexpr size_t kProbeBacklog = 8;
+inline constexpr size_t kProbeBacklogBytes = size_t{64} << 20;
 
 }  // namespace glbudget

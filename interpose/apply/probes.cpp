@@ -1303,6 +1303,8 @@ void ProbeFrames::after_swap(uint64_t next) {
   // Not the first frames: the app may still be setting up what it draws. A period just made
   // longer also waits a whole period after the last probe tried.
   if (period == 0 || next < 3 || next % period != 0 || next - p.last_tried < period) return;
+  // Earlier probes not yet measured: this one would only wait behind them (governing.hpp).
+  if (p.pending.size() >= kMaxPending || governor_probes_backlogged()) return;
   p.last_tried = next;
   p.plan(next);
 }

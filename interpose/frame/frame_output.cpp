@@ -52,6 +52,7 @@ void on_fatal_signal(int sig) {
   // interrupt this thread in the middle of changing them (no GL call is made here).
   ContextState* c = current_context();
   if (c && !t_in_frame_code) flush_pending_frames(*c, FlushMode::kCpuOnly);
+  governor_drain_from_signal();
   FrameLog::get().drain_from_signal();
   signal(sig, SIG_DFL);
   errno = saved;

@@ -50,6 +50,8 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_TEST_HIDE_EXTENSIONS",
     // A test switch: pass:level pairs whose variant builds meet a real GL_OUT_OF_MEMORY.
     "GLBUDGET_TEST_OUT_OF_MEMORY",
+    // A test switch: milliseconds the governor thread adds to measuring each probe frame.
+    "GLBUDGET_TEST_MEASURE_DELAY_MS",
 };
 
 void warn(std::string* out, const std::string& text) { *out += "glbudget: " + text + "\n"; }
@@ -189,6 +191,14 @@ Options parse_options(char** env, std::string* warnings) {
         else
           o.test_out_of_memory.emplace_back(item.substr(0, colon), level);
       }
+    } else if (name == "GLBUDGET_TEST_MEASURE_DELAY_MS") {
+      errno = 0;
+      char* end = nullptr;
+      const unsigned long long n = std::strtoull(value.c_str(), &end, 10);
+      if (errno || end == value.c_str() || *end != '\0' || value[0] == '-' || n > 60000)
+        warn(warnings, "GLBUDGET_TEST_MEASURE_DELAY_MS='" + value + "' is not milliseconds in [0, 60000]; ignored");
+      else
+        o.test_measure_delay_ms = n;
     } else if (name == "GLBUDGET_FORCE_EVERY") {
       errno = 0;
       char* end = nullptr;

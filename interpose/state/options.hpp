@@ -61,6 +61,10 @@ struct Options {
   // while building that level's variant the shim asks the driver for a buffer no machine has,
   // so that the driver raises a real GL_OUT_OF_MEMORY.
   std::vector<std::pair<std::string, size_t>> test_out_of_memory;
+  // GLBUDGET_TEST_MEASURE_DELAY_MS=N: a test switch (tests/interpose/third_party_apps_test.cpp);
+  // the governor thread takes N ms longer to measure each probe frame, as on a CPU too slow for
+  // the probes the app's frame rate brings.
+  uint64_t test_measure_delay_ms = 0;
 };
 
 const Options& options();

@@ -155,6 +155,20 @@ TEST_CASE("GLBUDGET_TEST_OUT_OF_MEMORY: pass:level items; others said and ignore
   CHECK(parse_env({"GLBUDGET_TEST_OUT_OF_MEMORY="}, &w).test_out_of_memory.empty());
 }
 
+TEST_CASE("GLBUDGET_TEST_MEASURE_DELAY_MS: milliseconds up to a minute; others said and ignored", "[unit]") {
+  std::string w;
+  CHECK(parse_env({}, &w).test_measure_delay_ms == 0);
+  CHECK(parse_env({"GLBUDGET_TEST_MEASURE_DELAY_MS=0"}, &w).test_measure_delay_ms == 0);
+  CHECK(parse_env({"GLBUDGET_TEST_MEASURE_DELAY_MS=60000"}, &w).test_measure_delay_ms == 60000);
+  CHECK(w.empty());
+  for (const char* bad : {"-1", "60001", "5ms", "", "1e3"}) {
+    INFO(bad);
+    w.clear();
+    CHECK(parse_env({std::string("GLBUDGET_TEST_MEASURE_DELAY_MS=") + bad}, &w).test_measure_delay_ms == 0);
+    CHECK(w.find(std::string("GLBUDGET_TEST_MEASURE_DELAY_MS='") + bad + "' is not milliseconds") != std::string::npos);
+  }
+}
+
 TEST_CASE("GLBUDGET_PROBE_SSIM: auto, gpu or cpu; anything else said once, auto", "[unit]") {
   std::string w;
   CHECK(parse_env({}, &w).probe_ssim == Options::ProbeSsim::kAuto);

@@ -3,6 +3,7 @@
 // es2gears_x11 (EGL on X11, GLES 2) from mesa-utils, and glmark2 (glmark2-x11). The gears
 // never end by themselves: each runs for three seconds under `timeout`, which stops it with
 // SIGINT, so it must still be running then (exit 124), and every frame it logged must be whole.
+#include <time.h>
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
@@ -240,6 +241,57 @@ TEST_CASE("glxgears probed at its full size: no GL error", "[integration]") {
     probes += !row.at("probe_error").empty();
   }
   CHECK(probes >= 3);
+  unlink(log.c_str());
+}
+
+// Probes come faster than the governor thread can measure them (each takes it 100 ms more, as
+// on a CPU too slow for the app's frame rate): probing slows to what it measures, and the
+// frames are decided and logged as they come, rather than behind a queue of probe images that
+// grew without bound (the log of glxgears under the sanitized shim stopped at frame 30 of
+// thousands, and its memory grew by gigabytes).
+TEST_CASE("glxgears probed faster than its probes are measured: the log keeps up", "[integration]") {
+  const std::string log = temp_path("glxgears_slow_measure.csv");
+  unlink(log.c_str());
+  constexpr int kDelayMs = 100;
+  constexpr double kRunS = 5;
+  const auto monotonic_s = [] {
+    timespec now{};
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    return static_cast<double>(now.tv_sec) + now.tv_nsec * 1e-9;
+  };
+  // SIGINT comes kRunS after `timeout` starts, so no earlier than kRunS from here.
+  const double launched_s = monotonic_s();
+  const ProcessResult r = run_under_xvfb({"timeout", "-s", "INT", std::to_string(kRunS)}, {"glxgears"},
+                                         {{"GLBUDGET_LOG", log},
+                                          {"GLBUDGET_SENSOR", "cpu"},
+                                          {"GLBUDGET_PROBE_PERIOD", "1"},
+                                          {"GLBUDGET_TEST_MEASURE_DELAY_MS", std::to_string(kDelayMs)}});
+  const double ended_s = monotonic_s();
+  INFO(r.err);
+  CHECK(r.exit_code == 124);
+  CHECK(count_lines_with(r.err, "glbudget:") == 0);
+  const auto rows = read_csv_rows_by_name(log);
+  REQUIRE(rows.size() > 20);
+  size_t probe_frames = 0, measured = 0;
+  for (const auto& row : rows) {
+    probe_frames += row.at("probe") == "1";
+    measured += !row.at("probe_error").empty();
+  }
+  const double first_s = std::stod(rows.front().at("time_ns")) * 1e-9;
+  const double last_s = std::stod(rows.back().at("time_ns")) * 1e-9;
+  INFO("rows " << rows.size() << ", probe frames " << probe_frames << ", measured " << measured << ", logged from "
+               << first_s - launched_s << " s to " << last_s - launched_s << " s after the launch, ended at "
+               << ended_s - launched_s << " s");
+  // The frames up to the signal are all logged: the governor decided the frames behind its
+  // probes at most eight probes late, and the signal's handler let it finish them (up to 2 s).
+  CHECK(last_s > launched_s + kRunS - 0.5);
+  CHECK(ended_s - last_s < 2.5);
+  // No more probe frames than could be measured in the time, besides the eight let wait
+  // (kProbeBacklog) and the two of the render thread's last frames.
+  CHECK(probe_frames <= static_cast<size_t>((last_s - first_s) * 1000 / kDelayMs) + 10);
+  CHECK(measured >= 5);
+  // Most frames are not probes: the app's own frames went on between them.
+  CHECK(probe_frames * 3 < rows.size());
   unlink(log.c_str());
 }
 
