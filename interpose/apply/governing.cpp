@@ -614,6 +614,9 @@ bool governor_start() {
     g_thread = new GovernorThread(std::move(governor), std::move(m), measured.error_ratios);
     g_thread->start();
     g_governing = true;
+    // A child forked without exec has no governor thread: it neither hands frames to it nor
+    // waits for it (at exit, or for a drain on a fatal signal: Ctrl-C reaches the whole group).
+    pthread_atfork(nullptr, nullptr, [] { g_governing = false; });
     g_steering = steering;
   });
   return g_governing;

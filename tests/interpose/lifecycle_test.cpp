@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <chrono>
+#include <cstdio>
 #include <sstream>
 
 #include "probe_expectations.hpp"
@@ -91,6 +92,26 @@ TEST_CASE("fork without exec: a child that renders gets its own log, one that do
   CHECK(data_rows(renderer_log) == 6);  // the child's own 3 frames
   CHECK(!file_exists(idle_log));
   unlink(renderer_log.c_str());
+}
+
+// A child forked after the governor started has no governor thread: stopped by SIGINT (as
+// Ctrl-C stops a whole process group) it must not wait for one to log its frames (the
+// shim's handler waits up to 2 s for the parent's).
+TEST_CASE("fork without exec under the governor: the child stopped by SIGINT ends at once", "[integration]") {
+  std::string log = temp_path("fork_interrupted.csv");
+  unlink(log.c_str());
+  auto r = run_process(
+      {probe_path("probe_lifecycle"), "--frames", "6", "--fork-interrupted"},
+      {{"LD_PRELOAD", shim_path()}, {"GLBUDGET_LOG", log}, {"GLBUDGET_SENSOR", "cpu"}, {"GLBUDGET_PROBE_PERIOD", "2"}});
+  INFO(r.out << r.err);
+  REQUIRE(r.exit_code == 0);
+  long ms = -1;
+  std::sscanf(r.out.c_str() + std::min(r.out.size(), r.out.find("child interrupted after ")),
+              "child interrupted after %ld ms", &ms);
+  REQUIRE(ms >= 0);
+  CHECK(ms < 1000);
+  CHECK(data_rows(log) >= 6);  // the parent's frames, logged at its exit
+  unlink(log.c_str());
 }
 
 TEST_CASE("GLBUDGET_FPS paces the swaps", "[integration]") {
