@@ -999,7 +999,8 @@ struct ProbeFrames::Impl {
       r.capture.passes_drawn = passes_now | passes_drawn;
       bool all = true;
       for (int s = 0; s < stream_count; ++s) all = all && captured[s + 1];
-      if (all && pending.size() < kMaxPending) {
+      // pending has room: after_swap plans a probe only then.
+      if (all) {
         for (int s = 0; s < stream_count; ++s) r.capture.streams.push_back(streams[s].config);
         if (!compare_on_gpu(r) || !probe_settings().dump_dir.empty()) read_back(r);
         pending.push_back(std::move(r));

@@ -3,11 +3,13 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
+#include <optional>
 #include <string_view>
 
 namespace glbudget {
@@ -67,6 +69,16 @@ std::vector<std::string> comma_items(const std::string& value) {
   }
   return items;
 }
+// A whole number in [min, max] as written (digits only after optional leading spaces, no
+// sign), else nullopt.
+std::optional<unsigned long long> whole_number(const std::string& value, unsigned long long min,
+                                               unsigned long long max) {
+  errno = 0;
+  char* end = nullptr;
+  const unsigned long long n = std::strtoull(value.c_str(), &end, 10);
+  if (errno || end == value.c_str() || *end != '\0' || n < min || n > max || value[0] == '-') return std::nullopt;
+  return n;
+}
 // A switch: 1/on or 0/off; anything else is said and leaves it as it was (its default).
 void parse_switch(std::string_view name, const std::string& value, bool& on, std::string* warnings) {
   if (value == "1" || value == "on")
@@ -115,13 +127,10 @@ Options parse_options(char** env, std::string* warnings) {
     } else if (name == "GLBUDGET_ERROR") {
       if (value != "off") o.error = value;
     } else if (name == "GLBUDGET_SELECT_FRAMES") {
-      errno = 0;
-      char* end = nullptr;
-      const unsigned long long n = std::strtoull(value.c_str(), &end, 10);
-      if (errno || end == value.c_str() || *end != '\0' || n == 0 || n > 1000000 || value[0] == '-')
-        warn(warnings, "GLBUDGET_SELECT_FRAMES='" + value + "' is not a number of frames in [1, 1000000]; 200");
+      if (const auto n = whole_number(value, 1, 1000000))
+        o.select_frames = *n;
       else
-        o.select_frames = n;
+        warn(warnings, "GLBUDGET_SELECT_FRAMES='" + value + "' is not a number of frames in [1, 1000000]; 200");
     } else if (name == "GLBUDGET_TRANSITION_S") {
       errno = 0;
       char* end = nullptr;
@@ -131,13 +140,10 @@ Options parse_options(char** env, std::string* warnings) {
       else
         o.transition_s = t;
     } else if (name == "GLBUDGET_PROBE_PERIOD") {
-      errno = 0;
-      char* end = nullptr;
-      const unsigned long long n = std::strtoull(value.c_str(), &end, 10);
-      if (errno || end == value.c_str() || *end != '\0' || n > 1000000 || value[0] == '-')
-        warn(warnings, "GLBUDGET_PROBE_PERIOD='" + value + "' is not a number of frames in [0, 1000000]; ignored");
+      if (const auto n = whole_number(value, 0, 1000000))
+        o.probe_period = static_cast<int64_t>(*n);
       else
-        o.probe_period = static_cast<int64_t>(n);
+        warn(warnings, "GLBUDGET_PROBE_PERIOD='" + value + "' is not a number of frames in [0, 1000000]; ignored");
     } else if (name == "GLBUDGET_DUMP_PROBES") {
       o.dump_probes = value;
     } else if (name == "GLBUDGET_PROBE_SCALE") {
@@ -192,21 +198,15 @@ Options parse_options(char** env, std::string* warnings) {
           o.test_out_of_memory.emplace_back(item.substr(0, colon), level);
       }
     } else if (name == "GLBUDGET_TEST_MEASURE_DELAY_MS") {
-      errno = 0;
-      char* end = nullptr;
-      const unsigned long long n = std::strtoull(value.c_str(), &end, 10);
-      if (errno || end == value.c_str() || *end != '\0' || value[0] == '-' || n > 60000)
+      if (const auto n = whole_number(value, 0, 60000))
+        o.test_measure_delay_ms = *n;
+      else
         warn(warnings, "GLBUDGET_TEST_MEASURE_DELAY_MS='" + value + "' is not milliseconds in [0, 60000]; ignored");
-      else
-        o.test_measure_delay_ms = n;
     } else if (name == "GLBUDGET_FORCE_EVERY") {
-      errno = 0;
-      char* end = nullptr;
-      const unsigned long long n = std::strtoull(value.c_str(), &end, 10);
-      if (errno || end == value.c_str() || *end != '\0' || n == 0 || value[0] == '-')
-        warn(warnings, "GLBUDGET_FORCE_EVERY='" + value + "' is not a number of frames >= 1; ignored");
+      if (const auto n = whole_number(value, 1, ULLONG_MAX))
+        o.force_every = *n;
       else
-        o.force_every = n;
+        warn(warnings, "GLBUDGET_FORCE_EVERY='" + value + "' is not a number of frames >= 1; ignored");
     } else if (name == "GLBUDGET_FPS") {
       if (value.empty() || value == "off" || value == "0") continue;
       errno = 0;
