@@ -46,9 +46,15 @@ bool has_calls(const GlCalls& g) {
 std::unique_ptr<Instrumentation> make_instrumentation(const GlCaps& caps) {
   auto at_least = [&](int M, int m) { return caps.major > M || (caps.major == M && caps.minor >= m); };
   const GlCalls& g = gl();
-  // Shader storage buffers: GL 4.3, GLES 3.1. Nothing is queried before this is known, so no
-  // query can raise GL_INVALID_ENUM.
-  if (!(caps.gles ? at_least(3, 1) : at_least(4, 3)) || !has_calls(g)) return nullptr;
+  // Shader storage buffers: GL 4.3, GLES 3.1, or on older desktop contexts the extensions
+  // (NVIDIA gives an app that asks for 3.3 exactly 3.3, with both extensions; the instrumented
+  // shaders then name GL_ARB_shader_storage_buffer_object). Nothing is queried before this is
+  // known, so no query can raise GL_INVALID_ENUM.
+  const bool storage_buffers = caps.gles
+                                   ? at_least(3, 1)
+                                   : at_least(4, 3) || (has_extension(caps, "GL_ARB_shader_storage_buffer_object") &&
+                                                        has_extension(caps, "GL_ARB_program_interface_query"));
+  if (!storage_buffers || !has_calls(g)) return nullptr;
   GLint bindings = 0;
   g.GetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &bindings);
   if (bindings < 1) return nullptr;
