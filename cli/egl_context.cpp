@@ -30,14 +30,9 @@ bool fail(std::string* why_not, std::string text) {
   return false;
 }
 
-EGLDisplay surfaceless_display(std::string* why_not) {
-  if (!has_extension(eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS), "EGL_MESA_platform_surfaceless")) {
-    fail(why_not, "EGL has no surfaceless platform (EGL_MESA_platform_surfaceless)");
-    return EGL_NO_DISPLAY;
-  }
-  EGLDisplay display = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+EGLDisplay initialised(EGLDisplay display, const char* how, std::string* why_not) {
   if (display == EGL_NO_DISPLAY) {
-    fail(why_not, egl_error("eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA)"));
+    fail(why_not, egl_error(how));
     return EGL_NO_DISPLAY;
   }
   if (!eglInitialize(display, nullptr, nullptr)) {
@@ -45,6 +40,36 @@ EGLDisplay surfaceless_display(std::string* why_not) {
     return EGL_NO_DISPLAY;
   }
   return display;
+}
+
+// A display with no window system: Mesa's surfaceless platform (llvmpipe, Mesa's GPU drivers),
+// else the first GPU of EGL_EXT_platform_device (NVIDIA's headless path).
+EGLDisplay headless_display(std::string* why_not) {
+  const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+  if (has_extension(client, "EGL_MESA_platform_surfaceless")) {
+    EGLDisplay display = initialised(eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr),
+                                     "eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA)", why_not);
+    if (display != EGL_NO_DISPLAY) return display;
+  }
+  auto query_devices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+  if (!has_extension(client, "EGL_EXT_platform_device") || query_devices == nullptr) {
+    fail(why_not,
+         "EGL has neither a surfaceless platform (EGL_MESA_platform_surfaceless) nor a device one "
+         "(EGL_EXT_platform_device)");
+    return EGL_NO_DISPLAY;
+  }
+  EGLDeviceEXT devices[16];
+  EGLint count = 0;
+  if (!query_devices(16, devices, &count) || count == 0) {
+    fail(why_not, egl_error("eglQueryDevicesEXT"));
+    return EGL_NO_DISPLAY;
+  }
+  for (EGLint i = 0; i < count; ++i) {
+    EGLDisplay display = initialised(eglGetPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr),
+                                     "eglGetPlatformDisplay(EGL_PLATFORM_DEVICE_EXT)", why_not);
+    if (display != EGL_NO_DISPLAY) return display;
+  }
+  return EGL_NO_DISPLAY;
 }
 
 // EGL_NO_CONFIG_KHR where the display allows it (nothing is drawn to a surface), else any
@@ -67,7 +92,7 @@ bool pick_config(EGLDisplay display, GlApi api, EGLConfig& config, std::string* 
 std::unique_ptr<HeadlessGlContext> HeadlessGlContext::open(GlApi api, std::string* why_not) {
   // The display is not terminated with the context: EGL shares one per platform in a process,
   // and another context (a test's second one) may still be on it.
-  EGLDisplay display = surfaceless_display(why_not);
+  EGLDisplay display = headless_display(why_not);
   if (display == EGL_NO_DISPLAY) return nullptr;
   const bool desktop = api == GlApi::kDesktop;
   const char* name = desktop ? "OpenGL 4.3 core" : "OpenGL ES 3.1";

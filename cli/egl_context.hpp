@@ -1,6 +1,7 @@
 // An OpenGL context with no window and no display server, for `glbudget ssim --gpu` and the
 // GPU SSIM test: EGL's surfaceless platform (EGL_MESA_platform_surfaceless; llvmpipe needs no
-// GPU), current on the calling thread.
+// GPU), else its device platform (EGL_EXT_platform_device: NVIDIA's), current on the calling
+// thread.
 #pragma once
 #include <memory>
 #include <string>

@@ -7,14 +7,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "headless_egl.hpp"
+
 namespace calibrate_load {
 
 EglContext::EglContext(int width, int height) {
-  auto get_platform_display =
-      reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
-  display_ = get_platform_display ? get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr)
-                                  : eglGetDisplay(EGL_DEFAULT_DISPLAY);
-  if (display_ == EGL_NO_DISPLAY || !eglInitialize(display_, nullptr, nullptr)) fail("eglInitialize");
+  display_ = testapps::open_headless_egl_display().display;
+  if (display_ == EGL_NO_DISPLAY) fail("eglInitialize (no surfaceless, device or default EGL display)");
   const EGLint config_attributes[] = {EGL_SURFACE_TYPE,
                                       EGL_PBUFFER_BIT,
                                       EGL_RENDERABLE_TYPE,

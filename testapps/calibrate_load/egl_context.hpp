@@ -1,5 +1,5 @@
-// An OpenGL 3.3 core context on EGL's surfaceless platform (no display server, no GPU needed:
-// llvmpipe works), current on this thread, drawing into a pbuffer of the given size.
+// An OpenGL 3.3 core context on a headless EGL display (no display server; llvmpipe works),
+// current on this thread, drawing into a pbuffer of the given size.
 #pragma once
 #include <EGL/egl.h>
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "context.hpp"
+#include "headless_egl.hpp"
 
 namespace demo {
 namespace {
@@ -13,12 +14,11 @@ namespace {
 class EglContext : public GlContext {
  public:
   EglContext(int width, int height) {
-    // The surfaceless platform needs no display server and no GPU (llvmpipe works).
-    auto get_platform_display =
-        reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
-    display_ = get_platform_display ? get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr)
-                                    : eglGetDisplay(EGL_DEFAULT_DISPLAY);
-    if (display_ == EGL_NO_DISPLAY || !eglInitialize(display_, nullptr, nullptr)) fail("eglInitialize");
+    // No display server needed: llvmpipe works, and so does NVIDIA's device platform.
+    const testapps::HeadlessDisplay headless = testapps::open_headless_egl_display();
+    display_ = headless.display;
+    platform_ = headless.platform;
+    if (display_ == EGL_NO_DISPLAY) fail("eglInitialize (no surfaceless, device or default EGL display)");
     const EGLint config_attributes[] = {EGL_SURFACE_TYPE,
                                         EGL_PBUFFER_BIT,
                                         EGL_RENDERABLE_TYPE,
@@ -52,7 +52,7 @@ class EglContext : public GlContext {
   // A pbuffer has nothing to present, but the swap still marks the end of the frame for
   // anything watching the process.
   void swap_buffers() override { eglSwapBuffers(display_, surface_); }
-  const char* kind() const override { return "egl-surfaceless"; }
+  const char* kind() const override { return platform_; }
 
  private:
   [[noreturn]] void fail(const char* what) {
@@ -75,6 +75,7 @@ class EglContext : public GlContext {
   }
 
   EGLDisplay display_ = EGL_NO_DISPLAY;
+  const char* platform_ = "egl";
   EGLSurface surface_ = EGL_NO_SURFACE;
   EGLContext context_ = EGL_NO_CONTEXT;
 };

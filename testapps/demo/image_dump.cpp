@@ -1,6 +1,6 @@
 #include "image_dump.hpp"
 
-#include <OpenImageIO/imageio.h>
+#include <png.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -8,11 +8,17 @@
 namespace demo {
 
 std::string write_rgb_image(const std::string& path, int width, int height, const std::vector<uint8_t>& rgb) {
-  auto output = OIIO::ImageOutput::create(path);
-  if (!output) return "cannot write " + path + ": " + OIIO::geterror();
-  const OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
-  if (!output->open(path, spec) || !output->write_image(OIIO::TypeDesc::UINT8, rgb.data()) || !output->close()) {
-    return "cannot write " + path + ": " + output->geterror();
+  // libpng's simplified API: the demo writes only PNGs, and libpng (unlike an image library
+  // of many formats) is small enough to travel with the demo to a machine that lacks it.
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  image.width = static_cast<png_uint_32>(width);
+  image.height = static_cast<png_uint_32>(height);
+  image.format = PNG_FORMAT_RGB;
+  if (!png_image_write_to_file(&image, path.c_str(), 0, rgb.data(), 0, nullptr)) {
+    const std::string error = "cannot write " + path + ": " + image.message;
+    png_image_free(&image);
+    return error;
   }
   return {};
 }

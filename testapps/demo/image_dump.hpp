@@ -1,4 +1,4 @@
-// Writes frames to image files with OpenImageIO (format from the extension).
+// Writes frames to PNG files.
 #pragma once
 #include <cstdint>
 #include <string>
