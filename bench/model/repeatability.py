@@ -11,6 +11,7 @@ Usage: repeatability.py DIR_A DIR_B [--scenes hall,sponza,valley,subway] [--aver
 """
 import argparse
 import csv
+import gzip
 import os
 import statistics
 
@@ -18,9 +19,12 @@ import statistics
 def frame_powers(path):
     """frame -> (configuration, power) for frames with a power reading."""
     out = {}
-    with open(path) as f:
+    if not os.path.exists(path) and os.path.exists(path + ".gz"):
+        path += ".gz"  # a recording kept compressed (tests/data/logs/h100/repeat)
+    with (gzip.open(path, "rt") if path.endswith(".gz") else open(path)) as f:
         for row in csv.DictReader(f):
-            if row.get("power_w"):
+            # 0 W: no energy counted for the frame (a sensor's first moments), not a reading
+            if row.get("power_w") and float(row["power_w"]) > 0:
                 out[int(row["frame"])] = (row.get("configuration", ""), float(row["power_w"]))
     return out
 
@@ -59,6 +63,8 @@ def main():
         for run in runs_of(common):
             pa = [first[n][1] for n in run]
             pb = [second[n][1] for n in run]
+            if len(run) < a.average:
+                continue  # a frame or two cut off by a frame without a reading: no run mean
             run_means.append(relative(statistics.mean(pa), statistics.mean(pb)))
             for start in range(0, len(run) - a.average + 1):
                 averaged.append(relative(statistics.mean(pa[start:start + a.average]),

@@ -16,7 +16,8 @@ machine with a real sensor, record with it to check the model against real power
 `--sensor rapl:domain=uncore --p-min 1.5 --p-max 15` (the range from the GPU's idle and
 maximum power, until `glbudget calibrate` measures it).
 Usage: record_demo_logs.py BUILD_DIR OUTDIR [--scenes hall,subway] [--frames 40] [--fps 2]
-                           [--sensor cpu] [--p-min W --p-max W]
+                           [--sensor cpu] [--p-min W --p-max W] [--width 320 --height 180]
+                           [--detail 0.05] [--tables DIR] [--in-process]
 """
 import argparse
 import csv
@@ -40,15 +41,18 @@ OFF = {("reflections", 2), ("antialiasing", 2)}
 # The recorded sequence (resolution, base, reflections, shadows, metals, antialiasing).
 CONFIGS = ["0,0,0,0,0,0", "0,2,0,0,2,0", "1,0,0,1,0,0", "2,1,1,2,1,1",
            "0,0,2,0,1,2", "2,2,2,2,2,2", "1,1,0,0,0,1", "0,0,0,0,0,0"]
-WIDTH, HEIGHT = 320, 180
-DEMO_ARGS = ["--detail", "0.05", "--width", str(WIDTH), "--height", str(HEIGHT)]
+WIDTH, HEIGHT, DETAIL = 320, 180, 0.05  # what the committed logs were recorded at
+
+
+def demo_args():
+    return ["--detail", str(DETAIL), "--width", str(WIDTH), "--height", str(HEIGHT)]
 
 
 def run_demo(build, scene, config, frames, env, start_frame=0):
     demo = os.path.join(build, "testapps/demo/demo")
     full_env = dict(os.environ, LD_PRELOAD=os.path.join(build, "interpose/libglbudget.so"), **env)
     subprocess.run([demo, "--scene", scene, "--frames", str(frames), "--start-frame", str(start_frame),
-                    "--config", config] + DEMO_ARGS, env=full_env, check=True, capture_output=True)
+                    "--config", config] + demo_args(), env=full_env, check=True, capture_output=True)
 
 
 def knob_of(fragment_source):
@@ -122,40 +126,60 @@ def variant_table(build, scene):
     return {"passes": passes}
 
 
-def record(build, scene, frames, fps, sensor, table, out_csv):
+def join_logs(runs, names, out_csv):
+    """runs: (log path, the demo's --config or None where the shim's own column says) in order."""
     rows, header, next_frame = [], None, 1
-    names = [p["name"] for p in table["passes"]]
-    for config in CONFIGS:
-        levels = dict(zip(KNOBS, config.split(",")))
-        configuration = ":".join(levels[name] for name in names)
-        with tempfile.NamedTemporaryFile(suffix=".csv") as log:
-            # Each run continues the camera path where the previous one stopped, so the joined
-            # log is one walk through the scene whose configuration changes along the way.
-            run_demo(build, scene, config, frames,
-                     {"GLBUDGET_LOG": log.name, "GLBUDGET_SENSOR": sensor, "GLBUDGET_FPS": str(fps)},
-                     start_frame=next_frame - 1)
-            with open(log.name) as f:
-                reader = csv.reader(f)
-                header = next(reader)
-                # The shim logs the levels of its own manifest (the render scale alone when it
-                # has none); the demo's own --config is what drew these frames.
-                if "configuration" not in header:
-                    header.append("configuration")
-                column = header.index("configuration")
-                numbered = {}
-                for row in reader:
-                    frame = numbered.setdefault(row[0], next_frame + len(numbered))
-                    row = ([str(frame)] + row[1:] + [""])[:len(header)]
-                    row[column] = configuration
-                    rows.append(row)
-                next_frame += len(numbered)
+    for path, config in runs:
+        with open(path) as f:
+            reader = csv.reader(f)
+            header = next(reader)
+            # The shim logs the levels of its own manifest (the render scale alone when it
+            # has none); the demo's own --config is what drew those frames.
+            if "configuration" not in header:
+                header.append("configuration")
+            column = header.index("configuration")
+            numbered = {}
+            for row in reader:
+                frame = numbered.setdefault(row[0], next_frame + len(numbered))
+                row = ([str(frame)] + row[1:] + [""])[:len(header)]
+                levels = dict(zip(KNOBS, (config or row[column].replace(":", ",")).split(",")))
+                row[column] = ":".join(levels[name] for name in names)
+                rows.append(row)
+            next_frame += len(numbered)
     with open(out_csv, "w", newline="") as f:
         writer = csv.writer(f)
         writer.writerow(header)
         writer.writerows(rows)
 
 
+def record(build, scene, frames, fps, sensor, table, out_csv, in_process=False):
+    names = [p["name"] for p in table["passes"]]
+    env = {"GLBUDGET_SENSOR": sensor, "GLBUDGET_FPS": str(fps)}
+    with tempfile.TemporaryDirectory() as tmp:
+        if in_process:
+            # One process steps through the configurations with the shim's manifest
+            # (GLBUDGET_FORCE), as a governor switches: no start-up (a power sensor's own,
+            # NVML's takes about a second) between configurations.
+            log = os.path.join(tmp, "run.csv")
+            manifest = os.path.join(os.path.dirname(os.path.abspath(__file__)), "../../../testapps/demo/glbudget.toml")
+            run_demo(build, scene, CONFIGS[0], frames * len(CONFIGS),
+                     dict(env, GLBUDGET_LOG=log, GLBUDGET_CONFIG=os.path.normpath(manifest),
+                          GLBUDGET_FORCE=";".join(CONFIGS), GLBUDGET_FORCE_EVERY=str(frames)))
+            join_logs([(log, None)], names, out_csv)
+            return
+        runs, start = [], 0
+        for i, config in enumerate(CONFIGS):
+            # Each run continues the camera path where the previous one stopped, so the joined
+            # log is one walk through the scene whose configuration changes along the way.
+            log = os.path.join(tmp, "run%d.csv" % i)
+            run_demo(build, scene, config, frames, dict(env, GLBUDGET_LOG=log), start_frame=start)
+            runs.append((log, config))
+            start += frames
+        join_logs(runs, names, out_csv)
+
+
 def main():
+    global WIDTH, HEIGHT, DETAIL
     ap = argparse.ArgumentParser()
     ap.add_argument("build")
     ap.add_argument("outdir")
@@ -165,7 +189,16 @@ def main():
     ap.add_argument("--sensor", default="cpu", help="GLBUDGET_SENSOR for the recording (default: cpu)")
     ap.add_argument("--p-min", type=float, help="P_m of the profile, W (cpu: its idle default, 10)")
     ap.add_argument("--p-max", type=float, help="P_M of the profile, W (cpu: its max default, 45)")
+    ap.add_argument("--width", type=int, default=WIDTH)
+    ap.add_argument("--height", type=int, default=HEIGHT)
+    ap.add_argument("--detail", type=float, default=DETAIL, help="the demo's scene detail")
+    ap.add_argument("--in-process", action="store_true",
+                    help="one run per scene, the shim stepping through the configurations (GLBUDGET_FORCE) "
+                         "instead of one run per configuration")
+    ap.add_argument("--tables", help="take each scene's variant table from DIR/demo_<scene>.variants.json "
+                                     "(a recording made before) instead of measuring it")
     a = ap.parse_args()
+    WIDTH, HEIGHT, DETAIL = a.width, a.height, a.detail
     source = a.sensor.split(":")[0]
     if source == "cpu":
         p_min, p_max = (10.0 if a.p_min is None else a.p_min), (45.0 if a.p_max is None else a.p_max)
@@ -182,9 +215,13 @@ def main():
                "saturation": {"batches": 5000.0, "vertices": 5.0e6, "fragments": 2.0e8}}
     json.dump(profile, open(os.path.join(a.outdir, "demo_%s.profile.json" % source), "w"), indent=1)
     for scene in a.scenes.split(","):
-        table = variant_table(a.build, scene)
+        if a.tables:
+            table = json.load(open(os.path.join(a.tables, "demo_%s.variants.json" % scene)))
+        else:
+            table = variant_table(a.build, scene)
         json.dump(table, open(os.path.join(a.outdir, "demo_%s.variants.json" % scene), "w"), indent=1)
-        record(a.build, scene, a.frames, a.fps, a.sensor, table, os.path.join(a.outdir, "demo_%s.csv" % scene))
+        record(a.build, scene, a.frames, a.fps, a.sensor, table, os.path.join(a.outdir, "demo_%s.csv" % scene),
+               a.in_process)
         print("recorded", scene, flush=True)
 
 
