@@ -10,7 +10,7 @@ Stages, each skipped when the time left cannot hold it (the summary says which r
      shim, interleaved (the shim's overhead on a real driver); picks the recording's size and
      pace (of --sizes, the largest whose best configuration draws at 30 fps or more, paced at about
      60 % of its unpaced rate, so configurations differ in GPU load);
-  4. record: tests/data/logs/record_demo_logs.py with --sensor nvml, every scene;
+  4. record: tests/data/logs/record_demo_logs.py with --sensor nvml --in-process, every scene;
   5. govern: Hall under no budget, then GLBUDGET_POWER 40/50/60 % (nvml, the recording's
      variant table and profile);
   6. repeat: the recording again with the same variant tables (NVML's repeatability);
@@ -350,8 +350,11 @@ def main():
                     help="frame sizes tried, smallest first; the largest drawn at 30 fps or more is recorded")
     ap.add_argument("--fps", type=int, help="record and govern paced at this rate, at the first of --sizes "
                                             "(skips the speed stage)")
-    ap.add_argument("--config-seconds", type=float, default=1.5, help="recorded seconds per configuration")
-    ap.add_argument("--in-process", action="store_true", help="record each scene in one run (GLBUDGET_FORCE)")
+    ap.add_argument("--config-seconds", type=float, default=4, help="recorded seconds per configuration (default 4)")
+    ap.add_argument("--in-process", action=argparse.BooleanOptionalAction, default=True,
+                    help="record each scene in one run stepping through the configurations (GLBUDGET_FORCE; "
+                         "default), not one run per configuration: NVML's counter can stand still for a new "
+                         "process's first second")
     ap.add_argument("--tables", help="variant tables measured before (skips the instrumented runs)")
     ap.add_argument("--stages", default="smoke,speed,record,govern,repeat,ssim")
     a = ap.parse_args()

@@ -67,13 +67,24 @@ def scaled_fraction(scale):
     return round(WIDTH * scale) * round(HEIGHT * scale) / float(WIDTH * HEIGHT)
 
 
-def variant_table(build, scene):
+def manifest_path():
+    return os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "../../../testapps/demo/glbudget.toml"))
+
+
+def variant_table(build, scene, through_manifest=False):
+    """through_manifest: the levels drawn by the shim's variants (GLBUDGET_FORCE through the
+    demo's manifest), as --in-process records them, not by the demo's own --config: a variant's
+    source, and so its hash, differs from the demo's own build of that level."""
     # (knob, level) -> {hashes, invocation-weighted sums of the costs}
     found = {}
     for level in range(3):
         config = ",".join([str(level)] * len(KNOBS))
         with tempfile.TemporaryDirectory() as dump:
-            run_demo(build, scene, config, 3, {"GLBUDGET_DUMP": dump})
+            if through_manifest:
+                run_demo(build, scene, CONFIGS[0], 3,
+                         {"GLBUDGET_DUMP": dump, "GLBUDGET_CONFIG": manifest_path(), "GLBUDGET_FORCE": config})
+            else:
+                run_demo(build, scene, config, 3, {"GLBUDGET_DUMP": dump})
             index = json.load(open(os.path.join(dump, "index.json")))
             for program in index["programs"]:
                 figures = json.load(open(os.path.join(dump, program["file"])))
@@ -89,7 +100,9 @@ def variant_table(build, scene):
                 # the base and shadow programs): costs are averaged by invocations.
                 entry = found.setdefault((knob, level), {"hashes": [], "v": 0.0, "iv": 0.0, "f": 0.0,
                                                           "if": 0.0, "tf": 0.0})
-                entry["hashes"].append(program["hash"])
+                # A level that only holds uniforms is dumped as "<program>-level<N>"; the log
+                # names what it draws by the app's program.
+                entry["hashes"].append(program["hash"].split("-level")[0])
                 vert = (stages.get("vertex") or {}).get("measured") or {}
                 nv = vert.get("invocations", 0)
                 entry["v"] += nv
@@ -161,9 +174,8 @@ def record(build, scene, frames, fps, sensor, table, out_csv, in_process=False):
             # (GLBUDGET_FORCE), as a governor switches: no start-up (a power sensor's own,
             # NVML's takes about a second) between configurations.
             log = os.path.join(tmp, "run.csv")
-            manifest = os.path.join(os.path.dirname(os.path.abspath(__file__)), "../../../testapps/demo/glbudget.toml")
             run_demo(build, scene, CONFIGS[0], frames * len(CONFIGS),
-                     dict(env, GLBUDGET_LOG=log, GLBUDGET_CONFIG=os.path.normpath(manifest),
+                     dict(env, GLBUDGET_LOG=log, GLBUDGET_CONFIG=manifest_path(),
                           GLBUDGET_FORCE=";".join(CONFIGS), GLBUDGET_FORCE_EVERY=str(frames)))
             join_logs([(log, None)], names, out_csv)
             return
@@ -196,7 +208,8 @@ def main():
                     help="one run per scene, the shim stepping through the configurations (GLBUDGET_FORCE) "
                          "instead of one run per configuration")
     ap.add_argument("--tables", help="take each scene's variant table from DIR/demo_<scene>.variants.json "
-                                     "(a recording made before) instead of measuring it")
+                                     "(a recording made before, the same way) instead of measuring it")
+    ap.add_argument("--tables-only", action="store_true", help="measure the variant tables, record nothing")
     a = ap.parse_args()
     WIDTH, HEIGHT, DETAIL = a.width, a.height, a.detail
     source = a.sensor.split(":")[0]
@@ -218,8 +231,10 @@ def main():
         if a.tables:
             table = json.load(open(os.path.join(a.tables, "demo_%s.variants.json" % scene)))
         else:
-            table = variant_table(a.build, scene)
+            table = variant_table(a.build, scene, through_manifest=a.in_process)
         json.dump(table, open(os.path.join(a.outdir, "demo_%s.variants.json" % scene), "w"), indent=1)
+        if a.tables_only:
+            continue
         record(a.build, scene, a.frames, a.fps, a.sensor, table, os.path.join(a.outdir, "demo_%s.csv" % scene),
                a.in_process)
         print("recorded", scene, flush=True)
