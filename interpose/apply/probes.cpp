@@ -288,8 +288,22 @@ struct ProbeFrames::Impl {
   TargetScaler* targets() const { return c.targets.get(); }
   GLuint app_draw_fbo() const { return targets()->app_draw_framebuffer(); }
 
-  // GL 4.2 / GLES 3.1: immutable storage for the shadows, texture-level queries.
-  bool probe_possible() const { return !disabled && targets() && pgl().complete && at_least(4, 2, 3, 1); }
+  // GL 4.2 / GLES 3.1, or desktop GL 3.2 with GL_ARB_texture_storage (NVIDIA answers a request
+  // for 3.3 with exactly 3.3, and the extension): immutable storage for the shadows.
+  bool probe_possible() const {
+    if (disabled || !targets() || !pgl().complete) return false;
+    if (!storage_known) {
+      storage_known = true;
+      storage = at_least(4, 2, 3, 1) ||
+                (!c.caps.gles && at_least(3, 2, 0, 0) && has_extension(c.caps, "GL_ARB_texture_storage"));
+    }
+    return storage;
+  }
+  mutable bool storage_known = false, storage = false;
+  // Multisampled shadows: GL 4.3 / GLES 3.1, or GL_ARB_texture_storage_multisample.
+  bool multisample_storage() const {
+    return at_least(4, 3, 3, 1) || (!c.caps.gles && has_extension(c.caps, "GL_ARB_texture_storage_multisample"));
+  }
 
   void release_shadow(Shadow& s) {
     const ApplyGl& g = agl();
@@ -376,7 +390,8 @@ struct ProbeFrames::Impl {
           im.kind = known ? known : GL_TEXTURE_2D;
           const int k = kind_index(im.kind);
           if (k < 0 || (im.layered() && (!p.TexStorage3D || !g.FramebufferTextureLayer))) return false;
-          if (im.kind == GL_TEXTURE_2D_MULTISAMPLE && !p.TexStorage2DMultisample) return false;
+          if (im.kind == GL_TEXTURE_2D_MULTISAMPLE && (!p.TexStorage2DMultisample || !multisample_storage()))
+            return false;
           if (!im.layered() && (face != 0 || layer != 0 || layered)) return false;
           if (layered && !p.FramebufferTexture) return false;
           im.layer = layered                                       ? -1

@@ -754,3 +754,33 @@ TEST_CASE("each context's probe errors reach its own rows, though frame numbers 
   }
   CHECK(compared >= kContextFrames / 2 - 4);
 }
+
+TEST_CASE("a GL 3.3 context with GL_ARB_texture_storage is probed, with the images unchanged") {
+  // NVIDIA answers the demo's request for 3.3 core with exactly 3.3 and the extension; Mesa does
+  // the same under MESA_GL_VERSION_OVERRIDE. Requiring GL 4.2 left such contexts unprobed.
+  const std::map<std::string, std::string> gl33 = {{"MESA_GL_VERSION_OVERRIDE", "3.3"}};
+  const std::string config = "1,0,0,1,0,2";
+  const ProbeRun off = run_forced("hall", config, 0, false, gl33);
+  const ProbeRun on = run_forced("hall", config, 2, false, gl33);
+  CHECK(count_lines_with(on.err, "glbudget:") == count_lines_with(off.err, "glbudget:"));
+  for (int frame = 1; frame <= kFrames; ++frame) {
+    INFO("frame " << frame);
+    const Difference d = compare(read_image(own_image(off.dir + "/app", "hall", "0,0,0,0,0,0", frame)),
+                                 read_image(own_image(on.dir + "/app", "hall", "0,0,0,0,0,0", frame)));
+    CHECK(d.max == 0);
+  }
+  std::set<int> probed;
+  for (const auto& row : on.rows) {
+    if (row.at("probe") != "1") continue;
+    probed.insert(std::stoi(row.at("frame")));
+    REQUIRE_FALSE(row.at("probe_error").empty());
+    CHECK(std::stod(row.at("probe_error")) > 0.0);
+  }
+  CHECK(probed == std::set<int>{4, 6});
+  // Hidden, the extension leaves the context unprobed, as a driver without it would.
+  std::map<std::string, std::string> hidden = gl33;
+  hidden["GLBUDGET_TEST_HIDE_EXTENSIONS"] = "GL_ARB_texture_storage";
+  const ProbeRun without = run_forced("hall", config, 2, false, hidden);
+  for (const auto& row : without.rows) CHECK(row.at("probe").empty());
+  for (const ProbeRun* r : {&off, &on, &without}) fs::remove_all(r->dir);
+}
