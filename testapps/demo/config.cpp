@@ -53,7 +53,7 @@ float render_scale(const Config& c) { return pick(c, Knob::Resolution, 1.0f, 0.8
 int shading_model(const Config& c) { return pick(c, Knob::BaseShading, 2, 1, 0); }
 int reflection_samples(const Config& c) { return pick(c, Knob::Reflections, 64, 16, 0); }
 int reflection_kernel_taps(const Config& c) { return pick(c, Knob::Reflections, 9, 1, 0); }
-int shadow_map_size(const Config& c) { return pick(c, Knob::Shadows, 2048, 1024, 512); }
+int shadow_map_size(const Config& c, int best) { return pick(c, Knob::Shadows, best, best / 2, best / 4); }
 int metal_samples(const Config& c) { return pick(c, Knob::Metals, 60, 6, 2); }
 int fxaa_steps(const Config& c) { return pick(c, Knob::Antialiasing, 32, 2, 0); }
 

@@ -12,6 +12,8 @@ enum class Knob { Resolution, BaseShading, Reflections, Shadows, Metals, Antiali
 inline constexpr int kKnobCount = 6;
 inline constexpr int kLevelCount = 3;
 inline constexpr int kConfigCount = 729;  // kLevelCount^kKnobCount
+// The shadow map's side at the best level (--shadow-size; the paper's Table 2).
+inline constexpr int kShadowMapSize = 2048;
 
 struct Config {
   std::array<int, kKnobCount> level{};  // all best by default
@@ -34,8 +36,9 @@ float render_scale(const Config& c);          // 1.0, 0.8, 0.6
 int shading_model(const Config& c);           // 2 microfacet, 1 improved point lights, 0 cheap spec
 int reflection_samples(const Config& c);      // 64, 16, 0 (off)
 int reflection_kernel_taps(const Config& c);  // 9, 1, 0 (off)
-int shadow_map_size(const Config& c);         // 2048, 1024, 512
 int metal_samples(const Config& c);           // 60, 6, 2
 int fxaa_steps(const Config& c);              // 32, 2, 0 (off)
+// best, best / 2, best / 4 texels square: 2048, 1024, 512 by default (--shadow-size).
+int shadow_map_size(const Config& c, int best = kShadowMapSize);
 
 }  // namespace demo

@@ -44,7 +44,7 @@ int dump_all_configs(demo::Renderer& renderer, demo::GlContext& context, const d
 int run(const demo::Options& o) {
   const demo::Scene scene = *demo::make_scene(o.scene, o.detail);
   auto context = o.glx ? demo::create_glx_context(o.width, o.height) : demo::create_egl_context(o.width, o.height);
-  demo::Renderer renderer(scene, o.width, o.height);
+  demo::Renderer renderer(scene, o.width, o.height, o.shadow_size);
 
   if (o.stats) {
     const demo::FrameDraws draws = renderer.render(o.config, static_cast<double>(o.start_frame) / o.fps);

@@ -30,10 +30,12 @@ void number(std::string_view flag, std::string_view text, T& target, T min, T ma
 
 const char* usage() {
   return "usage: demo [--scene hall|sponza|valley|subway] [--width W] [--height H] [--detail D]\n"
-         "            [--frames N] [--start-frame F] [--fps R] [--config r,b,s,h,m,a]\n"
+         "            [--shadow-size S] [--frames N] [--start-frame F] [--fps R] [--config r,b,s,h,m,a]\n"
          "            [--dump DIR] [--dump-every K] [--glx] [--stats] [--bench] [--all-configs]\n"
          "  --config   quality level per pass, 0 best .. 2 cheapest: resolution, base shading,\n"
          "             reflections, shadows, metals, antialiasing (default 0,0,0,0,0,0)\n"
+         "  --shadow-size  the shadow map's side at the best level (default 2048; levels 1 and 2\n"
+         "             halve and quarter it): smaller maps make small test runs cheaper\n"
          "  --stats    print the scene's statistics row (triangles, objects, size, draws per pass)\n"
          "  --bench    print mean frame times of the best and the cheapest configuration\n"
          "  --all-configs  dump the start frame in each of the 729 configurations into --dump\n";
@@ -69,6 +71,8 @@ Options parse_options(int argc, char** argv) {
       number(flag, value, o.height, 16, 8192);
     else if (flag == "--detail")
       number(flag, value, o.detail, 0.001f, 4.0f);
+    else if (flag == "--shadow-size")
+      number(flag, value, o.shadow_size, 16, 8192);
     else if (flag == "--frames")
       number(flag, value, o.frames, 1L, 1000000L);
     else if (flag == "--start-frame")

@@ -10,9 +10,10 @@ namespace demo {
 struct Options {
   std::string scene = "hall";
   int width = 640, height = 360;
-  float detail = 1.0f;   // scales every object's triangle count
-  long frames = 60;      // frames to render
-  long start_frame = 0;  // first frame number (time = frame / fps)
+  float detail = 1.0f;               // scales every object's triangle count
+  int shadow_size = kShadowMapSize;  // the shadow map's side at the best level
+  long frames = 60;                  // frames to render
+  long start_frame = 0;              // first frame number (time = frame / fps)
   double fps = 30.0;
   Config config = Config::best();
   std::string dump_dir;      // empty: no images

@@ -29,14 +29,14 @@ const char* pass_name(Pass pass) {
 
 int FrameDraws::total() const { return std::accumulate(draws.begin(), draws.end(), 0); }
 
-Renderer::Renderer(const Scene& scene, int window_width, int window_height)
-    : scene_(scene), width_(window_width), height_(window_height), gpu_(scene) {}
+Renderer::Renderer(const Scene& scene, int window_width, int window_height, int shadow_size)
+    : scene_(scene), width_(window_width), height_(window_height), shadow_size_(shadow_size), gpu_(scene) {}
 
 FrameDraws Renderer::render(const Config& config, double time, PassObserver* observer) {
   const ScenePose pose = ScenePose::at(scene_, time);
   const CameraPose camera = scene_.camera(time);
   const float aspect = static_cast<float>(width_) / static_cast<float>(height_);
-  FrameContext frame{scene_, gpu_, pose, config, {}, {}, {}, {}, {}, camera.eye, width_, height_};
+  FrameContext frame{scene_, gpu_, pose, config, {}, {}, {}, {}, {}, camera.eye, width_, height_, shadow_size_};
   frame.view = look_at(camera.eye, camera.target);
   frame.projection = perspective(camera.vertical_fov_deg, aspect, 0.1f, scene_.far_plane);
   frame.inverse_projection = frame.projection.inverse();

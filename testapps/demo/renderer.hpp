@@ -29,7 +29,7 @@ struct FrameDraws {
 
 class Renderer {
  public:
-  Renderer(const Scene& scene, int window_width, int window_height);
+  Renderer(const Scene& scene, int window_width, int window_height, int shadow_size = kShadowMapSize);
 
   FrameDraws render(const Config& config, double time, PassObserver* observer = nullptr);
   // The default framebuffer as RGB8, top row first (read before the buffer swap).
@@ -39,7 +39,7 @@ class Renderer {
 
  private:
   const Scene& scene_;
-  int width_, height_;
+  int width_, height_, shadow_size_;
   GpuScene gpu_;
   ShadowPass shadows_;
   BasePass base_;

@@ -68,6 +68,9 @@ double ssim_of(const Image& a, const Image& b) {
 }
 
 constexpr int kWidth = 160, kHeight = 90, kFrames = 7;
+// The demo's shadow map at a quarter of its default side: at these window sizes its 2048² depth
+// pass was half of each frame's time, and every level still halves it (the manifest's scales).
+constexpr const char* kShadowSize = "512";
 
 std::vector<std::string> demo(const std::string& scene, const std::string& dir, const std::string& config = "") {
   std::vector<std::string> args = {DEMO_PATH,
@@ -75,6 +78,8 @@ std::vector<std::string> demo(const std::string& scene, const std::string& dir, 
                                    scene,
                                    "--detail",
                                    "0.05",
+                                   "--shadow-size",
+                                   kShadowSize,
                                    "--width",
                                    std::to_string(kWidth),
                                    "--height",
@@ -271,18 +276,18 @@ TEST_CASE("passes not in the scene estimate no error at any level; passes in it 
   const std::string log = temp_path("valley_estimates.csv");
   unlink(log.c_str());
   unlink((log + ".selections.csv").c_str());
-  const ProcessResult r = run_process(
-      {DEMO_PATH, "--scene", "valley", "--detail", "0.2", "--width", "320", "--height", "180", "--frames", "160"},
-      {{"LD_PRELOAD", shim_path()},
-       {"GLBUDGET_CONFIG", manifest_path()},
-       {"GLBUDGET_POWER", "50%"},
-       {"GLBUDGET_PROFILE", profile_path()},
-       {"GLBUDGET_SENSOR", "cpu"},
-       {"GLBUDGET_FPS", "20"},
-       {"GLBUDGET_SELECT_FRAMES", "30"},
-       {"GLBUDGET_TRANSITION_S", "1"},
-       {"GLBUDGET_PROBE_PERIOD", "5"},
-       {"GLBUDGET_LOG", log}});
+  const ProcessResult r = run_process({DEMO_PATH, "--scene", "valley", "--detail", "0.2", "--shadow-size", kShadowSize,
+                                       "--width", "320", "--height", "180", "--frames", "160"},
+                                      {{"LD_PRELOAD", shim_path()},
+                                       {"GLBUDGET_CONFIG", manifest_path()},
+                                       {"GLBUDGET_POWER", "50%"},
+                                       {"GLBUDGET_PROFILE", profile_path()},
+                                       {"GLBUDGET_SENSOR", "cpu"},
+                                       {"GLBUDGET_FPS", "20"},
+                                       {"GLBUDGET_SELECT_FRAMES", "30"},
+                                       {"GLBUDGET_TRANSITION_S", "1"},
+                                       {"GLBUDGET_PROBE_PERIOD", "5"},
+                                       {"GLBUDGET_LOG", log}});
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   std::map<std::string, double> estimate;  // at the last selection
@@ -314,13 +319,13 @@ TEST_CASE("a frame shown with one pass at its cheapest is that pass's probe: its
   if (kSanitizedRun) return;  // the probes' paths are the other demo cases'
   const std::string log = temp_path("one_pass_cheapest.csv");
   unlink(log.c_str());
-  const ProcessResult r = run_process(
-      {DEMO_PATH, "--scene", "hall", "--detail", "0.05", "--width", "160", "--height", "90", "--frames", "16"},
-      {{"LD_PRELOAD", shim_path()},
-       {"GLBUDGET_CONFIG", manifest_path()},
-       {"GLBUDGET_FORCE", "0,0,0,2,0,0"},
-       {"GLBUDGET_PROBE_PERIOD", "3"},
-       {"GLBUDGET_LOG", log}});
+  const ProcessResult r = run_process({DEMO_PATH, "--scene", "hall", "--detail", "0.05", "--shadow-size", kShadowSize,
+                                       "--width", "160", "--height", "90", "--frames", "16"},
+                                      {{"LD_PRELOAD", shim_path()},
+                                       {"GLBUDGET_CONFIG", manifest_path()},
+                                       {"GLBUDGET_FORCE", "0,0,0,2,0,0"},
+                                       {"GLBUDGET_PROBE_PERIOD", "3"},
+                                       {"GLBUDGET_LOG", log}});
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   std::map<long, std::pair<std::string, std::string>> frames;  // frame -> (est_error, probe_error)
@@ -360,19 +365,19 @@ TEST_CASE(
   // and what is probed, so the run is the same each time).
   const std::string log = temp_path("subway_drift.csv");
   unlink(log.c_str());
-  const ProcessResult r = run_process(
-      {DEMO_PATH, "--scene", "subway", "--detail", "0.05", "--width", "160", "--height", "90", "--frames", "260"},
-      {{"LD_PRELOAD", shim_path()},
-       {"GLBUDGET_CONFIG", manifest_path()},
-       {"GLBUDGET_POWER", "50%"},
-       {"GLBUDGET_PROFILE", profile_path()},
-       {"GLBUDGET_SENSOR", "cpu"},
-       {"GLBUDGET_SELECT_FRAMES", "30"},
-       // The shim's own periods: the governor's request for rarer probes, where it finds
-       // that they cost the budget, is loop_test's.
-       {"GLBUDGET_PROBE_STRETCH", "0"},
-       {"GLBUDGET_PROBE_ORDER", "weighted"},
-       {"GLBUDGET_LOG", log}});
+  const ProcessResult r = run_process({DEMO_PATH, "--scene", "subway", "--detail", "0.05", "--shadow-size", kShadowSize,
+                                       "--width", "160", "--height", "90", "--frames", "260"},
+                                      {{"LD_PRELOAD", shim_path()},
+                                       {"GLBUDGET_CONFIG", manifest_path()},
+                                       {"GLBUDGET_POWER", "50%"},
+                                       {"GLBUDGET_PROFILE", profile_path()},
+                                       {"GLBUDGET_SENSOR", "cpu"},
+                                       {"GLBUDGET_SELECT_FRAMES", "30"},
+                                       // The shim's own periods: the governor's request for rarer probes, where it
+                                       // finds that they cost the budget, is loop_test's.
+                                       {"GLBUDGET_PROBE_STRETCH", "0"},
+                                       {"GLBUDGET_PROBE_ORDER", "weighted"},
+                                       {"GLBUDGET_LOG", log}});
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   CHECK(count_lines_with(r.err, "unknown variable") == 0);

@@ -21,6 +21,7 @@ struct FrameContext {
   Eigen::Matrix4f shadow_view_projection;  // light 0's clip space
   Eigen::Vector3f eye;
   int window_width = 0, window_height = 0;
+  int shadow_size = kShadowMapSize;  // the shadow map's side at the best level
 };
 
 }  // namespace demo

@@ -8,7 +8,7 @@ ShadowPass::ShadowPass()
       skinned_({shaders::scene_vert}, {shaders::depth_frag}, {{"SKINNED", "1"}}) {}
 
 int ShadowPass::run(const FrameContext& frame) {
-  const int size = shadow_map_size(frame.config);  // the quality knob: a texture size
+  const int size = shadow_map_size(frame.config, frame.shadow_size);  // the quality knob: a texture size
   Framebuffer& target = targets_[static_cast<size_t>(frame.config[Knob::Shadows])];
   target.ensure(size, size, 0, 0, true, true);
   target.bind();
