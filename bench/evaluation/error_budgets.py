@@ -22,7 +22,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from evaluate import (MANIFEST, PROFILE, Evaluation, frames_of, mean, number, parse_study_arguments,  # noqa: E402
-                      study_arguments)
+                      shadow_note, study_arguments)
 
 
 class ErrorBudgets(Evaluation):
@@ -78,7 +78,7 @@ def format_row(r):
 
 def write(rows, a, command):
     lines = ["# Error budgets: the lowest power under an estimated-error budget", "", "```sh", command, "```", "",
-             f"Each scene at {a.size}, detail {a.detail}, {a.frames} frames paced at {a.fps:g} fps, the cpu sensor, "
+             f"Each scene at {a.size}, detail {a.detail}{shadow_note(a)}, {a.frames} frames paced at {a.fps:g} fps, the cpu sensor, "
              f"level costs {a.costs}, selections every {a.select_frames} frames, 1-s transitions, probes at the "
              "shim's default. Power and error from the first selection and its transition on; power against the "
              "best configuration's run over the same frames; true error: 1 − SSIM of every "

@@ -16,19 +16,21 @@ Per scene of the demo:
      them (the estimates' cost in quality, the power predictions held fixed).
 Budgets are shares of the range of the selection's predictions (the cheapest to the best).
 
-Writes DIR/error-estimates.md and DIR/error_estimates.png.
+Writes DIR/error-estimates.md and DIR/error_estimates.png, and each governed run's log as
+DIR/SCENE.csv (with its .selections.csv).
 Usage: error_estimates.py BUILD_DIR --out DIR [--scenes hall,sponza,valley,subway]
        [--budget 50] [--regret-budgets 30,40,50,60,70] [--frames 200] [--fps 10] [--size 320x180]
        [--detail 0.2] [--costs measure|off|PATH] [--quick]
 """
 import csv
 import os
+import shutil
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from evaluate import (MANIFEST, PROFILE, KNOBS, Evaluation, mean, number, parse_study_arguments,  # noqa: E402
-                      spearman, study_arguments)
+                      shadow_note, spearman, study_arguments)
 
 BEST = "0:0:0:0:0:0"
 
@@ -68,6 +70,11 @@ class Study(Evaluation):
         log = os.path.join(self.tmp, f"{scene}.csv")
         self.quiet([self.glbudget, "run", "--fps", str(a.fps), "--log", log, "--power", f"{a.budget}%", "--profile",
                     PROFILE, "--config", MANIFEST, "--"] + self.common(scene, a.frames), env)
+        # The governed run's log beside the results: when each pass was probed, and what it measured.
+        os.makedirs(a.out, exist_ok=True)
+        for suffix in ("", ".selections.csv"):
+            if os.path.exists(log + suffix):
+                shutil.copyfile(log + suffix, os.path.join(a.out, f"{scene}.csv{suffix}"))
         table, frame = last_selection(log + ".selections.csv")
         if frame is None:
             return {"scene": scene, "error": "no selection in the governed run"}
@@ -94,7 +101,7 @@ class Study(Evaluation):
 
 def write(results, a, command):
     lines = ["# Error estimates against ground truth, every configuration", "", "```sh", command, "```", "",
-             f"Each scene at {a.size}, detail {a.detail}, {a.frames} frames paced at {a.fps:g} fps under "
+             f"Each scene at {a.size}, detail {a.detail}{shadow_note(a)}, {a.frames} frames paced at {a.fps:g} fps under "
              f"`glbudget run --power {a.budget}%` (the cpu sensor, quality probes at the shim's default, level costs "
              f"{a.costs}). At the governor's last selection every configuration's estimated error (additive over "
              "passes from its latest probes, paper §6.2) against the true error of the demo's own image of that "

@@ -27,7 +27,7 @@ against the same share of the measured range (cheapest + P% of best - cheapest).
 Usage: evaluate.py BUILD_DIR --out DIR [--quick] [--scenes hall,sponza,valley,subway]
        [--budgets 40,50,60] [--frames 200] [--fps 10] [--size 320x180] [--detail 0.2]
        [--feedback 1|0] [--costs measure|off|PATH] [--configurations 20] [--every 10]
---quick: Valley alone at 160x90, detail 0.05, 80 frames, selections every 20 frames, 6
+--quick: Valley alone at 160x90, detail 0.05, shadow map 512, 80 frames, selections every 20 frames, 6
 configurations: a check that every step runs (about two minutes), not a measurement.
 """
 import argparse
@@ -44,6 +44,12 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 MANIFEST = os.path.join(ROOT, "testapps/demo/glbudget.toml")
 PROFILE = os.path.join(ROOT, "tests/data/logs/demo_cpu.profile.json")
 KNOBS = "resolution, base, reflections, shadows, metals, antialiasing"
+
+
+def shadow_note(a):
+    """", shadow map N" where the demo's shadow map is not its default size."""
+    size = getattr(a, "shadow_size", None)
+    return f", shadow map {size}" if size else ""
 
 
 def mean(values):
@@ -103,6 +109,7 @@ def study_arguments(description, scenes):
     ap.add_argument("--fps", type=float, default=10.0)
     ap.add_argument("--size", default="320x180")
     ap.add_argument("--detail", type=float, default=0.2)
+    ap.add_argument("--shadow-size", type=int, default=None, help="the demo's shadow map at its best (default 2048)")
     ap.add_argument("--select-frames", type=int, default=60)
     ap.add_argument("--costs", default="measure", help="the levels' costs: 'measure' (glbudget calibrate --app "
                     "on each scene first), 'off', or a path")
@@ -118,6 +125,7 @@ def parse_study_arguments(ap, script):
     a = ap.parse_args()
     if a.quick:
         a.scenes, a.size, a.detail, a.frames, a.select_frames, a.costs = "valley", "160x90", 0.05, 80, 20, "off"
+        a.shadow_size = a.shadow_size or 512
     given_build, a.build = a.build, os.path.abspath(a.build)
     os.makedirs(a.out, exist_ok=True)
     # The other arguments as given, so that the page says how to make it again.
@@ -149,7 +157,11 @@ class Evaluation:
 
     def common(self, scene, frames=None):
         return [self.demo, "--scene", scene, "--detail", str(self.a.detail), "--width", self.width,
-                "--height", self.height, "--frames", str(frames or self.a.frames)]
+                "--height", self.height, "--frames", str(frames or self.a.frames)] + self.shadow_args()
+
+    def shadow_args(self):
+        size = getattr(self.a, "shadow_size", None)
+        return ["--shadow-size", str(size)] if size else []
 
     def quiet(self, cmd, env=None):
         """Runs cmd to its end, its output discarded; env: the reference runs' unless given."""
@@ -397,6 +409,7 @@ def main():
     ap.add_argument("--fps", type=float, default=10.0)
     ap.add_argument("--size", default=None)
     ap.add_argument("--detail", type=float, default=None)
+    ap.add_argument("--shadow-size", type=int, default=None, help="the demo's shadow map at its best (default 2048)")
     ap.add_argument("--every", type=int, default=10, help="dump every K-th frame for the true error")
     ap.add_argument("--feedback", default="1", choices=["0", "1"],
                     help="GLBUDGET_FEEDBACK: 0 is the paper's open loop (no correction from measured power)")
@@ -410,6 +423,8 @@ def main():
     a.frames = a.frames or (80 if quick else 200)
     a.size = a.size or ("160x90" if quick else "320x180")
     a.detail = a.detail if a.detail is not None else (0.05 if quick else 0.2)
+    # Small, a 2048² shadow map is half of each frame's time; the quick run checks the steps.
+    a.shadow_size = a.shadow_size or (512 if quick else None)
     a.configurations = a.configurations or (6 if quick else 20)
     a.select_frames = 20 if quick else 60
     a.calibrate_frames = 6 if quick else 20
@@ -417,7 +432,7 @@ def main():
     shown_args = [os.path.relpath(x, ROOT) if os.path.isabs(x) and x.startswith(ROOT) else x for x in sys.argv[1:]]
     command = "scripts/evaluate" + (" --quick" if quick else "") + "   # = python3 bench/evaluation/evaluate.py " + \
         " ".join(shown_args)
-    print(f"demo at {a.size}, detail {a.detail}, {a.frames} frames paced at {a.fps:g} fps, cpu sensor (estimate); "
+    print(f"demo at {a.size}, detail {a.detail}{shadow_note(a)}, {a.frames} frames paced at {a.fps:g} fps, cpu sensor (estimate); "
           f"select every {a.select_frames} frames, 1-s transitions; feedback {'on' if a.feedback == '1' else 'off'}; "
           f"level costs: {a.costs}", flush=True)
     results, fig10 = [], {}
@@ -441,7 +456,7 @@ def main():
 def write_markdown(results, fig10, replay, command, a):
     lines = [f"# The paper's evaluation on the demo's scenes{' (quick check)' if a.quick else ''}", "",
              "```sh", command, "```", "",
-             f"Each scene at {a.size}, detail {a.detail}, {a.frames} frames paced at {a.fps:g} fps, the cpu sensor's "
+             f"Each scene at {a.size}, detail {a.detail}{shadow_note(a)}, {a.frames} frames paced at {a.fps:g} fps, the cpu sensor's "
              f"estimate (P = 10 W + 35 W × the process's CPU share), selections every {a.select_frames} frames, 1-s "
              f"transitions, quality probes at the shim's default, correction from measured power "
              f"{'on' if a.feedback == '1' else 'off'}, level costs {a.costs} "

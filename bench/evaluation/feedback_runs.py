@@ -31,7 +31,7 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from evaluate import MANIFEST, PROFILE, ROOT, Evaluation, frames_of, mean, number  # noqa: E402
+from evaluate import MANIFEST, PROFILE, ROOT, Evaluation, frames_of, mean, number, shadow_note  # noqa: E402
 
 
 def first_selection(frames):
@@ -137,7 +137,7 @@ def main():
                           f"{s['margin']:.2f} W, {s['power']:.1f} W against {s['budget']:.1f} W, estimated error "
                           f"{s['est_error']:.4f}", flush=True)
     lines = ["# Repeated governed runs: the power feedback", "", "```sh", command, "```", "",
-             f"The demo at {a.size}, detail {a.detail}, {a.frames} frames paced at {a.fps:g} fps, cpu sensor, level "
+             f"The demo at {a.size}, detail {a.detail}{shadow_note(a)}, {a.frames} frames paced at {a.fps:g} fps, cpu sensor, level "
              f"costs from `glbudget calibrate --app` (once per scene), selections every {a.select_frames} frames. "
              "Windows: 1-s windows from the first selection on within the governor's budget. Refit step: mean change "
              "of the drawn configuration's corrected prediction across a refit (10 frames each side). Residual: RMS "

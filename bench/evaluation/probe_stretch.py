@@ -22,7 +22,7 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from evaluate import MANIFEST, PROFILE, ROOT, Evaluation, frames_of, mean, number  # noqa: E402
+from evaluate import MANIFEST, PROFILE, ROOT, Evaluation, frames_of, mean, number, shadow_note  # noqa: E402
 
 
 def probe_windows(log, start, fps):
@@ -110,7 +110,7 @@ def main():
                       f"{g['within_window']:.2f}, probe windows {held:.2f} ({probes} probes), true error "
                       f"{g['error']:.4f}, estimated {rows[-1]['est_error']:.4f}", flush=True)
     lines = ["# Rarer probes at low frame rates", "", "```sh", command, "```", "",
-             f"The demo at {a.size}, detail {a.detail}, {a.frames} frames paced at {a.fps:g} fps under "
+             f"The demo at {a.size}, detail {a.detail}{shadow_note(a)}, {a.frames} frames paced at {a.fps:g} fps under "
              f"`--power {a.budget}%`, cpu sensor, level costs from `glbudget calibrate --app`, selections every "
              f"{a.select_frames} frames; `GLBUDGET_PROBE_STRETCH=1` (the default: the governor may ask for rarer "
              "probes) against `0` (probes every 60 frames once settled), interleaved. Windows: 1-s windows after the "

@@ -33,7 +33,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, "..", "interpose"))
 from error_estimates import Study  # noqa: E402
-from evaluate import MANIFEST, parse_study_arguments, study_arguments  # noqa: E402
+from evaluate import MANIFEST, parse_study_arguments, study_arguments, shadow_note  # noqa: E402
 from demo_bench import clean_environment, run  # noqa: E402
 
 SETTINGS = "default,scale=2,scale=4,period=10,period=30,period=60,period=120"
@@ -102,7 +102,7 @@ class Trades(Study):
             cases[s] = env
         long_frames = self.a.overhead_frames
         cmd = [self.demo, "--scene", scene, "--detail", str(self.a.detail), "--width", self.width, "--height",
-               self.height]
+               self.height] + self.shadow_args()
         per_frame = {name: [] for name in cases}
         for _ in range(self.a.rounds):
             for name, env in cases.items():
@@ -161,7 +161,7 @@ def format_row(r):
 def write(rows, a, command):
     lines = ["# The quality probes' knobs: scale, period and order against cost, staleness and accuracy", "",
              "```sh", command, "```", "",
-             f"Each scene at {a.size}, detail {a.detail}. Accuracy and staleness from a governed run of {a.frames} "
+             f"Each scene at {a.size}, detail {a.detail}{shadow_note(a)}. Accuracy and staleness from a governed run of {a.frames} "
              f"frames paced at {a.fps:g} fps under `--power {a.budget}%` with the setting (the cpu sensor, level "
              f"costs {a.costs}), at the governor's last selection, against the true error of all 729 "
              "configurations of that frame (as in [error-estimates.md](../estimates/error-estimates.md)); regret: "
