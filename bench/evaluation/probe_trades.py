@@ -15,7 +15,9 @@ Per scene, each level's costs measured once by `glbudget calibrate --app`; then 
   - cost: probe_overhead.py's measure, the demo unpaced at a middle configuration with the
     setting against the same without probes (a long run less a short one, so start-up cancels;
     rounds interleaved), the mean frame time's ratio.
-The period's default is 10 frames until every pass has been probed, then 60; the scale's is
+The period's default is 10 frames until every pass has been probed, then 60, but no longer than
+lets each pass in the scene be probed within GLBUDGET_PROBE_MAX_AGE_S where that is set
+(max_age=S; the default 0: no bound); the scale's is
 Wang's rule for the frame (1 below 384 pixels on the short side); the order's (order=turn or
 weighted) is turn (weighted: in turn until each has been probed, then the largest error × age).
 
@@ -33,14 +35,15 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, "..", "interpose"))
 from error_estimates import Study  # noqa: E402
-from evaluate import MANIFEST, parse_study_arguments, study_arguments, shadow_note  # noqa: E402
+from evaluate import MANIFEST, frames_of, mean, number, parse_study_arguments, shadow_note, study_arguments  # noqa: E402
 from demo_bench import clean_environment, run  # noqa: E402
 
 SETTINGS = "default,scale=2,scale=4,period=10,period=30,period=60,period=120"
 MIDDLE = "1,0,0,1,0,0"  # probe_overhead.py's forced configuration: two probe streams drawn
 
 
-KNOBS = {"scale": "GLBUDGET_PROBE_SCALE", "period": "GLBUDGET_PROBE_PERIOD", "order": "GLBUDGET_PROBE_ORDER"}
+KNOBS = {"scale": "GLBUDGET_PROBE_SCALE", "period": "GLBUDGET_PROBE_PERIOD", "order": "GLBUDGET_PROBE_ORDER",
+         "max_age": "GLBUDGET_PROBE_MAX_AGE_S"}
 
 
 def setting_env(setting):
@@ -72,6 +75,24 @@ def staleness(log, frame):
     if not ages:
         return share, float("nan"), float("inf")
     return share, statistics.mean(ages), max(ages)
+
+
+def budget_kept(log, fps):
+    """(mean power, share of 1-s windows at or under the governor's budget, mean estimated error of
+    the frames shown) from a second after the first selection to the end, as evaluate.py counts."""
+    frames = frames_of(log)
+    selected = [f for f, r in frames.items() if r.get("decision") in ("select", "explore")]
+    if not selected:
+        return float("nan"), float("nan"), float("nan")
+    numbers = sorted(f for f in frames if f >= selected[0] + int(fps) + 1)
+    step, windows, within = max(1, int(fps)), 0, 0
+    for k in range(0, len(numbers) - step + 1, step):
+        chunk = [frames[f] for f in numbers[k:k + step]]
+        windows += 1
+        within += mean([number(r["power_w"]) for r in chunk]) <= mean([number(r.get("budget_w")) for r in chunk])
+    power = mean([number(frames[f]["power_w"]) for f in numbers])
+    error = mean([number(frames[f].get("est_error")) for f in numbers])
+    return power, within / windows if windows else float("nan"), error
 
 
 class Trades(Study):
@@ -140,8 +161,10 @@ def main():
                 else:
                     share, mean_age, oldest = staleness(os.path.join(tmp, f"{scene}.csv"), r["frame"])
                     regrets = [v for v in r["regret"].values() if v == v]
+                    power, kept, shown = budget_kept(os.path.join(tmp, f"{scene}.csv"), a.fps)
                     row.update(frame=r["frame"], share=share, mean_age=mean_age, oldest=oldest, rho=r["rho"],
-                               mae=r["mae"], regret=max(regrets) if regrets else float("nan"))
+                               mae=r["mae"], regret=max(regrets) if regrets else float("nan"), power=power, kept=kept,
+                               shown=shown)
                 rows.append(row)
                 print(format_row(row), flush=True)
     write(rows, a, command)
@@ -155,7 +178,8 @@ def format_row(r):
     oldest = "never probed" if r["oldest"] == float("inf") else f"{r['oldest']:.0f}"
     mean_age = "–" if r["mean_age"] != r["mean_age"] else f"{r['mean_age']:.0f}"
     return (f"| {r['scene']} | {r['setting']} | {r['overhead']:.2f} | {r['share']:.3f} | {mean_age} | {oldest} | "
-            f"{r['rho']:.3f} | {r['mae']:.4f} | {r['regret']:.4f} |")
+            f"{r['rho']:.3f} | {r['mae']:.4f} | {r['regret']:.4f} | {r['power']:.1f} | {r['kept']:.2f} | "
+            f"{r['shown']:.4f} |")
 
 
 def write(rows, a, command):
@@ -171,11 +195,16 @@ def write(rows, a, command):
              "without a period probes every 60 frames there: ungoverned, the shim's default is none). Age: frames "
              "from each pass's last probe at its cheapest level to the selection (passes never probed, not in the "
              "scene, left out; \"never probed\": no pass was). default: probes every 10 frames until each pass was "
-             "probed, then every 60, the passes in turn; SSIM at Wang's scale (1 at this size).",
+             "probed, then every 60 (max_age=S: at most S seconds between two probes of a pass in the scene, "
+             "`GLBUDGET_PROBE_MAX_AGE_S`), the passes in turn; SSIM at Wang's scale (1 at this size).",
+             "",
+             "Power, windows and error shown: the governed run from a second after its first selection, its mean "
+             "power (W, the cpu estimate), the share of its 1-s windows at or under the governor's budget, and the "
+             "mean estimated error of the frames shown.",
              "",
              "| scene | setting | frame time vs none | probe frames | mean age | oldest | Spearman ρ | mean abs. error "
-             "| worst regret |",
-             "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
+             "| worst regret | power | windows kept | est. error shown |",
+             "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     lines += [format_row(r) for r in rows]
     lines.append("")
     with open(os.path.join(a.out, "probe-trades.md"), "w") as f:

@@ -1,6 +1,7 @@
 #include "probes.hpp"
 
 #include <atomic>
+#include <chrono>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -1255,6 +1256,38 @@ struct ProbeFrames::Impl {
     return true;
   }
 
+  // Each pass in the scene probed again within GLBUDGET_PROBE_MAX_AGE_S: the most frames a
+  // probe may wait after the last, that many seconds of this context's frames shared among those
+  // passes (they are probed in turn), never fewer than the first period; 0: no bound. The
+  // settled factor counts frames, so at a low frame rate a pass's estimate grew stale for tens
+  // of seconds (Valley at 10 fps: its passes' probes 130-160 frames old at the selections). Not
+  // where the governor spaces bursts too: there every window holding a probe is over the budget
+  // whatever is shown, and more probes would only put more windows over.
+  uint64_t age_bound_frames(const ProbeSettings& settings) const {
+    const double age_s = options().probe_max_age_s;
+    if (!settings.stretchable || !(age_s > 0.0) || !(frame_s > 0.0) || g_bursts_spaced.load(std::memory_order_relaxed))
+      return 0;
+    const manifest::Manifest& m = active_manifest();
+    int in_scene = 0;
+    for (size_t i = 0; i < m.passes.size() && i < static_cast<size_t>(kMaxPasses); ++i)
+      if (m.passes[i].levels.size() > 1 && pass_in_scene(m.passes[i], i, passes_drawn)) ++in_scene;
+    if (in_scene == 0) return 0;
+    const double frames = age_s / frame_s / in_scene;
+    if (!(frames < 1e9)) return 0;
+    return std::max(settings.period, static_cast<uint64_t>(frames));
+  }
+  // This context's seconds between swaps, smoothed over about ten frames.
+  void time_swap() {
+    const auto now = std::chrono::steady_clock::now();
+    if (last_swap != std::chrono::steady_clock::time_point{}) {
+      const double dt = std::chrono::duration<double>(now - last_swap).count();
+      frame_s = frame_s > 0.0 ? 0.9 * frame_s + 0.1 * dt : dt;
+    }
+    last_swap = now;
+  }
+  std::chrono::steady_clock::time_point last_swap{};
+  double frame_s = 0.0;
+
   ProbeFrames* owner = nullptr;
   uint64_t recent[16] = {};
   size_t recent_at = 0;
@@ -1302,6 +1335,7 @@ void ProbeFrames::abandon_frame() {
 void ProbeFrames::after_swap(uint64_t next) {
   Impl& p = *impl_;
   if (!p.probe_possible()) return;
+  p.time_swap();
   p.collect(false);
   if (const uint64_t drift = probe_drift_count(); drift != p.drift_seen) {
     p.drift_seen = drift;
@@ -1314,11 +1348,18 @@ void ProbeFrames::after_swap(uint64_t next) {
     period = std::max(period * settings.settled_factor, wanted);
   else if (g_bursts_spaced.load(std::memory_order_relaxed))
     period = std::max(period, wanted);
-  if (period != g_period_in_force.load(std::memory_order_relaxed))
-    g_period_in_force.store(period, std::memory_order_relaxed);
+  // The period the governor's probe overhead counts is the shorter of the two.
+  const uint64_t bound = period ? p.age_bound_frames(settings) : 0;
+  const uint64_t in_force = bound ? std::min(period, bound) : period;
+  if (in_force != g_period_in_force.load(std::memory_order_relaxed))
+    g_period_in_force.store(in_force, std::memory_order_relaxed);
   // Not the first frames: the app may still be setting up what it draws. A period just made
-  // longer also waits a whole period after the last probe tried.
-  if (period == 0 || next < 3 || next % period != 0 || next - p.last_tried < period) return;
+  // longer also waits a whole period after the last probe tried; the age bound, counted from
+  // the last probe tried, holds whatever frame number that falls on.
+  if (period == 0 || next < 3) return;
+  const bool due = next % period == 0 && next - p.last_tried >= period;
+  const bool overdue = bound && p.last_tried && next - p.last_tried >= bound;
+  if (!(due || overdue)) return;
   // Earlier probes not yet measured: this one would only wait behind them (governing.hpp).
   if (p.pending.size() >= kMaxPending || governor_probes_backlogged()) return;
   p.last_tried = next;

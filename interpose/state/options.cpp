@@ -39,6 +39,7 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_FEEDBACK_OWN",
     "GLBUDGET_ERROR_FEEDBACK",
     "GLBUDGET_PROBE_STRETCH",
+    "GLBUDGET_PROBE_MAX_AGE_S",
     "GLBUDGET_WARM_BLITS",
     "GLBUDGET_DUMP_PROBES",
     "GLBUDGET_PROBE_SCALE",
@@ -78,6 +79,14 @@ std::optional<unsigned long long> whole_number(const std::string& value, unsigne
   const unsigned long long n = std::strtoull(value.c_str(), &end, 10);
   if (errno || end == value.c_str() || *end != '\0' || n < min || n > max || value[0] == '-') return std::nullopt;
   return n;
+}
+// Seconds in [0, max], or nothing where the text is not one.
+std::optional<double> seconds(const std::string& value, double max) {
+  errno = 0;
+  char* end = nullptr;
+  const double t = std::strtod(value.c_str(), &end);
+  if (errno || end == value.c_str() || *end != '\0' || !std::isfinite(t) || t < 0 || t > max) return std::nullopt;
+  return t;
 }
 // A switch: 1/on or 0/off; anything else is said and leaves it as it was (its default).
 void parse_switch(std::string_view name, const std::string& value, bool& on, std::string* warnings) {
@@ -132,13 +141,15 @@ Options parse_options(char** env, std::string* warnings) {
       else
         warn(warnings, "GLBUDGET_SELECT_FRAMES='" + value + "' is not a number of frames in [1, 1000000]; 200");
     } else if (name == "GLBUDGET_TRANSITION_S") {
-      errno = 0;
-      char* end = nullptr;
-      const double t = std::strtod(value.c_str(), &end);
-      if (errno || end == value.c_str() || *end != '\0' || !std::isfinite(t) || t < 0 || t > 3600)
-        warn(warnings, "GLBUDGET_TRANSITION_S='" + value + "' is not a number of seconds in [0, 3600]; 2");
+      if (const auto t = seconds(value, 3600))
+        o.transition_s = *t;
       else
-        o.transition_s = t;
+        warn(warnings, "GLBUDGET_TRANSITION_S='" + value + "' is not a number of seconds in [0, 3600]; 2");
+    } else if (name == "GLBUDGET_PROBE_MAX_AGE_S") {
+      if (const auto t = seconds(value, 3600))
+        o.probe_max_age_s = *t;
+      else
+        warn(warnings, "GLBUDGET_PROBE_MAX_AGE_S='" + value + "' is not a number of seconds in [0, 3600]; 0");
     } else if (name == "GLBUDGET_PROBE_PERIOD") {
       if (const auto n = whole_number(value, 0, 1000000))
         o.probe_period = static_cast<int64_t>(*n);

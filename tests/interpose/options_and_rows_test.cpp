@@ -196,6 +196,28 @@ TEST_CASE("GLBUDGET_PROBE_STRETCH: on unless 0 or off; anything else said once, 
   CHECK(w == "glbudget: GLBUDGET_PROBE_STRETCH='rare' is not 0/1/on/off; on\n");
 }
 
+TEST_CASE("GLBUDGET_PROBE_MAX_AGE_S and GLBUDGET_TRANSITION_S: seconds up to an hour; others said, the default",
+          "[unit]") {
+  std::string w;
+  CHECK(parse_env({}, &w).probe_max_age_s == 0.0);
+  CHECK(parse_env({"GLBUDGET_PROBE_MAX_AGE_S=0"}, &w).probe_max_age_s == 0.0);
+  CHECK(parse_env({"GLBUDGET_PROBE_MAX_AGE_S=2.5"}, &w).probe_max_age_s == 2.5);
+  CHECK(parse_env({"GLBUDGET_PROBE_MAX_AGE_S=3600"}, &w).probe_max_age_s == 3600.0);
+  CHECK(parse_env({"GLBUDGET_TRANSITION_S=0.5"}, &w).transition_s == 0.5);
+  CHECK(w.empty());
+  for (const char* bad : {"-1", "3601", "5s", "", "nan", "inf"}) {
+    INFO(bad);
+    w.clear();
+    CHECK(parse_env({std::string("GLBUDGET_PROBE_MAX_AGE_S=") + bad}, &w).probe_max_age_s == 0.0);
+    CHECK(w ==
+          std::string("glbudget: GLBUDGET_PROBE_MAX_AGE_S='") + bad + "' is not a number of seconds in [0, 3600]; 0\n");
+    w.clear();
+    CHECK(parse_env({std::string("GLBUDGET_TRANSITION_S=") + bad}, &w).transition_s == 2.0);
+    CHECK(w ==
+          std::string("glbudget: GLBUDGET_TRANSITION_S='") + bad + "' is not a number of seconds in [0, 3600]; 2\n");
+  }
+}
+
 TEST_CASE("GLBUDGET_PROBE_LEVELS: cheapest or all; anything else said once, cheapest", "[unit]") {
   std::string w;
   CHECK_FALSE(parse_env({}, &w).probe_every_level);
