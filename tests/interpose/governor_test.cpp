@@ -179,8 +179,12 @@ TEST_CASE("under an error budget, the probes' error of the image shown corrects 
   };
   const std::string best = "0:0:0:0:0:0";
 
-  const std::map<long, Row> open = run("error_feedback_off.csv", "0");
-  CHECK(selections(open).size() == 1);
+  // Without the correction, one selection. Its paths are a subset of the corrected run's, so the
+  // sanitizer trees, where each run takes minutes, leave it to the plain build.
+  if (!kSanitizedRun) {
+    const std::map<long, Row> open = run("error_feedback_off.csv", "0");
+    CHECK(selections(open).size() == 1);
+  }
 
   const std::map<long, Row> closed = run("error_feedback_on.csv", "1");
   const std::vector<long> selected = selections(closed);
