@@ -57,7 +57,11 @@ def main():
     ap.add_argument("--detail", type=float, default=0.2)
     ap.add_argument("--every", type=int, default=10)
     ap.add_argument("--keep", action="store_true", help="keep the logs and images under --out/runs")
+    ap.add_argument("--knob", default="GLBUDGET_PROBE_STRETCH",
+                    help="the variable traded (e.g. GLBUDGET_PROBE_MAX_AGE_S); its two --values interleaved")
+    ap.add_argument("--values", default="1,0", help="the knob's two values, the default's first")
     a = ap.parse_args()
+    values = tuple(a.values.split(","))
     a.build = os.path.abspath(a.build)
     a.costs, a.feedback, a.select_frames, a.calibrate_frames, a.budgets = "measure", "1", 60, 20, a.budget
     os.makedirs(a.out, exist_ok=True)
@@ -85,8 +89,8 @@ def main():
             measure_range("before")
             runs = []
             for r in range(a.rounds):
-                for stretch in ("1", "0") if r % 2 == 0 else ("0", "1"):
-                    ev.governed_env["GLBUDGET_PROBE_STRETCH"] = stretch
+                for stretch in values if r % 2 == 0 else values[::-1]:
+                    ev.governed_env[a.knob] = stretch
                     shown = os.path.join(tmp, f"{scene}_{stretch}_{r}_shown")
                     log = ev.run(scene, f"s{stretch}_{r}", ["--power", f"{a.budget}%", "--profile", PROFILE,
                                                            "--config", MANIFEST], governed=True, dump=shown)
@@ -112,20 +116,22 @@ def main():
     lines = ["# Rarer probes at low frame rates", "", "```sh", command, "```", "",
              f"The demo at {a.size}, detail {a.detail}{shadow_note(a)}, {a.frames} frames paced at {a.fps:g} fps under "
              f"`--power {a.budget}%`, cpu sensor, level costs from `glbudget calibrate --app`, selections every "
-             f"{a.select_frames} frames; `GLBUDGET_PROBE_STRETCH=1` (the default: the governor may ask for rarer "
-             "probes) against `0` (probes every 60 frames once settled), interleaved. Windows: 1-s windows after the "
+             f"{a.select_frames} frames; " + (
+                 "`GLBUDGET_PROBE_STRETCH=1` (the default: the governor may ask for rarer probes) against `0` (probes "
+                 "every 60 frames once settled)" if a.knob == "GLBUDGET_PROBE_STRETCH" else
+                 f"`{a.knob}` at " + " against ".join(values)) + ", interleaved. Windows: 1-s windows after the "
              "first selection within the governor's budget / within the window's own measured range. Probe windows: "
              "windows holding a probe frame or the frame that reads it back.", "",
-             "| scene | stretch | round | mean W | saved | windows | probe windows (probes) | true error | estimated error |",
+             f"| scene | {a.knob} | round | mean W | saved | windows | probe windows (probes) | true error | estimated error |",
              "|---|---|---:|---:|---:|---|---|---:|---:|"]
     for x in rows:
         lines.append(f"| {x['scene']} | {x['stretch']} | {x['round']} | {x['power_w']:.1f} | {x['saved']:.0%} | "
                      f"{x['within']:.2f} / {x['within_window']:.2f} | {x['probe_windows']:.2f} ({x['probes']}) | "
                      f"{x['error']:.4f} | {x['est_error']:.4f} |")
-    lines += ["", "Means over the rounds:", "", "| scene | stretch | mean W | windows | probe windows | true error |",
+    lines += ["", "Means over the rounds:", "", f"| scene | {a.knob} | mean W | windows | probe windows | true error |",
               "|---|---|---:|---|---:|---:|"]
     for scene in a.scenes.split(","):
-        for stretch in ("1", "0"):
+        for stretch in values:
             sel = [x for x in rows if x["scene"] == scene and x["stretch"] == stretch]
             if not sel:
                 continue

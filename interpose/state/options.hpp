@@ -52,8 +52,8 @@ struct Options {
   // GLBUDGET_PROBE_MAX_AGE_S: settled probes come often enough that each pass in the scene is
   // probed again within this many seconds, however rare the settled period or the governor's
   // stretch would make them (apply/probes.cpp); 0, the default: no bound. Off by default: its
-  // fresher estimates cost the margin for the probes' power, which the stretch was measured to
-  // spend better on the image shown (README, "Keeping a budget").
+  // estimates rank better at the selections, but its probes (and the bursts of those that find
+  // the scene moved) cost the image shown more (docs/evaluation/probes/probe-max-age.md).
   double probe_max_age_s = 0.0;
   // GLBUDGET_WARM_BLITS=0: the blits a switch of scale makes are not made once ahead on tiny
   // images (apply/blit_warmup.cpp); the first switch to each scale then pays the driver's
