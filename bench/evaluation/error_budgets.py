@@ -22,7 +22,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from evaluate import (MANIFEST, PROFILE, Evaluation, frames_of, mean, number, parse_study_arguments,  # noqa: E402
-                      shadow_note, study_arguments)
+                      settled_start, shadow_note, study_arguments)
 
 
 class ErrorBudgets(Evaluation):
@@ -40,7 +40,7 @@ class ErrorBudgets(Evaluation):
                                                                          "--config", MANIFEST], governed=True,
                                         dump=shown))
             selected = [f for f, r in frames.items() if r.get("decision") in ("select", "explore")]
-            start = (selected[0] if selected else a.frames) + int(a.fps) + 1
+            start = settled_start(frames, a.fps, a.frames)
             settled = [f for f in frames if f >= start]
             power = mean([number(frames[f]["power_w"]) for f in settled])
             best_w = mean([number(best[f]["power_w"]) for f in settled if f in best])

@@ -64,6 +64,13 @@ def number(text):
         return None
 
 
+def settled_start(frames, fps, frames_run):
+    """The first frame a governed run's figures count: a second after its first selection (its
+    transition done), or past the run's end where it never selected."""
+    selected = [f for f, r in frames.items() if r.get("decision") in ("select", "explore")]
+    return (selected[0] if selected else frames_run) + int(fps) + 1
+
+
 def frames_of(path):
     """The log's rows, one per frame (the first row of each frame carries the frame's columns)."""
     frames = {}
@@ -253,7 +260,7 @@ class Evaluation:
     def governed(self, scene, budget, log, truth, shown, result):
         a, frames = self.a, frames_of(log)
         selected = [f for f, r in frames.items() if r.get("decision") in ("select", "explore")]
-        start = (selected[0] if selected else a.frames) + int(a.fps) + 1
+        start = settled_start(frames, a.fps, a.frames)
         true_budget = result["cheapest_w"] + float(budget) / 100.0 * (result["best_w"] - result["cheapest_w"])
         windows = within = within_true = within_window = 0
         window_budgets = []  # (first frame, last frame, the window's measured range's budget)

@@ -22,7 +22,8 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from evaluate import MANIFEST, PROFILE, ROOT, Evaluation, frames_of, mean, number, shadow_note  # noqa: E402
+from evaluate import (MANIFEST, PROFILE, ROOT, Evaluation, frames_of, mean, number, settled_start,  # noqa: E402
+                      shadow_note)
 
 
 def probe_windows(log, start, fps):
@@ -103,8 +104,7 @@ def main():
             for stretch, r, log, shown in runs:
                 g = ev.governed(scene, a.budget, log, truth, shown, result)
                 frames = frames_of(log)
-                selected = [f for f, x in frames.items() if x.get("decision") in ("select", "explore")]
-                start = (selected[0] if selected else a.frames) + int(a.fps) + 1
+                start = settled_start(frames, a.fps, a.frames)
                 held, probes = probe_windows(log, start, a.fps)
                 rows.append({"scene": scene, "stretch": stretch, "round": r, "power_w": g["power_w"],
                              "saved": 1 - g["power_w"] / result["best_w"], "within": g["within"],

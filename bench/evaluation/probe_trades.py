@@ -35,7 +35,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, "..", "interpose"))
 from error_estimates import Study  # noqa: E402
-from evaluate import MANIFEST, frames_of, mean, number, parse_study_arguments, shadow_note, study_arguments  # noqa: E402
+from evaluate import (MANIFEST, frames_of, mean, number, parse_study_arguments, settled_start,  # noqa: E402
+                      shadow_note, study_arguments)
 from demo_bench import clean_environment, run  # noqa: E402
 
 SETTINGS = "default,scale=2,scale=4,period=10,period=30,period=60,period=120"
@@ -77,14 +78,12 @@ def staleness(log, frame):
     return share, statistics.mean(ages), max(ages)
 
 
-def budget_kept(log, fps):
+def budget_kept(log, fps, frames_run):
     """(mean power, share of 1-s windows at or under the governor's budget, mean estimated error of
-    the frames shown) from a second after the first selection to the end, as evaluate.py counts."""
+    the frames shown) from a second after the first selection to the end, as evaluate.py counts;
+    NaN where the run never selected."""
     frames = frames_of(log)
-    selected = [f for f, r in frames.items() if r.get("decision") in ("select", "explore")]
-    if not selected:
-        return float("nan"), float("nan"), float("nan")
-    numbers = sorted(f for f in frames if f >= selected[0] + int(fps) + 1)
+    numbers = sorted(f for f in frames if f >= settled_start(frames, fps, frames_run))
     step, windows, within = max(1, int(fps)), 0, 0
     for k in range(0, len(numbers) - step + 1, step):
         chunk = [frames[f] for f in numbers[k:k + step]]
@@ -161,7 +160,7 @@ def main():
                 else:
                     share, mean_age, oldest = staleness(os.path.join(tmp, f"{scene}.csv"), r["frame"])
                     regrets = [v for v in r["regret"].values() if v == v]
-                    power, kept, shown = budget_kept(os.path.join(tmp, f"{scene}.csv"), a.fps)
+                    power, kept, shown = budget_kept(os.path.join(tmp, f"{scene}.csv"), a.fps, a.frames)
                     row.update(frame=r["frame"], share=share, mean_age=mean_age, oldest=oldest, rho=r["rho"],
                                mae=r["mae"], regret=max(regrets) if regrets else float("nan"), power=power, kept=kept,
                                shown=shown)

@@ -1335,7 +1335,7 @@ void ProbeFrames::abandon_frame() {
 void ProbeFrames::after_swap(uint64_t next) {
   Impl& p = *impl_;
   if (!p.probe_possible()) return;
-  p.time_swap();
+  if (options().probe_max_age_s > 0.0) p.time_swap();  // only the age bound reads the frame time
   p.collect(false);
   if (const uint64_t drift = probe_drift_count(); drift != p.drift_seen) {
     p.drift_seen = drift;
