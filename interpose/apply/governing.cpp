@@ -246,24 +246,53 @@ class GovernorThread {
         probes.swap(probes_);
         if (work.empty() && probes.empty()) {
           if (stopping_) {
+            measure_pending(nullptr, true);
             flush_held(nullptr, true);
             return;
           }
           if (drain_asked_.exchange(false, std::memory_order_acq_rel)) {
+            measure_pending(nullptr, true);
             flush_held(nullptr, true);
             drained_.store(true, std::memory_order_release);
           }
           continue;
         }
       }
-      for (ProbeCapture& p : probes) {
-        measure(p);
-        unmeasured_bytes_.fetch_sub(image_bytes(p), std::memory_order_relaxed);
-        unmeasured_.fetch_sub(1, std::memory_order_relaxed);
-      }
+      for (ProbeCapture& p : probes) pending_.push_back({decided_, std::move(p)});
       probes.clear();
-      for (Frame& f : work) decide(f);
+      for (Frame& f : work) {
+        if (!f.rows.empty()) {
+          const FrameKey key{f.rows.front().context, f.rows.front().frame};
+          measure_pending(&key, false);
+        }
+        decide(f);
+      }
       work.clear();
+      measure_pending(nullptr, false);
+    }
+  }
+
+  // A probe is measured just before its own frame is decided (or the first later frame of its
+  // context), not as soon as it is handed over: its capture usually comes before the frame's
+  // counters, and were it measured at once, how many frames it was learnt ahead of, and how
+  // many probes were learnt together, would hang on the threads' timing. In frame order, a
+  // run's decisions and its log's est_error follow the probes the same way at any speed.
+  // `before`: the frame about to be decided; null measures those waiting for kHoldFrames
+  // decided frames (their context may draw no more, or its frame numbers restarted), and with
+  // `all`, every one.
+  void measure_pending(const FrameKey* before, bool all) {
+    for (auto it = pending_.begin(); it != pending_.end();) {
+      const ProbeCapture& p = it->capture;
+      const bool due = all || (before ? before->first == p.context && before->second >= p.frame
+                                      : decided_ - it->handed_at >= kHoldFrames);
+      if (!due) {
+        ++it;
+        continue;
+      }
+      measure(p);
+      unmeasured_bytes_.fetch_sub(image_bytes(p), std::memory_order_relaxed);
+      unmeasured_.fetch_sub(1, std::memory_order_relaxed);
+      it = pending_.erase(it);
     }
   }
 
@@ -390,8 +419,8 @@ class GovernorThread {
   // them in their own context, or kHoldFrames * 4 frames of any context have been decided since
   // (their context may draw no more; a probe frame's capture can be dropped). `stopping`: the
   // process ends; every row goes out. Frame numbers restart in each context, so rows and
-  // results are matched by context and frame. A result can come before its rows: the governor
-  // thread measures the probes it was handed before deciding the frames handed with them.
+  // results are matched by context and frame. A result usually comes before its rows: the
+  // governor thread measures a probe just before it decides the probe's frame (measure_pending).
   void flush_held(const FrameKey* now, bool stopping) {
     for (auto it = held_.begin(); it != held_.end();) {
       const auto found = results_.find({it->context, it->frame});
@@ -544,6 +573,11 @@ class GovernorThread {
     uint64_t decided_at = 0;  // decided_ when held
     std::vector<FrameRow> rows;
   };
+  struct PendingProbe {
+    uint64_t handed_at = 0;  // decided_ when handed over
+    ProbeCapture capture;
+  };
+  std::deque<PendingProbe> pending_;  // handed over, measured before their frames are decided
   struct ProbeResult {
     std::optional<double> shown_error;  // FrameRow::probe_error
     std::string streams;                // FrameRow::probe_streams

@@ -189,12 +189,13 @@ TEST_CASE("under an error budget, the probes' error of the image shown corrects 
   const std::map<long, Row> closed = run("error_feedback_on.csv", "1");
   const std::vector<long> selected = selections(closed);
   REQUIRE(!selected.empty());
-  INFO("first selection at frame " << selected.front() << " to " << closed.at(selected.front()).configuration);
+  INFO("first selection at frame " << selected.front() << ", showing " << closed.at(selected.front()).configuration);
   // The first probe of a configuration other than the best: with no spread measured yet, its
-  // corrected estimate is its measurement, and the log's est_error says so from the frame the
-  // governor learnt it (the images are compared a frame or two late, and frames' counters
-  // reach the governor later still, so that may be the probe frame's own row; on a loaded
-  // machine, beside another test, it took more than 4 frames once).
+  // corrected estimate is its measurement, and the log's est_error (of the frame's own
+  // configuration) says so from the frame the governor learnt it. The governor measures a probe
+  // before it decides the probe's frame, or, where the comparison comes later than the
+  // frame's counters, before the next frame of its context; the next probe, 5 frames on, not
+  // before its own frame.
   const auto first = std::find_if(closed.begin(), closed.end(), [&](const auto& r) {
     return r.second.probe_error >= 0.0 && r.second.configuration != best;
   });

@@ -531,7 +531,9 @@ Decision Governor::on_frame(const FrameRecord& frame) {
   }
   decision.next = current_;
   decision.budget_w = budget_w_;
-  decision.est_error = estimated_error(current_);
+  // Of the frame's own configuration, as predicted_w is: the row it goes to shows that one, and
+  // `next` reaches the screen only frames later (the governor decides behind the render thread).
+  decision.est_error = estimated_error(record.configuration);
   decision.within_budget = within_budget_;
   return decision;
 }

@@ -107,7 +107,7 @@ struct Decision {
   // The last selection's power limit; +inf without a power budget, and before the first
   // selection the budget's watts (NaN for a share of the range, which needs predictions).
   double budget_w = std::numeric_limits<double>::infinity();
-  double est_error = std::numeric_limits<double>::quiet_NaN();  // estimate for `next`
+  double est_error = std::numeric_limits<double>::quiet_NaN();  // the frame's own configuration's estimate
   bool within_budget = true;  // the last selection found a configuration within the budget
 };
 
