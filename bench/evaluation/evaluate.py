@@ -34,7 +34,6 @@ import argparse
 import csv
 import math
 import os
-import random
 import statistics
 import subprocess
 import sys

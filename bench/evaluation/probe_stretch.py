@@ -14,7 +14,6 @@ Usage: probe_stretch.py BUILD_DIR --out DIR [--scenes valley,hall] [--budget 50]
        [--rounds 2] [--fps 10] [--size 320x180] [--detail 0.2] [--keep]
 """
 import argparse
-import csv
 import os
 import statistics
 import sys
