@@ -24,9 +24,7 @@ std::optional<ErrorRatios> error_ratios_from_log(const std::string& log_path, co
       char* end = nullptr;
       const double error = std::strtod(stream.c_str() + equals + 1, &end);
       if (!levels || *end || !std::isfinite(error)) continue;
-      int pass = -1;
-      for (std::size_t i = 0; i < levels->size(); ++i)
-        if ((*levels)[i] != 0) pass = pass < 0 ? static_cast<int>(i) : -2;
+      const int pass = model::only_pass_changed(*levels);
       if (pass < 0) continue;
       auto& sum =
           sums[{space.passes()[static_cast<std::size_t>(pass)].pass, (*levels)[static_cast<std::size_t>(pass)]}];

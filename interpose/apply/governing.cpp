@@ -373,9 +373,8 @@ class GovernorThread {
   // The one pass whose level is not its best in `levels` (within the manifest); -1 if none
   // or several.
   int only_pass_changed(const Levels& levels) const {
-    int pass = -1;
-    for (int i = 0; i < levels.count; ++i)
-      if (levels.level[i] != 0) pass = pass < 0 ? i : -2;
+    const int count = std::clamp(levels.count, 0, kMaxPasses);
+    const int pass = model::only_pass_changed(model::Configuration(levels.level, levels.level + count));
     return pass >= 0 && static_cast<size_t>(pass) < manifest_.passes.size() ? pass : -1;
   }
 

@@ -32,6 +32,18 @@ struct PassVariants {
 
 using Configuration = std::vector<int>;  // level per pass, in ConfigurationSpace order
 
+// The one pass whose level is not its best (0): what a probe stream s_i^l measures; -1 when
+// none is, or several are.
+inline int only_pass_changed(const Configuration& configuration) {
+  int pass = -1;
+  for (std::size_t i = 0; i < configuration.size(); ++i) {
+    if (configuration[i] == 0) continue;
+    if (pass >= 0) return -1;
+    pass = static_cast<int>(i);
+  }
+  return pass;
+}
+
 class ConfigurationSpace {
  public:
   ConfigurationSpace() = default;
