@@ -22,7 +22,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from evaluate import (MANIFEST, PROFILE, Evaluation, frames_of, mean, number, parse_study_arguments,  # noqa: E402
-                      settled_start, shadow_note, study_arguments)
+                      selection_frames, settled_start, shadow_note, study_arguments)
 
 
 class ErrorBudgets(Evaluation):
@@ -39,7 +39,7 @@ class ErrorBudgets(Evaluation):
             frames = frames_of(self.run(scene, f"e{budget}_f{feedback}", ["--error", budget, "--profile", PROFILE,
                                                                          "--config", MANIFEST], governed=True,
                                         dump=shown))
-            selected = [f for f, r in frames.items() if r.get("decision") in ("select", "explore")]
+            selected = selection_frames(frames)
             start = settled_start(frames, a.fps, a.frames)
             settled = [f for f in frames if f >= start]
             power = mean([number(frames[f]["power_w"]) for f in settled])

@@ -63,10 +63,15 @@ def number(text):
         return None
 
 
+def selection_frames(frames):
+    """The frames of a governed log (frames_of) at which the governor selected, in order."""
+    return sorted(f for f, r in frames.items() if r.get("decision") in ("select", "explore"))
+
+
 def settled_start(frames, fps, frames_run):
     """The first frame a governed run's figures count: a second after its first selection (its
     transition done), or past the run's end where it never selected."""
-    selected = [f for f, r in frames.items() if r.get("decision") in ("select", "explore")]
+    selected = selection_frames(frames)
     return (selected[0] if selected else frames_run) + int(fps) + 1
 
 
@@ -258,7 +263,7 @@ class Evaluation:
 
     def governed(self, scene, budget, log, truth, shown, result):
         a, frames = self.a, frames_of(log)
-        selected = [f for f, r in frames.items() if r.get("decision") in ("select", "explore")]
+        selected = selection_frames(frames)
         start = settled_start(frames, a.fps, a.frames)
         true_budget = result["cheapest_w"] + float(budget) / 100.0 * (result["best_w"] - result["cheapest_w"])
         windows = within = within_true = within_window = 0

@@ -31,12 +31,13 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from evaluate import MANIFEST, PROFILE, ROOT, Evaluation, frames_of, mean, number, shadow_note  # noqa: E402
+from evaluate import (MANIFEST, PROFILE, ROOT, Evaluation, frames_of, mean, number, selection_frames,  # noqa: E402
+                      shadow_note)
 
 
 def first_selection(frames):
-    selected = [f for f, r in frames.items() if r.get("decision") in ("select", "explore")]
-    return min(selected) if selected else None
+    selected = selection_frames(frames)
+    return selected[0] if selected else None
 
 
 def windows_of(frames, start, size):
