@@ -37,6 +37,7 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_TRANSITION_S",
     "GLBUDGET_FEEDBACK",
     "GLBUDGET_FEEDBACK_OWN",
+    "GLBUDGET_ADDITIVE_LEVELS",
     "GLBUDGET_ERROR_FEEDBACK",
     "GLBUDGET_PROBE_STRETCH",
     "GLBUDGET_PROBE_MAX_AGE_S",
@@ -185,6 +186,8 @@ Options parse_options(char** env, std::string* warnings) {
       parse_switch(name, value, o.feedback, warnings);
     } else if (name == "GLBUDGET_FEEDBACK_OWN") {
       parse_switch(name, value, o.feedback_own, warnings);
+    } else if (name == "GLBUDGET_ADDITIVE_LEVELS") {
+      parse_switch(name, value, o.additive_levels, warnings);
     } else if (name == "GLBUDGET_ERROR_FEEDBACK") {
       parse_switch(name, value, o.error_feedback, warnings);
     } else if (name == "GLBUDGET_PROBE_STRETCH") {

@@ -15,6 +15,7 @@
 #include "glbudget/model/variant_table.hpp"
 #include "glbudget/loop/from_manifest.hpp"
 #include "glbudget/loop/governor.hpp"
+#include "glbudget/model/additive_levels.hpp"
 #include "glbudget/manifest/manifest.hpp"
 #include "glbudget/model/power_curve.hpp"
 #include "glbudget/model/temporal_filter.hpp"
@@ -1319,6 +1320,47 @@ TEST_CASE("a calibrated range sets the bottom of a share of the range", "[loop][
   CHECK(deep.first_budget_w < none.first_budget_w);
   CHECK(flat.error < none.error);
   CHECK(deep.error > none.error);
+}
+
+TEST_CASE("with each level's calibrated power, a configuration is predicted as its levels' changes summed",
+          "[loop][feedback]") {
+  // `glbudget calibrate --app` measured the best and every level alone (here the truth at the
+  // path's first counts): the selection's table is the best's corrected prediction plus each
+  // level's change alone, with the feedback's terms, which are additive too. Without it
+  // (additive_levels false) the model's saturating curve makes the levels' savings interact.
+  auto run = [](bool additive) {
+    const model::testing::HiddenModel hidden = model::testing::six_pass_hidden_model();
+    model::testing::SceneGenerator scene(hidden, 0.0, 7);
+    const Truth truth(hidden, scene.counts(0));
+    GovernorSettings settings = power_budget("50%");
+    settings.additive_levels = additive;
+    const Configuration best(6, 0), cheapest = hidden.space.cheapest();
+    settings.calibrated_range = model::VariantTable::MeasuredRange{truth.power(best), truth.power(cheapest)};
+    for (std::size_t i = 0; i < 6; ++i)
+      for (int l = 1; l < static_cast<int>(hidden.space.passes()[i].levels.size()); ++l) {
+        Configuration c = best;
+        c[i] = l;
+        settings.calibrated_powers.emplace_back(c, truth.power(c));
+      }
+    App app(settings);
+    app.run(20 * kFps);
+    const Governor::SelectionTable table = app.governor().last_selection();
+    REQUIRE(app.governor().selections() > 0);
+    const auto& power = *table.power_w;
+    const model::ConfigurationSpace& space = app.governor().space();
+    double largest_gap = 0.0;
+    for (std::size_t index = 0; index < space.size(); ++index) {
+      const double sum = model::additive_over_levels(space.decode(index),
+                                                     [&](const Configuration& c) { return power[space.index_of(c)]; });
+      largest_gap = std::max(largest_gap, std::abs(power[index] - sum));
+    }
+    return largest_gap;
+  };
+  const double additive = run(true), model_combined = run(false);
+  INFO("largest gap from the sum of levels' changes: " << additive << " W additive, " << model_combined
+                                                       << " W as the model combines them");
+  CHECK(additive < 1e-9);
+  CHECK(model_combined > 0.1);
 }
 
 TEST_CASE("power feedback: windows, residuals, the margin and the additive correction", "[loop][feedback]") {

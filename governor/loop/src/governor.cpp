@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "glbudget/loop/error_selection.hpp"
+#include "glbudget/model/additive_levels.hpp"
 #include "glbudget/model/temporal_filter.hpp"
 
 namespace glbudget::loop {
@@ -109,6 +110,9 @@ Governor::Governor(model::PlatformProfile profile, model::ConfigurationSpace spa
                      "in the manifest");
   }
   budget_w_ = initial_budget_w();
+  additive_ = settings_.additive_levels && settings_.feedback.enabled && settings_.calibrated_range &&
+              std::any_of(settings_.calibrated_powers.begin(), settings_.calibrated_powers.end(),
+                          [](const auto& c) { return model::only_pass_changed(c.first) >= 0; });
 }
 
 double Governor::initial_budget_w() const {
@@ -140,13 +144,15 @@ model::OnlineFitter::Event Governor::see(const FrameRecord& record, Decision& de
   sample_.power_w = record.power_w;
   sample_.passes.assign(record.passes.begin(), record.passes.end());
   Clock::time_point start = Clock::now();
-  decision.predicted_w = model_.predict_frame(sample_, record.configuration);
+  // The model learns from its own prediction; the feedback and the log take the governor's.
+  const double model_w = model_.predict_frame(sample_, record.configuration);
+  decision.predicted_w = predicted_for_frame(record.configuration, model_w);
   times_.predict_frame.add(microseconds_since(start));
   if (!std::isfinite(record.power_w)) return model::OnlineFitter::Event::None;
 
   const std::size_t fits_before = model_.fits();
   start = Clock::now();
-  const model::OnlineFitter::Event event = model_.learn(sample_, record.configuration, decision.predicted_w);
+  const model::OnlineFitter::Event event = model_.learn(sample_, record.configuration, model_w);
   const double us = microseconds_since(start);
   times_.learn.add(us);
   if (model_.fits() != fits_before) {
@@ -154,7 +160,8 @@ model::OnlineFitter::Event Governor::see(const FrameRecord& record, Decision& de
     times_.fit.add(us);
     // The new coefficients take effect from the next frame given to the model: give it this
     // one again, so that a selection now predicts with them (the first fit has no frame yet).
-    const double refitted_w = model_.predict_frame(sample_, record.configuration);
+    const double refitted_w =
+        predicted_for_frame(record.configuration, model_.predict_frame(sample_, record.configuration));
     if (fits_before > 0 && settings_.feedback.rebase_on_refit) {
       // The residual of the configuration being drawn was measured moments ago, at counts
       // like this frame's: it follows the change of its prediction for this frame, the old
@@ -197,6 +204,7 @@ bool Governor::select(const FrameRecord& record) {
   Clock::time_point start = Clock::now();
   model_.refresh_fragment_scales();
   model_.predict_all(power_);
+  if (additive_) model::make_additive_over_levels(space_, power_);
   times_.predict_all.add(microseconds_since(start));
 
   start = Clock::now();
@@ -536,6 +544,11 @@ Decision Governor::on_frame(const FrameRecord& frame) {
   decision.est_error = estimated_error(record.configuration);
   decision.within_budget = within_budget_;
   return decision;
+}
+
+double Governor::predicted_for_frame(const model::Configuration& configuration, double model_w) const {
+  if (!additive_ || !space_.contains(configuration)) return model_w;
+  return model::additive_over_levels(configuration, [&](const model::Configuration& c) { return model_.predict(c); });
 }
 
 double Governor::estimated_error(const model::Configuration& configuration) const {

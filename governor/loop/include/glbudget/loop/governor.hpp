@@ -55,6 +55,13 @@ struct GovernorSettings {
   // level's saving, against what was measured, is the feedback's prior for that level
   // (Governor::calibrated_prior). In the space's pass order; passes beyond them at level 0.
   std::vector<std::pair<model::Configuration, double>> calibrated_powers;
+  // Where calibrated_powers holds levels alone (and the feedback is on, which holds each
+  // single-level prediction to them), every configuration is predicted as the best's power
+  // plus each of its levels' predicted change alone (model/additive_levels.hpp), in the
+  // selection's table and in each frame's predicted_w: the run-time model's own way of making
+  // levels interact is fitted on the few configurations a run draws and swung by 5 W between
+  // refits on the demo's Hall. false (GLBUDGET_ADDITIVE_LEVELS=0): the model's combination.
+  bool additive_levels = true;
   // Beyond the paper: where more windows hold a quality probe than the budget may leave over,
   // each must fit a probe's whole excess (probe_overhead.hpp), and at low frame rates that
   // margin costs the shown image quality. When a selection with the mean margin of probes
@@ -183,13 +190,17 @@ class Governor {
   double calibrated_scale(double best_now_w) const;
   double share_of_range_w() const;
   double estimated_error(const model::Configuration& configuration) const;
+  // The prediction of `configuration` for the frame last given to the model, whose own is
+  // model_w: summed over levels where predictions are additive (GovernorSettings::additive_levels).
+  double predicted_for_frame(const model::Configuration& configuration, double model_w) const;
   void set_calibrated_prior();
 
   model::ConfigurationSpace space_;
   ErrorTable errors_;
   GovernorSettings settings_;
   model::RunTimeModel model_;
-  double p_min_w_ = 0.0;  // the profile's P_m
+  double p_min_w_ = 0.0;   // the profile's P_m
+  bool additive_ = false;  // GovernorSettings::additive_levels in force
   Aim aim_ = Aim::observe;
   bool governing_ = false;
 
