@@ -34,6 +34,7 @@ import argparse
 import csv
 import math
 import os
+import shutil
 import statistics
 import subprocess
 import sys
@@ -428,6 +429,8 @@ def main():
                     help="the levels' costs: 'measure' (glbudget calibrate --app on each scene first), 'off', or a path")
     ap.add_argument("--configurations", type=int, default=None, help="configurations in Fig. 10 per scene")
     ap.add_argument("--no-replay", action="store_true", help="leave out the model against Vatjus-Anttila")
+    ap.add_argument("--keep-logs", default=None,
+                    help="copy each scene's logs (reference and governed, with their selections) and level costs here")
     a = ap.parse_args()
     quick = a.quick
     a.scenes = a.scenes or ("valley" if quick else "hall,sponza,valley,subway")
@@ -452,6 +455,8 @@ def main():
         for scene in a.scenes.split(","):
             r = ev.scene(scene)
             results.append(r)
+            if a.keep_logs:
+                keep_logs(tmp, scene, a.keep_logs)
             middle = r["budgets"][len(r["budgets"]) // 2]
             fig10[scene] = ev.errors_against_estimates(scene, middle["selections"])
             print(f"{scene}: best {r['best_w']:.1f} W, cheapest {r['cheapest_w']:.1f} W; " + "; ".join(
@@ -462,6 +467,14 @@ def main():
     replay = "" if a.no_replay else replay_table(a)
     write_markdown(results, fig10, replay, command, a)
     print(f"evaluation: {os.path.join(a.out, 'evaluation.md')} and three figures")
+
+
+def keep_logs(tmp, scene, to):
+    """The scene's logs and level costs, which the temporary directory would take with it."""
+    os.makedirs(to, exist_ok=True)
+    for name in os.listdir(tmp):
+        if name.startswith(scene) and (name.endswith(".csv") or name.endswith(".json")):
+            shutil.copy(os.path.join(tmp, name), to)
 
 
 def write_markdown(results, fig10, replay, command, a):

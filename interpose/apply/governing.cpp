@@ -623,7 +623,10 @@ bool governor_start() {
     settings.transition_s = o.transition_s;
     settings.feedback.enabled = o.feedback;
     settings.feedback.own_residuals = o.feedback_own;
-    settings.additive_levels = o.additive_levels;
+    using Interactions = loop::GovernorSettings::Interactions;
+    settings.level_interactions = o.level_interactions == "model"      ? Interactions::model
+                                  : o.level_interactions == "additive" ? Interactions::additive
+                                                                       : Interactions::calibrated;
     settings.error_feedback.enabled = o.error_feedback;
     if (!o.probe_stretch) settings.probe_stretch_gain = 0.0;
     const std::string path = default_profile_path();

@@ -37,7 +37,7 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_TRANSITION_S",
     "GLBUDGET_FEEDBACK",
     "GLBUDGET_FEEDBACK_OWN",
-    "GLBUDGET_ADDITIVE_LEVELS",
+    "GLBUDGET_LEVEL_INTERACTIONS",
     "GLBUDGET_ERROR_FEEDBACK",
     "GLBUDGET_PROBE_STRETCH",
     "GLBUDGET_PROBE_MAX_AGE_S",
@@ -186,8 +186,11 @@ Options parse_options(char** env, std::string* warnings) {
       parse_switch(name, value, o.feedback, warnings);
     } else if (name == "GLBUDGET_FEEDBACK_OWN") {
       parse_switch(name, value, o.feedback_own, warnings);
-    } else if (name == "GLBUDGET_ADDITIVE_LEVELS") {
-      parse_switch(name, value, o.additive_levels, warnings);
+    } else if (name == "GLBUDGET_LEVEL_INTERACTIONS") {
+      if (value == "calibrated" || value == "additive" || value == "model")
+        o.level_interactions = value;
+      else
+        warn(warnings, "GLBUDGET_LEVEL_INTERACTIONS='" + value + "' is not calibrated, additive or model; calibrated");
     } else if (name == "GLBUDGET_ERROR_FEEDBACK") {
       parse_switch(name, value, o.error_feedback, warnings);
     } else if (name == "GLBUDGET_PROBE_STRETCH") {

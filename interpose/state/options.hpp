@@ -43,10 +43,10 @@ struct Options {
   // GLBUDGET_FEEDBACK_OWN=1: a measured configuration's correction moves from the additive fit
   // towards its own windows' residual (loop/power_feedback.hpp, own_residuals)
   bool feedback_own = false;
-  // GLBUDGET_ADDITIVE_LEVELS=0: where `glbudget calibrate --app` measured each level alone, a
-  // combination of levels is predicted by the run-time model itself rather than as the sum of
-  // its levels' changes (model/additive_levels.hpp)
-  bool additive_levels = true;
+  // GLBUDGET_LEVEL_INTERACTIONS=calibrated|additive|model: where `glbudget calibrate --app`
+  // measured each level alone, how a combination of levels is predicted (loop/governor.hpp,
+  // level_interactions; model/additive_levels.hpp)
+  std::string level_interactions = "calibrated";
   // GLBUDGET_ERROR_FEEDBACK=0: under an error budget, the estimates are not corrected by the
   // error probes measured of the configuration shown
   bool error_feedback = true;

@@ -35,8 +35,7 @@ TEST_CASE("make_additive_over_levels keeps the best and each level alone, and su
     const Configuration c = space.decode(i);
     CHECK(power[i] == Approx(interacting(c, 0.0)));
     // The template for one configuration agrees with the table.
-    CHECK(additive_over_levels(c, [](const Configuration& s) { return interacting(s, 2.0); }) ==
-          Approx(power[i]));
+    CHECK(additive_over_levels(c, [](const Configuration& s) { return interacting(s, 2.0); }) == Approx(power[i]));
   }
   // The cheapest: 40 - 10 - 6 - 0.5, where the interacting model made it 8 W more.
   CHECK(power[space.index_of(space.cheapest())] == Approx(23.5));
@@ -77,4 +76,17 @@ TEST_CASE("make_additive_over_levels at its extremes", "[model]") {
     CHECK(single[1] == std::vector<std::size_t>{0, 2});
     CHECK(single[2] == std::vector<std::size_t>{0, 1});
   }
+}
+
+TEST_CASE("interaction_share: the model's interaction scaled towards the measured, never beyond it", "[model]") {
+  CHECK(interaction_share(-8.0, -4.0) == Approx(0.5));  // the model doubles what was measured
+  CHECK(interaction_share(4.0, 1.0) == Approx(0.25));
+  CHECK(interaction_share(-2.0, -6.0) == 1.0);  // never amplified
+  CHECK(interaction_share(-2.0, -2.0) == 1.0);
+  CHECK(interaction_share(5.7, -3.4) == 0.0);  // turned round: the sum alone
+  CHECK(interaction_share(-3.0, 0.0) == 0.0);
+  CHECK(interaction_share(0.0, -3.0) == 0.0);  // nothing to scale
+  CHECK(interaction_share(std::nan(""), -3.0) == 0.0);
+  CHECK(interaction_share(-3.0, std::nan("")) == 0.0);
+  CHECK(interaction_share(-3.0, -INFINITY) == 0.0);
 }

@@ -1322,19 +1322,26 @@ TEST_CASE("a calibrated range sets the bottom of a share of the range", "[loop][
   CHECK(deep.error > none.error);
 }
 
-TEST_CASE("with each level's calibrated power, a configuration is predicted as its levels' changes summed",
+TEST_CASE("with each level's calibrated power, a combination is its levels' changes summed plus a held interaction",
           "[loop][feedback]") {
-  // `glbudget calibrate --app` measured the best and every level alone (here the truth at the
-  // path's first counts): the selection's table is the best's corrected prediction plus each
-  // level's change alone, with the feedback's terms, which are additive too. Without it
-  // (additive_levels false) the model's saturating curve makes the levels' savings interact.
-  auto run = [](bool additive) {
-    const model::testing::HiddenModel hidden = model::testing::six_pass_hidden_model();
+  // `glbudget calibrate --app` measured the best, every level alone and the cheapest (here the
+  // truth at the path's first counts). `additive`: the selection's table is the best's
+  // corrected prediction plus each level's change alone, with the feedback's terms, which are
+  // additive too. `model`: the model's saturating curve makes the levels' changes interact.
+  // `calibrated`: that interaction, scaled towards the measured cheapest and never beyond the
+  // model's own; the synthetic truth has the model's curve, so most of it is kept.
+  struct Result {
+    double largest_gap_w = 0.0;  // from the levels' changes summed
+    double cheapest_w = 0.0;     // predicted
+    double share = 0.0;
+  };
+  const model::testing::HiddenModel hidden = model::testing::six_pass_hidden_model();
+  const Configuration best(6, 0), cheapest = hidden.space.cheapest();
+  auto run = [&](GovernorSettings::Interactions interactions) {
     model::testing::SceneGenerator scene(hidden, 0.0, 7);
     const Truth truth(hidden, scene.counts(0));
     GovernorSettings settings = power_budget("50%");
-    settings.additive_levels = additive;
-    const Configuration best(6, 0), cheapest = hidden.space.cheapest();
+    settings.level_interactions = interactions;
     settings.calibrated_range = model::VariantTable::MeasuredRange{truth.power(best), truth.power(cheapest)};
     for (std::size_t i = 0; i < 6; ++i)
       for (int l = 1; l < static_cast<int>(hidden.space.passes()[i].levels.size()); ++l) {
@@ -1344,23 +1351,36 @@ TEST_CASE("with each level's calibrated power, a configuration is predicted as i
       }
     App app(settings);
     app.run(20 * kFps);
-    const Governor::SelectionTable table = app.governor().last_selection();
     REQUIRE(app.governor().selections() > 0);
+    const Governor::SelectionTable table = app.governor().last_selection();
     const auto& power = *table.power_w;
     const model::ConfigurationSpace& space = app.governor().space();
-    double largest_gap = 0.0;
+    Result r;
     for (std::size_t index = 0; index < space.size(); ++index) {
       const double sum = model::additive_over_levels(space.decode(index),
                                                      [&](const Configuration& c) { return power[space.index_of(c)]; });
-      largest_gap = std::max(largest_gap, std::abs(power[index] - sum));
+      r.largest_gap_w = std::max(r.largest_gap_w, std::abs(power[index] - sum));
     }
-    return largest_gap;
+    r.cheapest_w = power[space.index_of(cheapest)];
+    r.share = app.governor().interaction_share();
+    return r;
   };
-  const double additive = run(true), model_combined = run(false);
-  INFO("largest gap from the sum of levels' changes: " << additive << " W additive, " << model_combined
-                                                       << " W as the model combines them");
-  CHECK(additive < 1e-9);
-  CHECK(model_combined > 0.1);
+  const Result additive = run(GovernorSettings::Interactions::additive);
+  const Result own = run(GovernorSettings::Interactions::model);
+  const Result calibrated = run(GovernorSettings::Interactions::calibrated);
+  INFO("largest gap from the levels' changes summed: " << additive.largest_gap_w << " W additive, " << own.largest_gap_w
+                                                       << " W the model's, " << calibrated.largest_gap_w
+                                                       << " W calibrated (share " << calibrated.share << ")");
+  CHECK(additive.largest_gap_w < 1e-9);
+  CHECK(additive.share == 0.0);
+  CHECK(own.largest_gap_w > 0.1);
+  CHECK(own.share == 1.0);
+  CHECK(calibrated.share > 0.5);
+  CHECK(calibrated.share <= 1.0);
+  CHECK(calibrated.largest_gap_w <= own.largest_gap_w + 1e-9);
+  // The cheapest between the sum and the model's own.
+  CHECK(calibrated.cheapest_w >= std::min(additive.cheapest_w, own.cheapest_w) - 0.5);
+  CHECK(calibrated.cheapest_w <= std::max(additive.cheapest_w, own.cheapest_w) + 0.5);
 }
 
 TEST_CASE("power feedback: windows, residuals, the margin and the additive correction", "[loop][feedback]") {

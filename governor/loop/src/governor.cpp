@@ -110,9 +110,11 @@ Governor::Governor(model::PlatformProfile profile, model::ConfigurationSpace spa
                      "in the manifest");
   }
   budget_w_ = initial_budget_w();
-  additive_ = settings_.additive_levels && settings_.feedback.enabled && settings_.calibrated_range &&
-              std::any_of(settings_.calibrated_powers.begin(), settings_.calibrated_powers.end(),
-                          [](const auto& c) { return model::only_pass_changed(c.first) >= 0; });
+  calibrated_levels_ = aim_ == Aim::power && settings_.level_interactions != GovernorSettings::Interactions::model &&
+                       settings_.feedback.enabled && settings_.calibrated_range &&
+                       std::any_of(settings_.calibrated_powers.begin(), settings_.calibrated_powers.end(),
+                                   [](const auto& c) { return model::only_pass_changed(c.first) >= 0; });
+  if (settings_.level_interactions == GovernorSettings::Interactions::additive) interaction_share_ = 0.0;
 }
 
 double Governor::initial_budget_w() const {
@@ -204,7 +206,6 @@ bool Governor::select(const FrameRecord& record) {
   Clock::time_point start = Clock::now();
   model_.refresh_fragment_scales();
   model_.predict_all(power_);
-  if (additive_) model::make_additive_over_levels(space_, power_);
   times_.predict_all.add(microseconds_since(start));
 
   start = Clock::now();
@@ -222,6 +223,7 @@ bool Governor::select(const FrameRecord& record) {
     model_power_.assign(power_.begin(), power_.end());
     set_calibrated_prior();
     feedback_.correct(space_, power_);
+    hold_interactions();
     budget_w = settings_.power.kind == model::Budget::Kind::ShareOfRange ? share_of_range_w()
                                                                          : model::budget_watts(settings_.power, power_);
     // 100 % of the range admits the best configuration by definition: no margin below it.
@@ -547,8 +549,35 @@ Decision Governor::on_frame(const FrameRecord& frame) {
 }
 
 double Governor::predicted_for_frame(const model::Configuration& configuration, double model_w) const {
-  if (!additive_ || !space_.contains(configuration)) return model_w;
-  return model::additive_over_levels(configuration, [&](const model::Configuration& c) { return model_.predict(c); });
+  if (!calibrated_levels_ || !space_.contains(configuration)) return model_w;
+  const double summed =
+      model::additive_over_levels(configuration, [&](const model::Configuration& c) { return model_.predict(c); });
+  return summed + interaction_share_ * (model_w - summed);
+}
+
+// The corrected predictions (power_), each its levels' changes summed plus the share of the
+// model's interaction that the calibrated cheapest calls for (additive_levels.hpp). The
+// feedback's correction is additive over levels, so the interaction is the model's alone.
+// Once the run has measured the cheapest itself, the share stays where it was: the cheapest's
+// correction then holds its windows, interaction included.
+void Governor::hold_interactions() {
+  if (!calibrated_levels_) return;
+  summed_.assign(power_.begin(), power_.end());
+  model::make_additive_over_levels(space_, summed_);
+  interaction_share_ = 0.0;
+  if (settings_.level_interactions == GovernorSettings::Interactions::calibrated) {
+    const model::Configuration cheapest = space_.cheapest();
+    const std::size_t c = space_.index_of(cheapest);
+    const double k = calibrated_scale(power_[space_.index_of(model::Configuration(space_.pass_count(), 0))]);
+    const auto& range = *settings_.calibrated_range;
+    if (!feedback_.measured(cheapest) && std::isfinite(k)) {
+      const double low = p_min_w_ + k * std::clamp(range.cheapest_w - p_min_w_, 0.0, range.best_w - p_min_w_);
+      kept_share_ = model::interaction_share(power_[c] - summed_[c], low - summed_[c]);
+    }
+    interaction_share_ = kept_share_;
+  }
+  for (std::size_t i = 0; i < power_.size(); ++i)
+    power_[i] = summed_[i] + interaction_share_ * (power_[i] - summed_[i]);
 }
 
 double Governor::estimated_error(const model::Configuration& configuration) const {

@@ -1,5 +1,8 @@
 #include "glbudget/model/additive_levels.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace glbudget::model {
 
 std::vector<std::vector<std::size_t>> single_level_indices(const ConfigurationSpace& space) {
@@ -35,6 +38,11 @@ void make_additive_over_levels(const ConfigurationSpace& space, std::vector<doub
       levels[i] = 0;
     }
   }
+}
+
+double interaction_share(double interaction_w, double wanted_w) {
+  if (!std::isfinite(interaction_w) || !std::isfinite(wanted_w) || interaction_w == 0.0) return 0.0;
+  return std::clamp(wanted_w / interaction_w, 0.0, 1.0);
 }
 
 }  // namespace glbudget::model

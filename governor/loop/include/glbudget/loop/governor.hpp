@@ -55,13 +55,15 @@ struct GovernorSettings {
   // level's saving, against what was measured, is the feedback's prior for that level
   // (Governor::calibrated_prior). In the space's pass order; passes beyond them at level 0.
   std::vector<std::pair<model::Configuration, double>> calibrated_powers;
-  // Where calibrated_powers holds levels alone (and the feedback is on, which holds each
-  // single-level prediction to them), every configuration is predicted as the best's power
-  // plus each of its levels' predicted change alone (model/additive_levels.hpp), in the
-  // selection's table and in each frame's predicted_w: the run-time model's own way of making
-  // levels interact is fitted on the few configurations a run draws and swung by 5 W between
-  // refits on the demo's Hall. false (GLBUDGET_ADDITIVE_LEVELS=0): the model's combination.
-  bool additive_levels = true;
+  // How a combination of levels is predicted where calibrated_powers holds levels alone and
+  // calibrated_range the cheapest (under a power budget with the feedback on, whose priors
+  // hold each single-level prediction to them; model/additive_levels.hpp). `calibrated`: the
+  // best's power plus each level's change alone, plus the run-time model's interaction
+  // scaled so that the cheapest is predicted where it was measured, never amplified nor
+  // turned round; `additive`: without the interaction; `model`: the model's own
+  // (GLBUDGET_LEVEL_INTERACTIONS).
+  enum class Interactions { calibrated, additive, model };
+  Interactions level_interactions = Interactions::calibrated;
   // Beyond the paper: where more windows hold a quality probe than the budget may leave over,
   // each must fit a probe's whole excess (probe_overhead.hpp), and at low frame rates that
   // margin costs the shown image quality. When a selection with the mean margin of probes
@@ -163,6 +165,9 @@ class Governor {
     return {last_selection_frame_, chosen_index_, budget_w_, margin_w_, &power_, &error_};
   }
   const GovernorSettings& settings() const { return settings_; }
+  // The share of the run-time model's interaction between levels the last selection kept
+  // (GovernorSettings::level_interactions): 1 where the model's own combination is used.
+  double interaction_share() const { return calibrated_levels_ ? interaction_share_ : 1.0; }
 
   // A power or error budget is in force; false: observe only, nothing is ever changed.
   bool governing() const { return governing_; }
@@ -191,16 +196,20 @@ class Governor {
   double share_of_range_w() const;
   double estimated_error(const model::Configuration& configuration) const;
   // The prediction of `configuration` for the frame last given to the model, whose own is
-  // model_w: summed over levels where predictions are additive (GovernorSettings::additive_levels).
+  // model_w, with the levels' interaction as the last selection held it (level_interactions).
   double predicted_for_frame(const model::Configuration& configuration, double model_w) const;
+  void hold_interactions();
   void set_calibrated_prior();
 
   model::ConfigurationSpace space_;
   ErrorTable errors_;
   GovernorSettings settings_;
   model::RunTimeModel model_;
-  double p_min_w_ = 0.0;   // the profile's P_m
-  bool additive_ = false;  // GovernorSettings::additive_levels in force
+  double p_min_w_ = 0.0;  // the profile's P_m
+  // GovernorSettings::level_interactions applies (calibrated levels, a power budget, feedback)
+  bool calibrated_levels_ = false;
+  double interaction_share_ = 1.0;  // of the model's interaction kept (additive_levels.hpp)
+  double kept_share_ = 1.0;         // the calibrated share, held once the cheapest is measured
   Aim aim_ = Aim::observe;
   bool governing_ = false;
 
@@ -242,6 +251,7 @@ class Governor {
   std::vector<double> power_;        // reused by selections: corrected predictions
   std::vector<double> model_power_;  // and the model's own
   std::vector<double> guarded_;      // and as the selection weighs them (guard_unmeasured)
+  std::vector<double> summed_;       // and as their levels' changes summed (hold_interactions)
   std::vector<double> error_;
   StepTimes times_;
   std::vector<std::string> notes_;

@@ -2,16 +2,18 @@
 // A configuration's power as the best configuration's plus each pass's own change at its
 // level, measured against the best alone: P(s) = P(s0) + sum_i [P(s_i^l_i) - P(s0)], s_i^l
 // the best with pass i at level l. The same additivity over passes the error estimates use
-// (paper §6.2), here for power.
+// (paper §6.2), here for power; what a model predicts beyond it for a combination is how it
+// makes the levels' changes interact.
 //
-// The governor predicts so where `glbudget calibrate --app` measured each level alone: the
-// calibrated priors then hold every single-level prediction to a measurement, and what is
-// left of the run-time model in a combination of levels is how it makes their savings
-// interact, which it fits from the frames of the few configurations a run has drawn and
-// cannot tell apart. On the demo's Hall, after one refit on frames of one configuration, the
-// model made 2:2:2:2:2:2 cost 5 W more than the sum of its levels' changes, and more than a
-// configuration with four passes at their best (it measured 19 W, predicted 30 W), so the
-// governor, keeping a wide margin, found nothing cheaper to draw.
+// The governor uses it where `glbudget calibrate --app` measured each level alone and the
+// cheapest configuration: the calibrated priors hold every single-level prediction to a
+// measurement, and what is left of the run-time model in a combination is its interaction,
+// fitted from the frames of the few configurations a run has drawn. On the demo's Hall that
+// interaction swung the cheapest configuration's prediction between 14 and 31 W from one
+// refit to the next (it measured 19 W): at 50 % the governor once found nothing predicted
+// cheaper than a configuration with four passes at their best, and drew it over the budget.
+// The calibrated cheapest says how far levels interact: the model's interaction is scaled to
+// it (interaction_share), never amplified and never turned round.
 #include <cstddef>
 #include <vector>
 
@@ -42,5 +44,11 @@ double additive_over_levels(const Configuration& configuration, PowerOf&& at) {
   }
   return sum;
 }
+
+// How much of a model's interaction to keep: the share of `interaction_w` (the model's
+// prediction of the cheapest configuration less its levels' changes summed) that reaches
+// `wanted_w` (the measured cheapest less the same sum), within [0, 1]. 0 where they differ in
+// sign or either is 0 or not finite: the levels' changes summed.
+double interaction_share(double interaction_w, double wanted_w);
 
 }  // namespace glbudget::model
