@@ -624,9 +624,10 @@ bool governor_start() {
     settings.feedback.enabled = o.feedback;
     settings.feedback.own_residuals = o.feedback_own;
     using Interactions = loop::GovernorSettings::Interactions;
-    settings.level_interactions = o.level_interactions == "model"      ? Interactions::model
-                                  : o.level_interactions == "additive" ? Interactions::additive
-                                                                       : Interactions::calibrated;
+    settings.level_interactions = o.level_interactions == Options::LevelInteractions::kModel ? Interactions::model
+                                  : o.level_interactions == Options::LevelInteractions::kAdditive
+                                      ? Interactions::additive
+                                      : Interactions::calibrated;
     settings.error_feedback.enabled = o.error_feedback;
     if (!o.probe_stretch) settings.probe_stretch_gain = 0.0;
     const std::string path = default_profile_path();

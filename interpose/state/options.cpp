@@ -187,8 +187,12 @@ Options parse_options(char** env, std::string* warnings) {
     } else if (name == "GLBUDGET_FEEDBACK_OWN") {
       parse_switch(name, value, o.feedback_own, warnings);
     } else if (name == "GLBUDGET_LEVEL_INTERACTIONS") {
-      if (value == "calibrated" || value == "additive" || value == "model")
-        o.level_interactions = value;
+      if (value == "calibrated")
+        o.level_interactions = Options::LevelInteractions::kCalibrated;
+      else if (value == "additive")
+        o.level_interactions = Options::LevelInteractions::kAdditive;
+      else if (value == "model")
+        o.level_interactions = Options::LevelInteractions::kModel;
       else
         warn(warnings, "GLBUDGET_LEVEL_INTERACTIONS='" + value + "' is not calibrated, additive or model; calibrated");
     } else if (name == "GLBUDGET_ERROR_FEEDBACK") {

@@ -46,7 +46,7 @@ struct Options {
   // GLBUDGET_LEVEL_INTERACTIONS=calibrated|additive|model: where `glbudget calibrate --app`
   // measured each level alone, how a combination of levels is predicted (loop/governor.hpp,
   // level_interactions; model/additive_levels.hpp)
-  std::string level_interactions = "calibrated";
+  enum class LevelInteractions { kCalibrated, kAdditive, kModel } level_interactions = LevelInteractions::kCalibrated;
   // GLBUDGET_ERROR_FEEDBACK=0: under an error budget, the estimates are not corrected by the
   // error probes measured of the configuration shown
   bool error_feedback = true;

@@ -315,6 +315,16 @@ double Governor::calibrated_scale(double best_now_w) const {
   return (best_now_w - p_min_w_) / (range->best_w - p_min_w_);
 }
 
+// The cheapest configuration as calibration measured it, scaled to the best's power now: a
+// share, so that a scene lighter or heavier than the calibration's, or a sensor that drifted
+// since, moves both ends together. NaN without a calibrated range.
+double Governor::calibrated_cheapest_w(double best_now_w) const {
+  const double k = calibrated_scale(best_now_w);
+  if (!std::isfinite(k)) return std::numeric_limits<double>::quiet_NaN();
+  const auto& range = *settings_.calibrated_range;
+  return p_min_w_ + k * std::clamp(range.cheapest_w - p_min_w_, 0.0, range.best_w - p_min_w_);
+}
+
 // A share of the range in watts. Beyond the paper: the range runs from the cheapest
 // configuration to the best-quality one, each at the model's prediction moved by its own
 // measured residual where it has one (the app starts at its best), the cheapest's else by the
@@ -330,14 +340,11 @@ double Governor::share_of_range_w() const {
   const double high = model_power_[top] + feedback_.residual(space_.decode(top));
   const double shift = high - model_power_[top];
   double low = std::numeric_limits<double>::infinity();
-  const auto& range = settings_.calibrated_range;
   const model::Configuration last_levels = space_.cheapest();
   if (feedback_.measured(last_levels)) {
     low = power_[space_.index_of(last_levels)];
-  } else if (const double k = calibrated_scale(high); std::isfinite(k)) {
-    // A share, so that a scene lighter or heavier than the calibration's, or a sensor that
-    // drifted since, moves both ends together.
-    low = p_min_w_ + k * std::clamp(range->cheapest_w - p_min_w_, 0.0, range->best_w - p_min_w_);
+  } else {
+    low = calibrated_cheapest_w(high);
   }
   if (!std::isfinite(low)) {
     std::size_t cheapest = top;
@@ -372,10 +379,9 @@ void Governor::set_calibrated_prior() {
   for (const auto& [calibrated, watts] : measured) {
     model::Configuration c = calibrated;
     c.resize(space_.pass_count(), 0);
-    std::size_t pass = 0, changed = 0;
-    for (std::size_t i = 0; i < c.size(); ++i)
-      if (c[i] != 0) pass = i, ++changed;
-    if (changed != 1 || !space_.contains(c)) continue;  // the best, the cheapest: not one level alone
+    const int changed = model::only_pass_changed(c);
+    if (changed < 0 || !space_.contains(c)) continue;  // the best, the cheapest: not one level alone
+    const std::size_t pass = static_cast<std::size_t>(changed);
     const std::size_t level = static_cast<std::size_t>(c[pass]);
     const double predicted = model_power_[space_.index_of(c)] - model_power_[best_index];
     if (!std::isfinite(predicted)) continue;
@@ -564,17 +570,11 @@ void Governor::hold_interactions() {
   if (!calibrated_levels_) return;
   summed_.assign(power_.begin(), power_.end());
   model::make_additive_over_levels(space_, summed_);
-  interaction_share_ = 0.0;
-  if (settings_.level_interactions == GovernorSettings::Interactions::calibrated) {
-    const model::Configuration cheapest = space_.cheapest();
+  const model::Configuration cheapest = space_.cheapest();
+  if (settings_.level_interactions == GovernorSettings::Interactions::calibrated && !feedback_.measured(cheapest)) {
+    const double low = calibrated_cheapest_w(power_[space_.index_of(model::Configuration(space_.pass_count(), 0))]);
     const std::size_t c = space_.index_of(cheapest);
-    const double k = calibrated_scale(power_[space_.index_of(model::Configuration(space_.pass_count(), 0))]);
-    const auto& range = *settings_.calibrated_range;
-    if (!feedback_.measured(cheapest) && std::isfinite(k)) {
-      const double low = p_min_w_ + k * std::clamp(range.cheapest_w - p_min_w_, 0.0, range.best_w - p_min_w_);
-      kept_share_ = model::interaction_share(power_[c] - summed_[c], low - summed_[c]);
-    }
-    interaction_share_ = kept_share_;
+    if (std::isfinite(low)) interaction_share_ = model::interaction_share(power_[c] - summed_[c], low - summed_[c]);
   }
   for (std::size_t i = 0; i < power_.size(); ++i)
     power_[i] = summed_[i] + interaction_share_ * (power_[i] - summed_[i]);

@@ -193,6 +193,7 @@ class Governor {
   void want_probe_period(double budget_w, double margin_without_probes_w);
   bool probes_outgrew_margin() const;
   double calibrated_scale(double best_now_w) const;
+  double calibrated_cheapest_w(double best_now_w) const;
   double share_of_range_w() const;
   double estimated_error(const model::Configuration& configuration) const;
   // The prediction of `configuration` for the frame last given to the model, whose own is
@@ -208,8 +209,9 @@ class Governor {
   double p_min_w_ = 0.0;  // the profile's P_m
   // GovernorSettings::level_interactions applies (calibrated levels, a power budget, feedback)
   bool calibrated_levels_ = false;
-  double interaction_share_ = 1.0;  // of the model's interaction kept (additive_levels.hpp)
-  double kept_share_ = 1.0;         // the calibrated share, held once the cheapest is measured
+  // Of the model's interaction kept (additive_levels.hpp): 0 for `additive`; for `calibrated`
+  // the last selection's, held once the run has measured the cheapest itself.
+  double interaction_share_ = 1.0;
   Aim aim_ = Aim::observe;
   bool governing_ = false;
 
