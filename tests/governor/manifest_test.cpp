@@ -680,6 +680,11 @@ draws = false
   CHECK(parse_force("1,0,2", m, &error) == std::vector<int>{1, 0, 2});
   CHECK(parse_force(" 0 , 0 ,\t0 ", m, &error) == std::vector<int>{0, 0, 0});
   CHECK(parse_force("1,0,2", m, nullptr) == std::vector<int>{1, 0, 2});
+  // As the log and the report write a configuration.
+  CHECK(parse_force("1:0:2", m, &error) == std::vector<int>{1, 0, 2});
+  CHECK(parse_force("1:0,2", m, &error) == std::vector<int>{1, 0, 2});
+  CHECK_FALSE(parse_force("1::2", m, &error));
+  CHECK(error == "GLBUDGET_FORCE='1::2': '' is not a level of pass 'base' (expected an integer)");
 
   CHECK_FALSE(parse_force("1,0", m, &error));
   CHECK(error == "GLBUDGET_FORCE='1,0' has 2 levels; the manifest has 3 passes (resolution, base, shadows)");

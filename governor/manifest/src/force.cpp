@@ -13,14 +13,16 @@ std::string_view trim(std::string_view text) {
   return text.substr(first, last - first + 1);
 }
 
+// Levels separated by commas, or by colons as the log, the selections table and the report
+// write a configuration (so a configuration copied from them forces as it reads).
 std::vector<std::string_view> split_fields(std::string_view text) {
   std::vector<std::string_view> fields;
   if (trim(text).empty()) return fields;
   for (;;) {
-    const auto comma = text.find(',');
-    fields.push_back(trim(text.substr(0, comma)));
-    if (comma == std::string_view::npos) return fields;
-    text.remove_prefix(comma + 1);
+    const auto separator = text.find_first_of(",:");
+    fields.push_back(trim(text.substr(0, separator)));
+    if (separator == std::string_view::npos) return fields;
+    text.remove_prefix(separator + 1);
   }
 }
 
