@@ -73,9 +73,11 @@ void print_help() {
       "(default 600) in each of the two runs.\n\n"
       "Then, with a platform profile (--profile, else $GLBUDGET_PROFILE, else the sensor's from\n"
       "`glbudget calibrate`), the app runs again, uninstrumented, with the sensor (--sensor, else\n"
-      "$GLBUDGET_SENSOR, else auto): level 0 everywhere, then each level of each pass alone, for\n"
-      "--power-frames frames each (default 20, at least 3: the first two after each switch are left\n"
-      "out; 0 skips this run), paced at --fps R if given (as the app will run under a budget).\n"
+      "$GLBUDGET_SENSOR, else auto): level 0 everywhere, then each level of each pass alone, then\n"
+      "the cheapest, then all again in the reverse order (a drift linear in time cancels), keeping\n"
+      "about --power-frames - 2 frames of each (default 20, at least 3: the first two after each\n"
+      "switch are left out; 0 skips this run), paced at --fps R if given (as the app will run under\n"
+      "a budget).\n"
       "From those frames' power the costs of a batch, vertex, fragment, instruction and texel\n"
       "access in this app's frames are fitted (as `glbudget costs` does) and kept in the table;\n"
       "the model starts from them.\n\n"
@@ -295,35 +297,53 @@ void add_program(const json& program, LevelSums& s) {
   }
 }
 
+struct PowerRunPlan {
+  std::vector<std::string> sequence;  // GLBUDGET_FORCE's configurations, one block each
+  std::size_t distinct = 0;           // configurations measured
+  unsigned block_frames = 0;          // GLBUDGET_FORCE_EVERY
+};
+
 // GLBUDGET_FORCE for the power run: level 0 everywhere, then each level of each pass alone, so
-// that each level's power is told apart from every other's; then the cheapest configuration
-// (every pass at its last level) and the best again. The best and the cheapest are the range a
-// share of it is taken over (the governor's calibrated_range); the best measured at both ends
-// of the run averages out a sensor's drift over it.
-std::vector<std::string> power_run_configurations(const manifest::Manifest& m) {
+// that each level's power is told apart from every other's, then the cheapest configuration
+// (every pass at its last level); then all of them again in the reverse order. The best and the
+// cheapest are the range a share of it is taken over (the governor's calibrated_range).
+// Each configuration is measured in two blocks that lie symmetrically about the middle of the
+// run, so a drift linear in time, of the sensor or of the scene along the app's camera path,
+// cancels from every configuration's mean and from each level's difference from the best. (With
+// one block each and the best at both ends, only the levels measured mid-run were spared it: on
+// the demo's Hall the best's power rises 2.5 W over the run's first 270 frames.)
+PowerRunPlan power_run_plan(const manifest::Manifest& m, unsigned power_frames) {
   const std::string best = best_configuration(m);
   std::string cheapest;
   for (std::size_t i = 0; i < m.passes.size(); ++i)
     cheapest += (i ? "," : "") + std::to_string(m.passes[i].levels.empty() ? 0 : m.passes[i].levels.size() - 1);
-  std::vector<std::string> configurations{best};
+  std::vector<std::string> forward{best};
   for (std::size_t i = 0; i < m.passes.size(); ++i)
     for (std::size_t l = 1; l < m.passes[i].levels.size(); ++l) {
       std::string c;
       for (std::size_t j = 0; j < m.passes.size(); ++j) c += (j ? "," : "") + std::to_string(j == i ? l : 0);
-      configurations.push_back(c);
+      forward.push_back(c);
     }
-  if (std::find(configurations.begin(), configurations.end(), cheapest) == configurations.end())
-    configurations.push_back(cheapest);
-  configurations.push_back(best);
-  return configurations;
+  if (std::find(forward.begin(), forward.end(), cheapest) == forward.end()) forward.push_back(cheapest);
+  PowerRunPlan plan;
+  plan.distinct = forward.size();
+  plan.sequence = forward;
+  plan.sequence.insert(plan.sequence.end(), forward.rbegin(), forward.rend());
+  // Each block leaves out its first two frames (settled_samples); two blocks keep about the
+  // power_frames - 2 frames one block of power_frames would.
+  plan.block_frames = power_frames < 3 ? power_frames : 2 + (power_frames - 2 + 1) / 2;
+  return plan;
 }
 
-// The power run's frames as the model sees them, leaving out the first two of each
-// configuration (their power partly belongs to the one before).
-std::vector<model::ConfiguredSample> settled_samples(const analysis::FrameLog& log, const model::VariantTable& table) {
+// The power run's frames as the model sees them, up to its plan's last (GLBUDGET_FORCE starts
+// over after it: frames past it would tip the last block's symmetry), leaving out the first two
+// of each configuration (their power partly belongs to the one before).
+std::vector<model::ConfiguredSample> settled_samples(const analysis::FrameLog& log, const model::VariantTable& table,
+                                                     std::uint64_t last_frame) {
   model::PassNames names(table.space);
-  const std::vector<model::ConfiguredSample> all =
-      analysis::configured_samples(analysis::frames_of_busiest_context(log), table, names);
+  std::vector<analysis::LoggedFrame> frames = analysis::frames_of_busiest_context(log);
+  std::erase_if(frames, [&](const analysis::LoggedFrame& f) { return f.frame > last_frame; });
+  const std::vector<model::ConfiguredSample> all = analysis::configured_samples(frames, table, names);
   std::vector<model::ConfiguredSample> settled;
   for (std::size_t i = 2; i < all.size(); ++i)
     if (all[i].configuration == all[i - 1].configuration && all[i].configuration == all[i - 2].configuration)
@@ -349,7 +369,8 @@ bool measure_power(const Options& o, const manifest::Manifest& m,
   }
   const std::optional<model::PlatformProfile> profile = model::load_platform_profile(profile_path);  // says why
   if (!profile) return false;
-  const std::vector<std::string> configurations = power_run_configurations(m);
+  const PowerRunPlan plan = power_run_plan(m, o.power_frames);
+  const std::vector<std::string>& configurations = plan.sequence;
   std::string force;
   for (const std::string& c : configurations) force += (force.empty() ? "" : ";") + c;
   const std::string log = (fs::path(scratch) / "power.csv").string();
@@ -358,22 +379,22 @@ bool measure_power(const Options& o, const manifest::Manifest& m,
     if (name == "LD_PRELOAD" || name == "GLBUDGET_CONFIG") env.emplace_back(name, value);
   env.emplace_back("GLBUDGET_LOG", log);
   env.emplace_back("GLBUDGET_FORCE", force);
-  env.emplace_back("GLBUDGET_FORCE_EVERY", std::to_string(o.power_frames));
+  env.emplace_back("GLBUDGET_FORCE_EVERY", std::to_string(plan.block_frames));
   if (!o.sensor.empty()) env.emplace_back("GLBUDGET_SENSOR", o.sensor);
   if (!o.fps.empty()) env.emplace_back("GLBUDGET_FPS", o.fps);
-  const std::uint64_t frames_needed = configurations.size() * o.power_frames + 2;
+  const std::uint64_t frames_needed = configurations.size() * plan.block_frames + 2;
   std::printf(
-      "measuring the power of %zu configurations (the best, each level alone, the cheapest, the best again), %u "
-      "frames each%s%s...\n",
-      configurations.size(), o.power_frames, o.fps.empty() ? "" : " at ",
-      o.fps.empty() ? "" : (o.fps + " fps").c_str());
+      "measuring the power of %zu configurations (the best, each level alone, the cheapest; then again in the "
+      "reverse order), two blocks of %u frames each%s%s...\n",
+      plan.distinct, plan.block_frames, o.fps.empty() ? "" : " at ", o.fps.empty() ? "" : (o.fps + " fps").c_str());
   std::fflush(stdout);
   const RunResult run = run_app(o, env, log, frames_needed);
   if (!run.started) return false;
   const std::optional<model::VariantTable> variants = model::parse_variant_table(table.dump(), "the measured table");
   const std::optional<analysis::FrameLog> frames = analysis::read_frame_log_file(log);
   if (!variants || !frames) return false;
-  const std::vector<model::ConfiguredSample> samples = settled_samples(*frames, *variants);
+  const std::vector<model::ConfiguredSample> samples =
+      settled_samples(*frames, *variants, configurations.size() * plan.block_frames);
   const analysis::CostLog logs[] = {{samples, &variants->space}};
   const std::optional<analysis::PlatformCostsFit> fit = analysis::fit_platform_costs(logs, *profile);
   if (!fit) {
@@ -384,10 +405,21 @@ bool measure_power(const Options& o, const manifest::Manifest& m,
     return false;
   }
   // Each configuration's mean measured power, for the user and the record.
-  std::map<model::Configuration, std::pair<double, int>> power;
-  for (const model::ConfiguredSample& s : samples)
-    if (std::isfinite(s.sample.power_w))
-      power[s.configuration].first += s.sample.power_w, ++power[s.configuration].second;
+  // And the mean place of its frames in the run (0: the first frame measured, 1: the last): the
+  // two blocks' symmetry about the middle, which the drift's cancelling rests on, made visible.
+  struct Measured {
+    double watts = 0.0, place = 0.0;
+    int frames = 0;
+  };
+  std::map<model::Configuration, Measured> power;
+  const double last_place = samples.size() > 1 ? static_cast<double>(samples.size() - 1) : 1.0;
+  for (std::size_t i = 0; i < samples.size(); ++i)
+    if (const model::ConfiguredSample& s = samples[i]; std::isfinite(s.sample.power_w)) {
+      Measured& m = power[s.configuration];
+      m.watts += s.sample.power_w;
+      m.place += static_cast<double>(i) / last_place;
+      ++m.frames;
+    }
   ordered_json measured = ordered_json::array();
   std::printf("%-24s %9s %7s\n", "configuration", "power W", "frames");
   std::set<std::string> listed;
@@ -398,9 +430,11 @@ bool measure_power(const Options& o, const manifest::Manifest& m,
     const auto parsed = model::parse_configuration(colon, variants->space);
     const auto it = parsed ? power.find(*parsed) : power.end();
     if (it == power.end()) continue;
-    const double mean = it->second.first / it->second.second;
-    std::printf("%-24s %9.2f %7d\n", colon.c_str(), mean, it->second.second);
-    measured.push_back({{"configuration", colon}, {"power_w", mean}, {"frames", it->second.second}});
+    const Measured& m = it->second;
+    const double mean = m.watts / m.frames;
+    std::printf("%-24s %9.2f %7d\n", colon.c_str(), mean, m.frames);
+    measured.push_back(
+        {{"configuration", colon}, {"power_w", mean}, {"frames", m.frames}, {"mean_place", m.place / m.frames}});
   }
   if (measured.size() < listed.size())
     std::fprintf(stderr,

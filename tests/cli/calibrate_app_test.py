@@ -104,6 +104,10 @@ check(len(configurations) == 14 and configurations[0] == "0:0:0:0:0:0" and "0:0:
       configurations[-1] == "2:2:2:2:2:2",
       f"level 0, each of the 12 other levels alone, then the cheapest: {configurations}")
 check(all(c["power_w"] > 0 and c["frames"] >= 2 for c in table["power"]["configurations"]), "each one's power")
+# Measured in two blocks each, the second run in the reverse order: every configuration's frames
+# lie about the run's middle (one block each, in order, put them from about 0.04 to 0.96).
+places = {c["configuration"]: c.get("mean_place", -1) for c in table["power"]["configurations"]}
+check(all(0.4 <= p <= 0.6 for p in places.values()), f"each configuration's frames centred on the run: {places}")
 
 # The error run: each level's error against the best, probed, and k = e(l) / e(lmax).
 measured_errors = table.get("errors", {}).get("levels", [])
