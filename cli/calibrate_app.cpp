@@ -298,8 +298,7 @@ void add_program(const json& program, LevelSums& s) {
 }
 
 struct PowerRunPlan {
-  std::vector<std::string> sequence;  // GLBUDGET_FORCE's configurations, one block each
-  std::size_t distinct = 0;           // configurations measured
+  std::vector<std::string> sequence;  // GLBUDGET_FORCE's configurations, one block each: each twice
   unsigned block_frames = 0;          // GLBUDGET_FORCE_EVERY
 };
 
@@ -326,7 +325,6 @@ PowerRunPlan power_run_plan(const manifest::Manifest& m, unsigned power_frames) 
     }
   if (std::find(forward.begin(), forward.end(), cheapest) == forward.end()) forward.push_back(cheapest);
   PowerRunPlan plan;
-  plan.distinct = forward.size();
   plan.sequence = forward;
   plan.sequence.insert(plan.sequence.end(), forward.rbegin(), forward.rend());
   // Each block leaves out its first two frames (settled_samples); two blocks keep about the
@@ -386,7 +384,8 @@ bool measure_power(const Options& o, const manifest::Manifest& m,
   std::printf(
       "measuring the power of %zu configurations (the best, each level alone, the cheapest; then again in the "
       "reverse order), two blocks of %u frames each%s%s...\n",
-      plan.distinct, plan.block_frames, o.fps.empty() ? "" : " at ", o.fps.empty() ? "" : (o.fps + " fps").c_str());
+      configurations.size() / 2, plan.block_frames, o.fps.empty() ? "" : " at ",
+      o.fps.empty() ? "" : (o.fps + " fps").c_str());
   std::fflush(stdout);
   const RunResult run = run_app(o, env, log, frames_needed);
   if (!run.started) return false;

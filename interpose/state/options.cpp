@@ -8,9 +8,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <initializer_list>
 #include <mutex>
 #include <optional>
 #include <string_view>
+#include <utility>
 
 namespace glbudget {
 
@@ -98,6 +100,23 @@ void parse_switch(std::string_view name, const std::string& value, bool& on, std
   else
     warn(warnings, std::string(name) + "='" + value + "' is not 0/1/on/off; " + (on ? "on" : "off"));
 }
+// One of a few named values; anything else is said and leaves it as it was (its default).
+template <typename T>
+void parse_choice(std::string_view name, const std::string& value,
+                  std::initializer_list<std::pair<std::string_view, T>> choices, T& out, std::string* warnings) {
+  std::string names, kept;
+  std::size_t i = 0;
+  for (const auto& [text, choice] : choices) {
+    if (value == text) {
+      out = choice;
+      return;
+    }
+    names += std::string(i == 0 ? "" : i + 1 == choices.size() ? " or " : ", ") + std::string(text);
+    if (choice == out && kept.empty()) kept = text;
+    ++i;
+  }
+  warn(warnings, std::string(name) + "='" + value + "' is not " + names + "; " + kept);
+}
 }  // namespace
 
 Options parse_options(char** env, std::string* warnings) {
@@ -164,37 +183,20 @@ Options parse_options(char** env, std::string* warnings) {
       else
         warn(warnings, "GLBUDGET_PROBE_SCALE='" + value + "' is not 1, 2 or 4; Wang's rule");
     } else if (name == "GLBUDGET_PROBE_SSIM") {
-      if (value == "auto")
-        o.probe_ssim = Options::ProbeSsim::kAuto;
-      else if (value == "gpu")
-        o.probe_ssim = Options::ProbeSsim::kGpu;
-      else if (value == "cpu")
-        o.probe_ssim = Options::ProbeSsim::kCpu;
-      else
-        warn(warnings, "GLBUDGET_PROBE_SSIM='" + value + "' is not auto, gpu or cpu; auto");
+      using S = Options::ProbeSsim;
+      parse_choice<S>(name, value, {{"auto", S::kAuto}, {"gpu", S::kGpu}, {"cpu", S::kCpu}}, o.probe_ssim, warnings);
     } else if (name == "GLBUDGET_PROBE_LEVELS") {
-      if (value == "cheapest" || value == "all")
-        o.probe_every_level = value == "all";
-      else
-        warn(warnings, "GLBUDGET_PROBE_LEVELS='" + value + "' is not cheapest or all; cheapest");
+      parse_choice<bool>(name, value, {{"cheapest", false}, {"all", true}}, o.probe_every_level, warnings);
     } else if (name == "GLBUDGET_PROBE_ORDER") {
-      if (value == "weighted" || value == "turn")
-        o.probe_order_weighted = value == "weighted";
-      else
-        warn(warnings, "GLBUDGET_PROBE_ORDER='" + value + "' is not weighted or turn; turn");
+      parse_choice<bool>(name, value, {{"weighted", true}, {"turn", false}}, o.probe_order_weighted, warnings);
     } else if (name == "GLBUDGET_FEEDBACK") {
       parse_switch(name, value, o.feedback, warnings);
     } else if (name == "GLBUDGET_FEEDBACK_OWN") {
       parse_switch(name, value, o.feedback_own, warnings);
     } else if (name == "GLBUDGET_LEVEL_INTERACTIONS") {
-      if (value == "calibrated")
-        o.level_interactions = Options::LevelInteractions::kCalibrated;
-      else if (value == "additive")
-        o.level_interactions = Options::LevelInteractions::kAdditive;
-      else if (value == "model")
-        o.level_interactions = Options::LevelInteractions::kModel;
-      else
-        warn(warnings, "GLBUDGET_LEVEL_INTERACTIONS='" + value + "' is not calibrated, additive or model; calibrated");
+      using L = Options::LevelInteractions;
+      parse_choice<L>(name, value, {{"calibrated", L::kCalibrated}, {"additive", L::kAdditive}, {"model", L::kModel}},
+                      o.level_interactions, warnings);
     } else if (name == "GLBUDGET_ERROR_FEEDBACK") {
       parse_switch(name, value, o.error_feedback, warnings);
     } else if (name == "GLBUDGET_PROBE_STRETCH") {

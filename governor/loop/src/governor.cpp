@@ -555,7 +555,8 @@ Decision Governor::on_frame(const FrameRecord& frame) {
 }
 
 double Governor::predicted_for_frame(const model::Configuration& configuration, double model_w) const {
-  if (!calibrated_levels_ || !space_.contains(configuration)) return model_w;
+  // All of the model's interaction kept: its own prediction, without summing the levels'.
+  if (!calibrated_levels_ || interaction_share_ == 1.0 || !space_.contains(configuration)) return model_w;
   const double summed =
       model::additive_over_levels(configuration, [&](const model::Configuration& c) { return model_.predict(c); });
   return summed + interaction_share_ * (model_w - summed);
