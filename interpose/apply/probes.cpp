@@ -1337,19 +1337,25 @@ void ProbeFrames::after_swap(uint64_t next) {
   if (!p.probe_possible()) return;
   if (options().probe_max_age_s > 0.0) p.time_swap();  // only the age bound reads the frame time
   p.collect(false);
+  const ProbeSettings& settings = probe_settings();
+  const uint64_t wanted = settings.stretchable ? g_period_wanted.load(std::memory_order_relaxed) : 0;
+  const uint64_t settled_period = std::max(settings.period * settings.settled_factor, wanted);
+  const uint64_t bound = settings.period ? p.age_bound_frames(settings) : 0;
   if (const uint64_t drift = probe_drift_count(); drift != p.drift_seen) {
     p.drift_seen = drift;
-    p.passes_probed = 0;  // the scene moved: every pass's error again, at the first period
+    // The scene moved: every pass's error again, at the first period. Not where the age bound
+    // comes sooner than the settled period: it probes each pass within it anyway, and Valley
+    // at 10 fps drew 51-54 probes in 600 frames where the bound alone gives about 22, so most
+    // windows held one and the governor's margin for them showed cheaper configurations
+    // (docs/evaluation/probes/probe-max-age.md).
+    if (!(bound && bound < settled_period)) p.passes_probed = 0;
   }
-  const ProbeSettings& settings = probe_settings();
   uint64_t period = settings.period;
-  const uint64_t wanted = settings.stretchable ? g_period_wanted.load(std::memory_order_relaxed) : 0;
   if (p.settled())
-    period = std::max(period * settings.settled_factor, wanted);
+    period = settled_period;
   else if (g_bursts_spaced.load(std::memory_order_relaxed))
     period = std::max(period, wanted);
   // The period the governor's probe overhead counts is the shorter of the two.
-  const uint64_t bound = period ? p.age_bound_frames(settings) : 0;
   const uint64_t in_force = bound ? std::min(period, bound) : period;
   if (in_force != g_period_in_force.load(std::memory_order_relaxed))
     g_period_in_force.store(in_force, std::memory_order_relaxed);

@@ -169,7 +169,7 @@ Options parse_options(char** env, std::string* warnings) {
       if (const auto t = seconds(value, 3600))
         o.probe_max_age_s = *t;
       else
-        warn(warnings, "GLBUDGET_PROBE_MAX_AGE_S='" + value + "' is not a number of seconds in [0, 3600]; 0");
+        warn(warnings, "GLBUDGET_PROBE_MAX_AGE_S='" + value + "' is not a number of seconds in [0, 3600]; 10");
     } else if (name == "GLBUDGET_PROBE_PERIOD") {
       if (const auto n = whole_number(value, 0, 1000000))
         o.probe_period = static_cast<int64_t>(*n);

@@ -55,10 +55,11 @@ struct Options {
   bool probe_stretch = true;
   // GLBUDGET_PROBE_MAX_AGE_S: settled probes come often enough that each pass in the scene is
   // probed again within this many seconds, however rare the settled period or the governor's
-  // stretch would make them (apply/probes.cpp); 0, the default: no bound. Off by default: its
-  // estimates rank better at the selections, but its probes (and the bursts of those that find
-  // the scene moved) cost the image shown more (docs/evaluation/probes/probe-max-age.md).
-  double probe_max_age_s = 0.0;
+  // stretch would make them (apply/probes.cpp); 0: no bound. At 10 fps the settled period
+  // alone left a pass's estimate 120-160 frames old at the selections, and their rank
+  // correlation over the configurations moved with where the rare probes fell
+  // (docs/evaluation/probes/probe-max-age.md).
+  double probe_max_age_s = 10.0;
   // GLBUDGET_WARM_BLITS=0: the blits a switch of scale makes are not made once ahead on tiny
   // images (apply/blit_warmup.cpp); the first switch to each scale then pays the driver's
   // shader builds for them.

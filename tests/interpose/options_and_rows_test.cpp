@@ -199,7 +199,7 @@ TEST_CASE("GLBUDGET_PROBE_STRETCH: on unless 0 or off; anything else said once, 
 TEST_CASE("GLBUDGET_PROBE_MAX_AGE_S and GLBUDGET_TRANSITION_S: seconds up to an hour; others said, the default",
           "[unit]") {
   std::string w;
-  CHECK(parse_env({}, &w).probe_max_age_s == 0.0);
+  CHECK(parse_env({}, &w).probe_max_age_s == 10.0);
   CHECK(parse_env({"GLBUDGET_PROBE_MAX_AGE_S=0"}, &w).probe_max_age_s == 0.0);
   CHECK(parse_env({"GLBUDGET_PROBE_MAX_AGE_S=2.5"}, &w).probe_max_age_s == 2.5);
   CHECK(parse_env({"GLBUDGET_PROBE_MAX_AGE_S=3600"}, &w).probe_max_age_s == 3600.0);
@@ -208,9 +208,9 @@ TEST_CASE("GLBUDGET_PROBE_MAX_AGE_S and GLBUDGET_TRANSITION_S: seconds up to an 
   for (const char* bad : {"-1", "3601", "5s", "", "nan", "inf"}) {
     INFO(bad);
     w.clear();
-    CHECK(parse_env({std::string("GLBUDGET_PROBE_MAX_AGE_S=") + bad}, &w).probe_max_age_s == 0.0);
-    CHECK(w ==
-          std::string("glbudget: GLBUDGET_PROBE_MAX_AGE_S='") + bad + "' is not a number of seconds in [0, 3600]; 0\n");
+    CHECK(parse_env({std::string("GLBUDGET_PROBE_MAX_AGE_S=") + bad}, &w).probe_max_age_s == 10.0);
+    CHECK(w == std::string("glbudget: GLBUDGET_PROBE_MAX_AGE_S='") + bad +
+                   "' is not a number of seconds in [0, 3600]; 10\n");
     w.clear();
     CHECK(parse_env({std::string("GLBUDGET_TRANSITION_S=") + bad}, &w).transition_s == 2.0);
     CHECK(w ==
