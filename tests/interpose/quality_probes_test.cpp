@@ -384,6 +384,24 @@ ProbedPasses probed_passes(const std::string& log) {
   return run;
 }
 
+// A governed run of the demo at 160x90 under a 50 % budget (cpu sensor, the shim's own probe
+// periods: the governor's request for rarer probes is loop_test's), with `env` besides; its
+// stderr for the test's messages, its log at `log`.
+ProcessResult governed_demo(const std::string& scene, int frames, const std::string& log,
+                            std::map<std::string, std::string> env) {
+  unlink(log.c_str());
+  env.insert({{"LD_PRELOAD", shim_path()},
+              {"GLBUDGET_CONFIG", manifest_path()},
+              {"GLBUDGET_POWER", "50%"},
+              {"GLBUDGET_PROFILE", profile_path()},
+              {"GLBUDGET_SENSOR", "cpu"},
+              {"GLBUDGET_PROBE_STRETCH", "0"},
+              {"GLBUDGET_LOG", log}});
+  return run_process({DEMO_PATH, "--scene", scene, "--detail", "0.05", "--shadow-size", kShadowSize, "--width", "160",
+                      "--height", "90", "--frames", std::to_string(frames)},
+                     env);
+}
+
 // The shim's test of a pass's error that moved between two of its probes: by a quarter, and
 // by more than 0.003.
 bool moved(double before, double now) { return std::abs(now - before) > std::max(0.003, 0.25 * std::max(before, now)); }
@@ -405,23 +423,11 @@ TEST_CASE(
   // falls from 0.040 to 0.008 between its probes at frames 20 and 180 at this size (frame numbers decide what is drawn
   // and what is probed, so the run is the same each time).
   const std::string log = temp_path("subway_drift.csv");
-  unlink(log.c_str());
-  const ProcessResult r = run_process({DEMO_PATH, "--scene", "subway", "--detail", "0.05", "--shadow-size", kShadowSize,
-                                       "--width", "160", "--height", "90", "--frames", "260"},
-                                      {{"LD_PRELOAD", shim_path()},
-                                       {"GLBUDGET_CONFIG", manifest_path()},
-                                       {"GLBUDGET_POWER", "50%"},
-                                       {"GLBUDGET_PROFILE", profile_path()},
-                                       {"GLBUDGET_SENSOR", "cpu"},
-                                       {"GLBUDGET_SELECT_FRAMES", "30"},
-                                       // The shim's own periods: the governor's request for rarer probes, where it
-                                       // finds that they cost the budget, is loop_test's.
-                                       {"GLBUDGET_PROBE_STRETCH", "0"},
-                                       // Unpaced, the age bound (probe_max_age_s) would come later than the
-                                       // settled period; off, so that how fast this machine draws cannot matter.
-                                       {"GLBUDGET_PROBE_MAX_AGE_S", "0"},
-                                       {"GLBUDGET_PROBE_ORDER", "weighted"},
-                                       {"GLBUDGET_LOG", log}});
+  // Unpaced, the age bound (probe_max_age_s) would come later than the settled period; off, so
+  // that how fast this machine draws cannot matter.
+  const ProcessResult r = governed_demo(
+      "subway", 260, log,
+      {{"GLBUDGET_SELECT_FRAMES", "30"}, {"GLBUDGET_PROBE_MAX_AGE_S", "0"}, {"GLBUDGET_PROBE_ORDER", "weighted"}});
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   CHECK(count_lines_with(r.err, "unknown variable") == 0);
@@ -479,18 +485,8 @@ TEST_CASE("settled probes come often enough that each pass in the scene is probe
   // metallic) probed within 12 s: a settled probe every 12 s / 0.1 s / 4 = 30 frames, where the
   // settled period alone is 60 (the case above: without the bound its gaps are 60).
   const std::string log = temp_path("valley_age.csv");
-  unlink(log.c_str());
-  const ProcessResult r = run_process({DEMO_PATH, "--scene", "valley", "--detail", "0.05", "--shadow-size", kShadowSize,
-                                       "--width", "160", "--height", "90", "--frames", "170"},
-                                      {{"LD_PRELOAD", shim_path()},
-                                       {"GLBUDGET_CONFIG", manifest_path()},
-                                       {"GLBUDGET_POWER", "50%"},
-                                       {"GLBUDGET_PROFILE", profile_path()},
-                                       {"GLBUDGET_SENSOR", "cpu"},
-                                       {"GLBUDGET_FPS", "10"},
-                                       {"GLBUDGET_PROBE_STRETCH", "0"},
-                                       {"GLBUDGET_PROBE_MAX_AGE_S", "12"},
-                                       {"GLBUDGET_LOG", log}});
+  const ProcessResult r =
+      governed_demo("valley", 170, log, {{"GLBUDGET_FPS", "10"}, {"GLBUDGET_PROBE_MAX_AGE_S", "12"}});
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   std::set<long> probe_frames;
@@ -523,17 +519,7 @@ TEST_CASE("under the age bound a pass whose error moved does not bring the first
   // between its probes at frames 20 and 92. Without the bound that brings probes every 10
   // frames until each pass is probed again (the case above); with it, the bound's gaps go on.
   const std::string log = temp_path("subway_age.csv");
-  unlink(log.c_str());
-  const ProcessResult r = run_process({DEMO_PATH, "--scene", "subway", "--detail", "0.05", "--shadow-size", kShadowSize,
-                                       "--width", "160", "--height", "90", "--frames", "200"},
-                                      {{"LD_PRELOAD", shim_path()},
-                                       {"GLBUDGET_CONFIG", manifest_path()},
-                                       {"GLBUDGET_POWER", "50%"},
-                                       {"GLBUDGET_PROFILE", profile_path()},
-                                       {"GLBUDGET_SENSOR", "cpu"},
-                                       {"GLBUDGET_FPS", "10"},
-                                       {"GLBUDGET_PROBE_STRETCH", "0"},
-                                       {"GLBUDGET_LOG", log}});
+  const ProcessResult r = governed_demo("subway", 200, log, {{"GLBUDGET_FPS", "10"}});
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   const ProbedPasses run = probed_passes(log);
