@@ -1,7 +1,11 @@
 // What the probes' known scene must log under the shim (see testapps/probes/common/known_scene.hpp).
 #pragma once
+#include <unistd.h>
+
 #include <cstdint>
+#include <filesystem>
 #include <map>
+#include <system_error>
 #include <string>
 #include <vector>
 
@@ -30,6 +34,28 @@ struct LogCheck {
 // Paths from the build.
 inline std::string probe_path(const std::string& name) { return std::string(PROBE_DIR) + "/" + name; }
 inline std::string shim_path() { return SHIM_PATH; }
+// Files the tests make (logs, the governor's selections beside them, images) go in one folder
+// of the test process's, removed with all it holds when that process exits, whatever a test
+// left behind: a failed check skips the test's own clean-up. A child forked from the test
+// process exits without removing it.
+class TestTempDir {
+ public:
+  TestTempDir() : owner_(getpid()), path_("/tmp/glbudget_it_" + std::to_string(owner_)) {
+    std::filesystem::create_directories(path_);
+  }
+  ~TestTempDir() {
+    std::error_code ignored;
+    if (getpid() == owner_) std::filesystem::remove_all(path_, ignored);
+  }
+  TestTempDir(const TestTempDir&) = delete;
+  TestTempDir& operator=(const TestTempDir&) = delete;
+  const std::string& path() const { return path_; }
+
+ private:
+  pid_t owner_;
+  std::string path_;
+};
 inline std::string temp_path(const std::string& name) {
-  return "/tmp/glbudget_it_" + std::to_string(getpid()) + "_" + name;
+  static const TestTempDir dir;
+  return dir.path() + "/" + name;
 }
