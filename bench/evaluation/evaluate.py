@@ -166,6 +166,8 @@ class Evaluation:
                    GLBUDGET_FEEDBACK=a.feedback)
         self.env = dict(env, GLBUDGET_PROBE_PERIOD="0")  # reference runs draw no probes
         self.governed_env = env
+        if getattr(a, "keep_share", None):
+            self.governed_env = dict(env, GLBUDGET_KEEP_SHARE=a.keep_share)
 
     def common(self, scene, frames=None):
         return [self.demo, "--scene", scene, "--detail", str(self.a.detail), "--width", self.width,
@@ -425,6 +427,8 @@ def main():
     ap.add_argument("--every", type=int, default=10, help="dump every K-th frame for the true error")
     ap.add_argument("--feedback", default="1", choices=["0", "1"],
                     help="GLBUDGET_FEEDBACK: 0 is the paper's open loop (no correction from measured power)")
+    ap.add_argument("--keep-share", default=None,
+                    help="GLBUDGET_KEEP_SHARE of the governed runs (the shim's default when not given)")
     ap.add_argument("--costs", default="measure",
                     help="the levels' costs: 'measure' (glbudget calibrate --app on each scene first), 'off', or a path")
     ap.add_argument("--configurations", type=int, default=None, help="configurations in Fig. 10 per scene")
@@ -448,7 +452,7 @@ def main():
         " ".join(shown_args)
     print(f"demo at {a.size}, detail {a.detail}{shadow_note(a)}, {a.frames} frames paced at {a.fps:g} fps, cpu sensor (estimate); "
           f"select every {a.select_frames} frames, 1-s transitions; feedback {'on' if a.feedback == '1' else 'off'}; "
-          f"level costs: {a.costs}", flush=True)
+          f"level costs: {a.costs}{'; keep share ' + a.keep_share if a.keep_share else ''}", flush=True)
     results, fig10 = [], {}
     with tempfile.TemporaryDirectory() as tmp:
         ev = Evaluation(a, tmp)
@@ -483,7 +487,8 @@ def write_markdown(results, fig10, replay, command, a):
              f"Each scene at {a.size}, detail {a.detail}{shadow_note(a)}, {a.frames} frames paced at {a.fps:g} fps, the cpu sensor's "
              f"estimate (P = 10 W + 35 W × the process's CPU share), selections every {a.select_frames} frames, 1-s "
              f"transitions, quality probes at the shim's default, correction from measured power "
-             f"{'on' if a.feedback == '1' else 'off'}, level costs {a.costs} "
+             f"{'on' if a.feedback == '1' else 'off'}"
+             f"{', GLBUDGET_KEEP_SHARE=' + a.keep_share if getattr(a, 'keep_share', None) else ''}, level costs {a.costs} "
              f"({'glbudget calibrate --app per scene' if a.costs == 'measure' else 'none'}). "
              f"Configurations are levels of ({KNOBS}).", "",
              "## Power and quality (the paper's Fig. 13)", "",

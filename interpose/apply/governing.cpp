@@ -629,6 +629,7 @@ bool governor_start() {
                                       ? Interactions::additive
                                       : Interactions::calibrated;
     settings.error_feedback.enabled = o.error_feedback;
+    settings.feedback.keep_share = o.keep_share;
     if (!o.probe_stretch) settings.probe_stretch_gain = 0.0;
     const std::string path = default_profile_path();
     std::optional<model::PlatformProfile> profile;

@@ -43,6 +43,7 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_ERROR_FEEDBACK",
     "GLBUDGET_PROBE_STRETCH",
     "GLBUDGET_PROBE_MAX_AGE_S",
+    "GLBUDGET_KEEP_SHARE",
     "GLBUDGET_WARM_BLITS",
     "GLBUDGET_DUMP_PROBES",
     "GLBUDGET_PROBE_SCALE",
@@ -90,6 +91,19 @@ std::optional<double> seconds(const std::string& value, double max) {
   const double t = std::strtod(value.c_str(), &end);
   if (errno || end == value.c_str() || *end != '\0' || !std::isfinite(t) || t < 0 || t > max) return std::nullopt;
   return t;
+}
+// A share in [min, max], written 0.98 or 98%, or nothing where the text is not one.
+std::optional<double> share(const std::string& value, double min, double max) {
+  errno = 0;
+  char* end = nullptr;
+  double v = std::strtod(value.c_str(), &end);
+  if (errno || end == value.c_str()) return std::nullopt;
+  if (*end == '%') {
+    v /= 100.0;
+    ++end;
+  }
+  if (*end != '\0' || !std::isfinite(v) || v < min || v > max) return std::nullopt;
+  return v;
 }
 // A switch: 1/on or 0/off; anything else is said and leaves it as it was (its default).
 void parse_switch(std::string_view name, const std::string& value, bool& on, std::string* warnings) {
@@ -170,6 +184,11 @@ Options parse_options(char** env, std::string* warnings) {
         o.probe_max_age_s = *t;
       else
         warn(warnings, "GLBUDGET_PROBE_MAX_AGE_S='" + value + "' is not a number of seconds in [0, 3600]; 10");
+    } else if (name == "GLBUDGET_KEEP_SHARE") {
+      if (const auto k = share(value, 0.5, 0.999))
+        o.keep_share = *k;
+      else
+        warn(warnings, "GLBUDGET_KEEP_SHARE='" + value + "' is not a share in [0.5, 0.999] (0.98 or 98%); 0.98");
     } else if (name == "GLBUDGET_PROBE_PERIOD") {
       if (const auto n = whole_number(value, 0, 1000000))
         o.probe_period = static_cast<int64_t>(*n);

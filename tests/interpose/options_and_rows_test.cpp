@@ -218,6 +218,23 @@ TEST_CASE("GLBUDGET_PROBE_MAX_AGE_S and GLBUDGET_TRANSITION_S: seconds up to an 
   }
 }
 
+TEST_CASE("GLBUDGET_KEEP_SHARE: a share of windows in [0.5, 0.999], as a fraction or a percentage; 0.98", "[unit]") {
+  std::string w;
+  CHECK(parse_env({}, &w).keep_share == 0.98);
+  CHECK(parse_env({"GLBUDGET_KEEP_SHARE=0.95"}, &w).keep_share == 0.95);
+  CHECK(parse_env({"GLBUDGET_KEEP_SHARE=99%"}, &w).keep_share == Approx(0.99));
+  CHECK(parse_env({"GLBUDGET_KEEP_SHARE=0.5"}, &w).keep_share == 0.5);
+  CHECK(parse_env({"GLBUDGET_KEEP_SHARE=0.999"}, &w).keep_share == 0.999);
+  CHECK(w.empty());
+  for (const char* bad : {"0.49", "1", "100%", "0.98x", "%", "", "nan", "-0.9", "98%%"}) {
+    INFO(bad);
+    w.clear();
+    CHECK(parse_env({std::string("GLBUDGET_KEEP_SHARE=") + bad}, &w).keep_share == 0.98);
+    CHECK(w == std::string("glbudget: GLBUDGET_KEEP_SHARE='") + bad +
+                   "' is not a share in [0.5, 0.999] (0.98 or 98%); 0.98\n");
+  }
+}
+
 TEST_CASE("GLBUDGET_PROBE_LEVELS: cheapest or all; anything else said once, cheapest", "[unit]") {
   std::string w;
   CHECK_FALSE(parse_env({}, &w).probe_every_level);
