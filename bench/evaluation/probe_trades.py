@@ -16,10 +16,10 @@ Per scene, each level's costs measured once by `glbudget calibrate --app`; then 
     setting against the same without probes (a long run less a short one, so start-up cancels;
     rounds interleaved), the mean frame time's ratio.
 The period's default is 10 frames until every pass has been probed, then 60, but no longer than
-lets each pass in the scene be probed within GLBUDGET_PROBE_MAX_AGE_S where that is set
-(max_age=S; the default 0: no bound); the scale's is
-Wang's rule for the frame (1 below 384 pixels on the short side); the order's (order=turn or
-weighted) is turn (weighted: in turn until each has been probed, then the largest error × age).
+lets each pass in the scene be probed within GLBUDGET_PROBE_MAX_AGE_S (max_age=S; the default
+10 s, 0: no bound); the scale's is Wang's rule for the frame (1 below 384 pixels on the short
+side); the order's (order=turn or weighted) is turn (weighted: in turn until each has been
+probed, then the largest error × age).
 
 Writes DIR/probe-trades.md.
 Usage: probe_trades.py BUILD_DIR --out DIR [--scenes hall,subway] [--settings default,scale=2,...]
@@ -48,7 +48,8 @@ KNOBS = {"scale": "GLBUDGET_PROBE_SCALE", "period": "GLBUDGET_PROBE_PERIOD", "or
 
 
 def setting_env(setting):
-    """GLBUDGET_* of a setting: 'default', 'scale=S', 'period=P' or 'order=turn|weighted'."""
+    """GLBUDGET_* of a setting: 'default', 'scale=S', 'period=P', 'order=turn|weighted' or
+    'max_age=S'."""
     if setting == "default":
         return {}
     knob, _, value = setting.partition("=")
