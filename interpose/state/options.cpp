@@ -84,26 +84,22 @@ std::optional<unsigned long long> whole_number(const std::string& value, unsigne
   if (errno || end == value.c_str() || *end != '\0' || n < min || n > max || value[0] == '-') return std::nullopt;
   return n;
 }
-// Seconds in [0, max], or nothing where the text is not one.
-std::optional<double> seconds(const std::string& value, double max) {
+// A decimal number in [min, max] as written, or nothing where the text is not one.
+std::optional<double> decimal(const std::string& value, double min, double max) {
   errno = 0;
   char* end = nullptr;
-  const double t = std::strtod(value.c_str(), &end);
-  if (errno || end == value.c_str() || *end != '\0' || !std::isfinite(t) || t < 0 || t > max) return std::nullopt;
-  return t;
+  const double v = std::strtod(value.c_str(), &end);
+  if (errno || end == value.c_str() || *end != '\0' || !std::isfinite(v) || v < min || v > max) return std::nullopt;
+  return v;
 }
+// Seconds in [0, max], or nothing where the text is not one.
+std::optional<double> seconds(const std::string& value, double max) { return decimal(value, 0.0, max); }
 // A share in [min, max], written 0.98 or 98%, or nothing where the text is not one.
 std::optional<double> share(const std::string& value, double min, double max) {
-  errno = 0;
-  char* end = nullptr;
-  double v = std::strtod(value.c_str(), &end);
-  if (errno || end == value.c_str()) return std::nullopt;
-  if (*end == '%') {
-    v /= 100.0;
-    ++end;
-  }
-  if (*end != '\0' || !std::isfinite(v) || v < min || v > max) return std::nullopt;
-  return v;
+  if (value.empty() || value.back() != '%') return decimal(value, min, max);
+  const std::optional<double> percent = decimal(value.substr(0, value.size() - 1), min * 100.0, max * 100.0);
+  if (!percent) return std::nullopt;
+  return *percent / 100.0;
 }
 // A switch: 1/on or 0/off; anything else is said and leaves it as it was (its default).
 void parse_switch(std::string_view name, const std::string& value, bool& on, std::string* warnings) {
