@@ -623,11 +623,7 @@ bool governor_start() {
     settings.transition_s = o.transition_s;
     settings.feedback.enabled = o.feedback;
     settings.feedback.own_residuals = o.feedback_own;
-    using Interactions = loop::GovernorSettings::Interactions;
-    settings.level_interactions = o.level_interactions == Options::LevelInteractions::kModel ? Interactions::model
-                                  : o.level_interactions == Options::LevelInteractions::kAdditive
-                                      ? Interactions::additive
-                                      : Interactions::calibrated;
+    settings.level_interactions = o.level_interactions;
     settings.error_feedback.enabled = o.error_feedback;
     settings.feedback.keep_share = o.keep_share;
     if (!o.probe_stretch) settings.probe_stretch_gain = 0.0;

@@ -209,8 +209,8 @@ Options parse_options(char** env, std::string* warnings) {
     } else if (name == "GLBUDGET_FEEDBACK_OWN") {
       parse_switch(name, value, o.feedback_own, warnings);
     } else if (name == "GLBUDGET_LEVEL_INTERACTIONS") {
-      using L = Options::LevelInteractions;
-      parse_choice<L>(name, value, {{"calibrated", L::kCalibrated}, {"additive", L::kAdditive}, {"model", L::kModel}},
+      using L = loop::LevelInteractions;
+      parse_choice<L>(name, value, {{"calibrated", L::calibrated}, {"additive", L::additive}, {"model", L::model}},
                       o.level_interactions, warnings);
     } else if (name == "GLBUDGET_ERROR_FEEDBACK") {
       parse_switch(name, value, o.error_feedback, warnings);

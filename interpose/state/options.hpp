@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "glbudget/loop/level_interactions.hpp"
+
 namespace glbudget {
 
 struct Options {
@@ -46,7 +48,7 @@ struct Options {
   // GLBUDGET_LEVEL_INTERACTIONS=calibrated|additive|model: where `glbudget calibrate --app`
   // measured each level alone, how a combination of levels is predicted (loop/governor.hpp,
   // level_interactions; model/additive_levels.hpp)
-  enum class LevelInteractions { kCalibrated, kAdditive, kModel } level_interactions = LevelInteractions::kCalibrated;
+  loop::LevelInteractions level_interactions = loop::LevelInteractions::calibrated;
   // GLBUDGET_ERROR_FEEDBACK=0: under an error budget, the estimates are not corrected by the
   // error probes measured of the configuration shown
   bool error_feedback = true;

@@ -249,17 +249,17 @@ TEST_CASE("GLBUDGET_PROBE_SSIM and GLBUDGET_LEVEL_INTERACTIONS: one of their nam
           "[unit]") {
   std::string w;
   using S = Options::ProbeSsim;
-  using L = Options::LevelInteractions;
+  using L = loop::LevelInteractions;
   CHECK(parse_env({}, &w).probe_ssim == S::kAuto);
   CHECK(parse_env({"GLBUDGET_PROBE_SSIM=gpu"}, &w).probe_ssim == S::kGpu);
   CHECK(parse_env({"GLBUDGET_PROBE_SSIM=cpu"}, &w).probe_ssim == S::kCpu);
-  CHECK(parse_env({}, &w).level_interactions == L::kCalibrated);
-  CHECK(parse_env({"GLBUDGET_LEVEL_INTERACTIONS=additive"}, &w).level_interactions == L::kAdditive);
-  CHECK(parse_env({"GLBUDGET_LEVEL_INTERACTIONS=model"}, &w).level_interactions == L::kModel);
+  CHECK(parse_env({}, &w).level_interactions == L::calibrated);
+  CHECK(parse_env({"GLBUDGET_LEVEL_INTERACTIONS=additive"}, &w).level_interactions == L::additive);
+  CHECK(parse_env({"GLBUDGET_LEVEL_INTERACTIONS=model"}, &w).level_interactions == L::model);
   CHECK(w.empty());
   CHECK(parse_env({"GLBUDGET_PROBE_SSIM=fpga"}, &w).probe_ssim == S::kAuto);
   CHECK(w == "glbudget: GLBUDGET_PROBE_SSIM='fpga' is not auto, gpu or cpu; auto\n");
   w.clear();
-  CHECK(parse_env({"GLBUDGET_LEVEL_INTERACTIONS=Model"}, &w).level_interactions == L::kCalibrated);
+  CHECK(parse_env({"GLBUDGET_LEVEL_INTERACTIONS=Model"}, &w).level_interactions == L::calibrated);
   CHECK(w == "glbudget: GLBUDGET_LEVEL_INTERACTIONS='Model' is not calibrated, additive or model; calibrated\n");
 }

@@ -16,6 +16,7 @@
 
 #include "glbudget/loop/error_feedback.hpp"
 #include "glbudget/loop/error_table.hpp"
+#include "glbudget/loop/level_interactions.hpp"
 #include "glbudget/loop/power_feedback.hpp"
 #include "glbudget/loop/probe_overhead.hpp"
 #include "glbudget/loop/step_times.hpp"
@@ -57,12 +58,9 @@ struct GovernorSettings {
   std::vector<std::pair<model::Configuration, double>> calibrated_powers;
   // How a combination of levels is predicted where calibrated_powers holds levels alone and
   // calibrated_range the cheapest (under a power budget with the feedback on, whose priors
-  // hold each single-level prediction to them; model/additive_levels.hpp). `calibrated`: the
-  // best's power plus each level's change alone, plus the run-time model's interaction
-  // scaled so that the cheapest is predicted where it was measured, never amplified nor
-  // turned round; `additive`: without the interaction; `model`: the model's own
-  // (GLBUDGET_LEVEL_INTERACTIONS).
-  enum class Interactions { calibrated, additive, model };
+  // hold each single-level prediction to them; model/additive_levels.hpp;
+  // level_interactions.hpp).
+  using Interactions = LevelInteractions;
   Interactions level_interactions = Interactions::calibrated;
   // Beyond the paper: where more windows hold a quality probe than the budget may leave over,
   // each must fit a probe's whole excess (probe_overhead.hpp), and at low frame rates that

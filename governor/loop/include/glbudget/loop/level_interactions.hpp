@@ -1,0 +1,11 @@
+#pragma once
+// How the governor predicts a combination of levels where the platform profile holds each level
+// alone and the cheapest configuration measured (GLBUDGET_LEVEL_INTERACTIONS; GovernorSettings).
+namespace glbudget::loop {
+
+// calibrated: the best's power plus each level's change alone, plus the run-time model's
+// interaction scaled so that the cheapest is predicted where it was measured, never amplified
+// nor turned round; additive: without the interaction; model: the model's own.
+enum class LevelInteractions { calibrated, additive, model };
+
+}  // namespace glbudget::loop
