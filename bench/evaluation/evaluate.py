@@ -155,6 +155,25 @@ def parse_study_arguments(ap, script):
     return a, command
 
 
+def governed_settings(a):
+    """{GLBUDGET_NAME: value} of the --set NAME=VALUE arguments (the governed runs only)."""
+    settings = {}
+    for item in getattr(a, "set", None) or []:
+        name, sep, value = item.partition("=")
+        if not sep or not name.startswith("GLBUDGET_"):
+            raise SystemExit(f"evaluate.py: --set takes GLBUDGET_NAME=VALUE, not {item!r}")
+        settings[name] = value
+    return settings
+
+
+def settings_note(a):
+    """', GLBUDGET_A=x, GLBUDGET_B=y' of the governed runs' settings given on the command line."""
+    given = dict(governed_settings(a))
+    if getattr(a, "keep_share", None):
+        given["GLBUDGET_KEEP_SHARE"] = a.keep_share
+    return "".join(f", {k}={v}" for k, v in sorted(given.items()))
+
+
 class Evaluation:
     def __init__(self, a, tmp):
         self.a, self.tmp = a, tmp
@@ -168,6 +187,7 @@ class Evaluation:
         self.governed_env = env
         if getattr(a, "keep_share", None):
             self.governed_env = dict(env, GLBUDGET_KEEP_SHARE=a.keep_share)
+        self.governed_env = dict(self.governed_env, **governed_settings(a))
 
     def common(self, scene, frames=None):
         return [self.demo, "--scene", scene, "--detail", str(self.a.detail), "--width", self.width,
@@ -429,6 +449,8 @@ def main():
                     help="GLBUDGET_FEEDBACK: 0 is the paper's open loop (no correction from measured power)")
     ap.add_argument("--keep-share", default=None,
                     help="GLBUDGET_KEEP_SHARE of the governed runs (the shim's default when not given)")
+    ap.add_argument("--set", action="append", default=[], metavar="GLBUDGET_NAME=VALUE",
+                    help="a setting of the governed runs (repeatable), e.g. GLBUDGET_PROBE_MAX_AGE_S=6")
     ap.add_argument("--costs", default="measure",
                     help="the levels' costs: 'measure' (glbudget calibrate --app on each scene first), 'off', or a path")
     ap.add_argument("--configurations", type=int, default=None, help="configurations in Fig. 10 per scene")
@@ -452,7 +474,7 @@ def main():
         " ".join(shown_args)
     print(f"demo at {a.size}, detail {a.detail}{shadow_note(a)}, {a.frames} frames paced at {a.fps:g} fps, cpu sensor (estimate); "
           f"select every {a.select_frames} frames, 1-s transitions; feedback {'on' if a.feedback == '1' else 'off'}; "
-          f"level costs: {a.costs}{'; keep share ' + a.keep_share if a.keep_share else ''}", flush=True)
+          f"level costs: {a.costs}{settings_note(a).replace(', ', '; ')}", flush=True)
     results, fig10 = [], {}
     with tempfile.TemporaryDirectory() as tmp:
         ev = Evaluation(a, tmp)
@@ -488,7 +510,7 @@ def write_markdown(results, fig10, replay, command, a):
              f"estimate (P = 10 W + 35 W × the process's CPU share), selections every {a.select_frames} frames, 1-s "
              f"transitions, quality probes at the shim's default, correction from measured power "
              f"{'on' if a.feedback == '1' else 'off'}"
-             f"{', GLBUDGET_KEEP_SHARE=' + a.keep_share if getattr(a, 'keep_share', None) else ''}, level costs {a.costs} "
+             f"{settings_note(a)}, level costs {a.costs} "
              f"({'glbudget calibrate --app per scene' if a.costs == 'measure' else 'none'}). "
              f"Configurations are levels of ({KNOBS}).", "",
              "## Power and quality (the paper's Fig. 13)", "",
