@@ -156,8 +156,11 @@ def parse_study_arguments(ap, script):
 
 
 def governed_settings(a):
-    """{GLBUDGET_NAME: value} of the --set NAME=VALUE arguments (the governed runs only)."""
+    """{GLBUDGET_NAME: value} the command line gives the governed runs only: --keep-share, and
+    each --set NAME=VALUE."""
     settings = {}
+    if getattr(a, "keep_share", None):
+        settings["GLBUDGET_KEEP_SHARE"] = a.keep_share
     for item in getattr(a, "set", None) or []:
         name, sep, value = item.partition("=")
         if not sep or not name.startswith("GLBUDGET_"):
@@ -167,11 +170,8 @@ def governed_settings(a):
 
 
 def settings_note(a):
-    """', GLBUDGET_A=x, GLBUDGET_B=y' of the governed runs' settings given on the command line."""
-    given = dict(governed_settings(a))
-    if getattr(a, "keep_share", None):
-        given["GLBUDGET_KEEP_SHARE"] = a.keep_share
-    return "".join(f", {k}={v}" for k, v in sorted(given.items()))
+    """', GLBUDGET_A=x, GLBUDGET_B=y' of governed_settings."""
+    return "".join(f", {k}={v}" for k, v in sorted(governed_settings(a).items()))
 
 
 class Evaluation:
@@ -184,10 +184,7 @@ class Evaluation:
         env.update(GLBUDGET_SENSOR="cpu", GLBUDGET_SELECT_FRAMES=str(a.select_frames), GLBUDGET_TRANSITION_S="1",
                    GLBUDGET_FEEDBACK=a.feedback)
         self.env = dict(env, GLBUDGET_PROBE_PERIOD="0")  # reference runs draw no probes
-        self.governed_env = env
-        if getattr(a, "keep_share", None):
-            self.governed_env = dict(env, GLBUDGET_KEEP_SHARE=a.keep_share)
-        self.governed_env = dict(self.governed_env, **governed_settings(a))
+        self.governed_env = dict(env, **governed_settings(a))
 
     def common(self, scene, frames=None):
         return [self.demo, "--scene", scene, "--detail", str(self.a.detail), "--width", self.width,

@@ -39,6 +39,7 @@ Usage: probe_schedules.py BUILD_DIR --out DIR [--scenes hall,sponza,valley,subwa
        [--orders turn,weighted,filtered] [--phases 5] [--logs DIR,DIR,...]
 """
 import argparse
+import csv
 import itertools
 import json
 import math
@@ -140,6 +141,12 @@ def level_ratios(s):
             row.append(statistics.median(ratios) if ratios else level / CHEAPEST)
         k.append(row + [1.0])
     return k
+
+
+def rank_correlation(estimates, truth):
+    """Spearman's ρ of the estimates against the truth over the truth's configurations."""
+    configurations = sorted(truth)
+    return spearman([estimates[c] for c in configurations], [truth[c] for c in configurations])
 
 
 class Turn:
@@ -254,25 +261,20 @@ def replay(order, k, s, period, phase, frames, truths):
     for t, i in probes:
         while pending and pending[0] <= t:
             f = pending.pop(0)
-            est = p.estimates()
-            cs = sorted(truths[f])
-            rho[f] = spearman([est[c] for c in cs], [truths[f][c] for c in cs])
+            rho[f] = rank_correlation(p.estimates(), truths[f])
         if t not in s:
             continue
         i = p.pick(t) if i is None else i
         p.probe(t, i, s[t][alone(i, CHEAPEST)])
         p.shown(t, shown, s[t][shown])
     for f in pending:
-        est = p.estimates()
-        cs = sorted(truths[f])
-        rho[f] = spearman([est[c] for c in cs], [truths[f][c] for c in cs])
+        rho[f] = rank_correlation(p.estimates(), truths[f])
     return rho
 
 
 def log_probes(path):
     """[(frame, shown configuration, its measured error or None, [(probe configuration, error)])] of
     a governed run's log (glbudget run --log), one per probe frame."""
-    import csv
     parse = lambda text: tuple(int(x) for x in text.split(":"))  # noqa: E731
     out, seen = [], set()
     with open(path) as f:
@@ -305,9 +307,7 @@ def replay_log(order, k, probes, frames, truths):
         while pending and pending[0] <= t:
             f = pending.pop(0)
             if probed >= set(active):
-                est = p.estimates()
-                cs = sorted(truths[f])
-                rho[f] = spearman([est[c] for c in cs], [truths[f][c] for c in cs])
+                rho[f] = rank_correlation(p.estimates(), truths[f])
         for c, e in streams:
             if only_pass(c) >= 0:
                 p.probe(t, only_pass(c), e)
@@ -318,9 +318,7 @@ def replay_log(order, k, probes, frames, truths):
             p.shown(t, shown, shown_error)
     for f in pending:
         if probed >= set(active):
-            est = p.estimates()
-            cs = sorted(truths[f])
-            rho[f] = spearman([est[c] for c in cs], [truths[f][c] for c in cs])
+            rho[f] = rank_correlation(p.estimates(), truths[f])
     return rho
 
 
@@ -349,8 +347,7 @@ def main():
         fresh = []
         for f in frames:
             est = {c: sum(truths[f][alone(i, c[i])] if c[i] else 0.0 for i in range(PASSES)) for c in truths[f]}
-            cs = sorted(truths[f])
-            fresh.append(spearman([est[c] for c in cs], [truths[f][c] for c in cs]))
+            fresh.append(rank_correlation(est, truths[f]))
         for period in periods:
             for order in orders:
                 values = []
