@@ -22,7 +22,9 @@
 #include "governing.hpp"
 #include "hook_table.hpp"
 #include "messages.hpp"
+#include "glbudget/loop/power_feedback.hpp"
 #include "glbudget/loop/probe_order.hpp"
+#include "glbudget/loop/probe_overhead.hpp"
 #include "glbudget/quality/ssim.hpp"
 #include "options.hpp"
 #include "probe_ssim.hpp"
@@ -1258,11 +1260,14 @@ struct ProbeFrames::Impl {
 
   // Each pass in the scene probed again within GLBUDGET_PROBE_MAX_AGE_S: the most frames a
   // probe may wait after the last, that many seconds of this context's frames shared among those
-  // passes (they are probed in turn), never fewer than the first period; 0: no bound. The
-  // settled factor counts frames, so at a low frame rate a pass's estimate grew stale for tens
-  // of seconds (Valley at 10 fps: its passes' probes 130-160 frames old at the selections). Not
-  // where the governor spaces bursts too: there every window holding a probe is over the budget
-  // whatever is shown, and more probes would only put more windows over.
+  // passes (they are probed in turn), never fewer than the first period nor than one probe per
+  // governor window (one_probe_per_window_gap); 0: no bound. The settled factor counts frames,
+  // so at a low frame rate a pass's estimate grew stale for tens of seconds (Valley at 10 fps:
+  // its passes' probes 130-160 frames old at the selections). The window's floor: a window's
+  // margin holds one probe's excess, and six passes in 6 s at 10 fps, a probe every 10 frames
+  // with a 3-frame span, put two into some windows (the demo's Hall at 50 %: 0.92 of its
+  // windows kept). Not where the governor spaces bursts too: there every window holding a
+  // probe is over the budget whatever is shown, and more probes would only put more windows over.
   uint64_t age_bound_frames(const ProbeSettings& settings) const {
     const double age_s = options().probe_max_age_s;
     if (!settings.stretchable || !(age_s > 0.0) || !(frame_s > 0.0) || g_bursts_spaced.load(std::memory_order_relaxed))
@@ -1274,7 +1279,9 @@ struct ProbeFrames::Impl {
     if (in_scene == 0) return 0;
     const double frames = age_s / frame_s / in_scene;
     if (!(frames < 1e9)) return 0;
-    return std::max(settings.period, static_cast<uint64_t>(frames));
+    const uint64_t floor =
+        std::max(settings.period, loop::one_probe_per_window_gap(loop::FeedbackSettings{}.window_s / frame_s));
+    return std::max(floor, static_cast<uint64_t>(frames));
   }
   // This context's seconds between swaps, smoothed over about ten frames.
   void time_swap() {

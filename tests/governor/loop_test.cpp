@@ -590,6 +590,33 @@ TEST_CASE("probe overhead in windows: a probe's whole excess where more windows 
   CHECK(none.window_margin_w(1.0, 0.95) == 0.0);
 }
 
+TEST_CASE("one probe per window: the shortest gap that leaves no window two probes' spans", "[loop][extremes]") {
+  // Frames a probe's span raises, probes every `gap` frames from frame 0: the most spans any
+  // window of `window` consecutive frames touches.
+  auto most_spans_in_a_window = [](std::uint64_t gap, std::uint64_t window) {
+    std::uint64_t most = 0;
+    for (std::uint64_t start = 0; start < 4 * gap + window; ++start) {
+      std::uint64_t spans = 0;
+      for (std::uint64_t probe = 0; probe < start + window; probe += gap)
+        if (probe + kProbeSpanFrames > start) ++spans;  // its span reaches into [start, start + window)
+      most = std::max(most, spans);
+    }
+    return most;
+  };
+  for (const double frames : {1.0, 2.5, 10.0, 10.2, 30.0, 60.0, 144.0}) {
+    const std::uint64_t gap = one_probe_per_window_gap(frames);
+    const auto window = static_cast<std::uint64_t>(std::ceil(frames));
+    CAPTURE(frames, gap);
+    CHECK(most_spans_in_a_window(gap, window) == 1);
+    CHECK(most_spans_in_a_window(gap - 1, window) == 2);
+  }
+  CHECK(one_probe_per_window_gap(10.0) == 12);  // 10 fps, 1-s windows
+  CHECK(one_probe_per_window_gap(0.0) == 0);
+  CHECK(one_probe_per_window_gap(-1.0) == 0);
+  CHECK(one_probe_per_window_gap(std::numeric_limits<double>::infinity()) == 0);
+  CHECK(one_probe_per_window_gap(std::numeric_limits<double>::quiet_NaN()) == 0);
+}
+
 TEST_CASE("a probe in one window of ten: the windows that hold one are held to the budget too", "[loop]") {
   // A probe every 600 frames at 60 frames a second, drawing three times a frame's power: one
   // window in ten holds one, about 1.6 W over the others (at 10 frames a second a probe every

@@ -8,9 +8,6 @@ namespace {
 constexpr double kRecentWeight = 1.0 / 8.0;
 constexpr double kExcessWeight = 1.0 / 4.0;
 constexpr double kShareDecay = 1.0 - 1.0 / 200.0;
-// The probe frame, the one that reads its comparison back, and one more: on llvmpipe under
-// the cpu estimate the third still drew 0.3-2.6 W over its neighbours on the demo's Hall.
-constexpr int kSpanFrames = 3;
 constexpr double kIntervalWeight = 1.0 / 32.0;
 constexpr double kLongestInterval_s = 0.5;
 // Of the windows a budget may leave over it (1 - keep_share), the share left to the probes'
@@ -50,7 +47,7 @@ void ProbeOverhead::add(bool probe, double power_w, std::int64_t time_ns) {
   }
   if (probe) {
     close_span();
-    span_left_ = kSpanFrames;
+    span_left_ = kProbeSpanFrames;
   }
   const bool finite = std::isfinite(power_w);
   last_in_span_ = span_left_ > 0;
@@ -99,7 +96,7 @@ double ProbeOverhead::rare_gap(double window_s, double keep_share) const {
   const double frames = frames_per_window(window_s);
   if (frames <= 0.0 || !(keep_share < 1.0)) return 0.0;
   // One frame more than the bound: window_margin_w must find it at or under.
-  return std::ceil((frames + kSpanFrames - 1) / (kProbeShareOfOver * (1.0 - std::max(0.0, keep_share)))) + 1.0;
+  return std::ceil((frames + kProbeSpanFrames - 1) / (kProbeShareOfOver * (1.0 - std::max(0.0, keep_share)))) + 1.0;
 }
 
 double ProbeOverhead::watts_at_gap(double gap) const {
@@ -111,7 +108,7 @@ double ProbeOverhead::window_margin_w(double window_s, double keep_share) const 
   if (measured_ == 0 || frames <= 0.0) return watts();
   // Probes per window (a probe's span of three frames touches two more window starts than the
   // window has frames): under one, that share of windows holds one (and the rest none).
-  const double per_window = share() * (frames + kSpanFrames - 1);
+  const double per_window = share() * (frames + kProbeSpanFrames - 1);
   if (per_window <= kProbeShareOfOver * (1.0 - keep_share)) return watts();
   return std::max(watts(), whole_excess_margin_w(window_s));
 }

@@ -15,10 +15,25 @@
 // Probed rarely enough that at most that share of windows holds one (rare_gap), each window
 // keeps the mean again: the governor asks for that where it buys quality (governor.hpp).
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 
 namespace glbudget::loop {
+
+// The frames whose power a probe raises: its own, the one that reads its comparison back, and
+// one more (on llvmpipe under the cpu estimate the third still drew 0.3-2.6 W over its
+// neighbours on the demo's Hall).
+inline constexpr int kProbeSpanFrames = 3;
+
+// The shortest gap between probes, in frames, that leaves at most one probe's span in any
+// window of `frames_per_window` frames (0: not known). A window's margin covers one probe's
+// whole excess (ProbeOverhead::window_margin_w); probes closer than this put two into some
+// windows.
+inline std::uint64_t one_probe_per_window_gap(double frames_per_window) {
+  if (!(frames_per_window > 0.0) || !(frames_per_window < 1e9)) return 0;
+  return static_cast<std::uint64_t>(std::ceil(frames_per_window)) + kProbeSpanFrames - 1;
+}
 
 class ProbeOverhead {
  public:
