@@ -128,6 +128,8 @@ def study_arguments(description, scenes):
     ap.add_argument("--calibrate-frames", type=int, default=20, help="frames per level of glbudget calibrate --app")
     ap.add_argument("--feedback", default="1", choices=["0", "1"], help="GLBUDGET_FEEDBACK of the governed runs")
     ap.add_argument("--quick", action="store_true", help="one scene, small: checks every step runs")
+    ap.add_argument("--set", action="append", default=[], metavar="GLBUDGET_NAME=VALUE",
+                    help="a setting of the governed runs (repeatable)")
     return ap
 
 
