@@ -22,7 +22,8 @@ Per scene (the demo at 320x180, detail 0.2, unpaced: frames are the same images 
      truth: Spearman's ρ. Reported per scene and period: the mean ρ, the lowest, and the share
      of (phase, frame) pairs under 0.95.
 Orders: turn (the shim's default: the pass probed longest ago), weighted (the largest error ×
-age), and filtered: turn, with each pass's estimate updated between its probes from the error
+age), trend (turn, each pass's error carried to the frame along the line through its last two
+probes: tried on 2026-11-29 and not landed, docs/evaluation/probes/probe-order.md), and filtered: turn, with each pass's estimate updated between its probes from the error
 the probe frame measured of the image shown (all passes at their cheapest), by a Kalman filter
 over the passes' cheapest-level errors (each a random walk whose step is 5 % of itself per
 sqrt(frame)) and the shown configuration's ratio of measured to additive error (a slow random
@@ -30,13 +31,13 @@ walk in log): tried on 2026-11-29 and not landed (docs/evaluation/probes/probe-o
 
 With --logs, the probes of governed runs (error_estimates.py's SCENE.csv, at the same size)
 are replayed too, as they came, with the shown configurations they measured: turn's estimate is
-then the governor's own (but for k), and filtered's what the filter would have made of them.
+then the governor's own (but for k), and trend's and filtered's what they would have made of them.
 
 Writes DIR/probe-schedules.md; keeps the per-frame errors in DIR/series_SCENE.json and the
 truths in DIR/truth/ (reused when there: the first run renders about 6 minutes a scene here).
 Usage: probe_schedules.py BUILD_DIR --out DIR [--scenes hall,sponza,valley,subway]
        [--frames 200] [--truth-frames 70,85,...,190] [--periods 10,15,17,20,25]
-       [--orders turn,weighted,filtered] [--phases 5] [--logs DIR,DIR,...]
+       [--orders turn,weighted,trend,filtered] [--phases 5] [--logs DIR,DIR,...]
 """
 import argparse
 import csv
@@ -166,10 +167,14 @@ class Turn:
     def pick(self, frame):
         return max(self.active, key=lambda i: (frame - self.at[i], -i))
 
-    def estimates(self):
+    def value(self, i, frame):
+        return self.x[i]
+
+    def estimates(self, frame):
+        x = [self.value(i, frame) for i in range(PASSES)]
         out = {}
         for c in itertools.product(range(LEVELS), repeat=PASSES):
-            out[c] = sum(self.k[i][c[i]] * self.x[i] for i in range(PASSES))
+            out[c] = sum(self.k[i][c[i]] * x[i] for i in range(PASSES))
         return out
 
 
@@ -179,6 +184,25 @@ class Weighted(Turn):
     def pick(self, frame):
         floor = max(0.002, max(self.x[i] for i in self.active) / 10)
         return max(self.active, key=lambda i: (max(self.x[i], floor) * (frame - self.at[i]), -i))
+
+
+class Trend(Turn):
+    """Turn's order; each pass's error carried to the frame along the line through its last two
+    probes (held within [0, 2x] of its latest)."""
+
+    def __init__(self, k, active):
+        super().__init__(k, active)
+        self.before = [None] * PASSES  # (frame, error) of the probe before the latest
+
+    def probe(self, frame, i, error):
+        self.before[i] = (self.at[i], self.x[i]) if self.at[i] else None
+        super().probe(frame, i, error)
+
+    def value(self, i, frame):
+        if self.before[i] is None or frame <= self.at[i] or self.at[i] <= self.before[i][0]:
+            return self.x[i]
+        slope = (self.x[i] - self.before[i][1]) / (self.at[i] - self.before[i][0])
+        return min(2 * self.x[i], max(0.0, self.x[i] + slope * (frame - self.at[i])))
 
 
 class Filtered(Turn):
@@ -244,7 +268,7 @@ class Filtered(Turn):
         self.ratio[configuration] = (log + var / s * innovation, var - var * var / s)
 
 
-ORDERS = {"turn": Turn, "weighted": Weighted, "filtered": Filtered}
+ORDERS = {"turn": Turn, "weighted": Weighted, "trend": Trend, "filtered": Filtered}
 
 
 def replay(order, k, s, period, phase, frames, truths):
@@ -261,14 +285,14 @@ def replay(order, k, s, period, phase, frames, truths):
     for t, i in probes:
         while pending and pending[0] <= t:
             f = pending.pop(0)
-            rho[f] = rank_correlation(p.estimates(), truths[f])
+            rho[f] = rank_correlation(p.estimates(f), truths[f])
         if t not in s:
             continue
         i = p.pick(t) if i is None else i
         p.probe(t, i, s[t][alone(i, CHEAPEST)])
         p.shown(t, shown, s[t][shown])
     for f in pending:
-        rho[f] = rank_correlation(p.estimates(), truths[f])
+        rho[f] = rank_correlation(p.estimates(f), truths[f])
     return rho
 
 
@@ -307,7 +331,7 @@ def replay_log(order, k, probes, frames, truths):
         while pending and pending[0] <= t:
             f = pending.pop(0)
             if probed >= set(active):
-                rho[f] = rank_correlation(p.estimates(), truths[f])
+                rho[f] = rank_correlation(p.estimates(f), truths[f])
         for c, e in streams:
             if only_pass(c) >= 0:
                 p.probe(t, only_pass(c), e)
@@ -318,7 +342,7 @@ def replay_log(order, k, probes, frames, truths):
             p.shown(t, shown, shown_error)
     for f in pending:
         if probed >= set(active):
-            rho[f] = rank_correlation(p.estimates(), truths[f])
+            rho[f] = rank_correlation(p.estimates(f), truths[f])
     return rho
 
 
@@ -359,7 +383,7 @@ def main():
                       f"under 0.95 {rows[-1][5]:.2f}", flush=True)
         logs = [os.path.join(d, f"{scene}.csv") for d in filter(None, a.logs.split(","))]
         logs = [log for log in logs if os.path.exists(log)]
-        for order in ("turn", "filtered") if logs else ():
+        for order in ("turn", "trend", "filtered") if logs else ():
             values = []
             for log in logs:
                 values += list(replay_log(ORDERS[order], k, log_probes(log), frames, truths).values())

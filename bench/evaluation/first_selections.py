@@ -1,0 +1,110 @@
+#!/usr/bin/env python3
+"""What the governor's first selection counted on, against what it drew, in governed runs.
+
+Under a power budget the first selection is made on a model fitted on the frames of the
+configuration the app started in (its best), and on one window measured there: no window has yet
+shown how far the predictions of other configurations miss. For each governed log, the first
+selection's chosen configuration, its table's predictions (the log's .selections.csv: every
+configuration's prediction as the selection weighed it, corrected, without the first-step
+discount), and the mean measured power of its frames from when the transition arrived there
+until the second selection (probe frames and the two after each left out, as the governor
+leaves them out); the share of its predicted saving below the best that was realised; and the
+1-s windows counted as scripts/evaluate counts them (from a second after the first selection)
+up to the second selection, with those over the budget.
+
+Usage: first_selections.py [--fps 10] DIR [DIR ...]
+DIRs as `scripts/evaluate --keep-logs DIR` keeps them (DIR/SCENE_pNN.csv and its .selections.csv).
+"""
+import argparse
+import csv
+import glob
+import os
+import statistics
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from evaluate import frames_of, number, selection_frames, settled_start  # noqa: E402
+
+PROBE_SPAN = 3  # the probe frame and the two after it (loop/probe_overhead.hpp, kProbeSpanFrames)
+
+
+def chosen_rows(path):
+    """[(frame, {configuration: predicted_w}, chosen, budget_w, margin_w)] of each selection."""
+    tables = {}
+    with open(path) as f:
+        for row in csv.DictReader(f):
+            t = tables.setdefault(int(row["frame"]), [{}, None, None, None])
+            t[0][row["configuration"]] = float(row["predicted_w"])
+            if row["selected"] == "1":
+                t[1], t[2], t[3] = row["configuration"], float(row["budget_w"]), float(row["margin_w"])
+    return [(frame, *t) for frame, t in sorted(tables.items()) if t[1] is not None]
+
+
+def first_selection(log, fps):
+    frames = frames_of(log)
+    table_rows = chosen_rows(log + ".selections.csv")
+    selected = selection_frames(frames)
+    if not table_rows or not selected:
+        return None
+    frame, table, chosen, budget_w, margin_w = table_rows[0]
+    best = ":".join(["0"] * len(chosen.split(":")))
+    second = selected[1] if len(selected) > 1 else max(frames) + 1
+    span_left, own = 0, []
+    for f in sorted(frames):
+        r = frames[f]
+        if r.get("probe") == "1":
+            span_left = PROBE_SPAN
+        if span_left:
+            span_left -= 1
+            continue
+        if frame < f < second and r["configuration"] == chosen and number(r["power_w"]) is not None:
+            own.append(number(r["power_w"]))
+    start = settled_start(frames, fps, max(frames) + 1)
+    numbers = [f for f in sorted(frames) if start <= f < second]
+    step = max(1, int(fps))
+    windows = over = 0
+    for k in range(0, len(numbers) - step + 1, step):
+        chunk = [frames[f] for f in numbers[k:k + step]]
+        p = statistics.fmean(number(r["power_w"]) for r in chunk)
+        b = statistics.fmean(number(r["budget_w"]) for r in chunk)
+        windows += 1
+        over += p > b
+    measured = statistics.fmean(own) if own else float("nan")
+    best_w, chosen_w = table.get(best, float("nan")), table[chosen]
+    saving = best_w - chosen_w
+    return {"log": log, "frame": frame, "chosen": chosen, "best_w": best_w, "predicted_w": chosen_w,
+            "measured_w": measured, "budget_w": budget_w, "margin_w": margin_w,
+            "realised": (best_w - measured) / saving if saving > 0 else float("nan"),
+            "windows": windows, "over": over}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("dirs", nargs="+")
+    ap.add_argument("--fps", type=float, default=10.0)
+    a = ap.parse_args()
+    for d in a.dirs:
+        results = []
+        for log in sorted(glob.glob(os.path.join(d, "*_p[0-9]*.csv"))):
+            if log.endswith(".selections.csv") or not os.path.exists(log + ".selections.csv"):
+                continue
+            r = first_selection(log, a.fps)
+            if r is None:
+                print(f"{log}: no selection")
+                continue
+            results.append(r)
+            print(f"{os.path.basename(log):16s} frame {r['frame']:4d} {r['chosen']:12s} best {r['best_w']:5.1f} W, "
+                  f"predicted {r['predicted_w']:5.1f}, measured {r['measured_w']:5.1f}, budget {r['budget_w']:5.1f} "
+                  f"(margin {r['margin_w']:4.1f}); saving realised {r['realised']:5.2f}; windows over before the "
+                  f"second selection {r['over']} of {r['windows']}")
+        if not results:
+            continue
+        realised = [r["realised"] for r in results if r["realised"] == r["realised"]]
+        print(f"{d}: {len(results)} runs; drew over the budget {sum(r['measured_w'] > r['budget_w'] for r in results)}; "
+              f"saving realised median {statistics.median(realised):.2f} (min {min(realised):.2f}); windows over "
+              f"before the second selection {sum(r['over'] for r in results)} of {sum(r['windows'] for r in results)} "
+              f"in {sum(r['over'] > 0 for r in results)} runs")
+
+
+if __name__ == "__main__":
+    main()
