@@ -16,7 +16,6 @@ Usage: first_selections.py [--fps 10] DIR [DIR ...]
 DIRs as `scripts/evaluate --keep-logs DIR` keeps them (DIR/SCENE_pNN.csv and its .selections.csv).
 """
 import argparse
-import csv
 import glob
 import os
 import statistics
@@ -24,56 +23,35 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from evaluate import frames_of, number, selection_frames, settled_start  # noqa: E402
-
-PROBE_SPAN = 3  # the probe frame and the two after it (loop/probe_overhead.hpp, kProbeSpanFrames)
-
-
-def chosen_rows(path):
-    """[(frame, {configuration: predicted_w}, chosen, budget_w, margin_w)] of each selection."""
-    tables = {}
-    with open(path) as f:
-        for row in csv.DictReader(f):
-            t = tables.setdefault(int(row["frame"]), [{}, None, None, None])
-            t[0][row["configuration"]] = float(row["predicted_w"])
-            if row["selected"] == "1":
-                t[1], t[2], t[3] = row["configuration"], float(row["budget_w"]), float(row["margin_w"])
-    return [(frame, *t) for frame, t in sorted(tables.items()) if t[1] is not None]
+from feedback_runs import windows_of  # noqa: E402
+from interactions import measured_after, selection_tables  # noqa: E402
 
 
 def first_selection(log, fps):
     frames = frames_of(log)
-    table_rows = chosen_rows(log + ".selections.csv")
+    tables = selection_tables(log + ".selections.csv")
+    made = sorted(frame for frame, (_, chosen, _) in tables.items() if chosen)
     selected = selection_frames(frames)
-    if not table_rows or not selected:
+    if not made or not selected:
         return None
-    frame, table, chosen, budget_w, margin_w = table_rows[0]
+    frame = made[0]
+    table, chosen, row = tables[frame]
     best = ":".join(["0"] * len(chosen.split(":")))
     second = selected[1] if len(selected) > 1 else max(frames) + 1
-    span_left, own = 0, []
-    for f in sorted(frames):
-        r = frames[f]
-        if r.get("probe") == "1":
-            span_left = PROBE_SPAN
-        if span_left:
-            span_left -= 1
-            continue
-        if frame < f < second and r["configuration"] == chosen and number(r["power_w"]) is not None:
-            own.append(number(r["power_w"]))
-    start = settled_start(frames, fps, max(frames) + 1)
-    numbers = [f for f in sorted(frames) if start <= f < second]
-    step = max(1, int(fps))
+    measured = measured_after(frames, chosen, frame, second, most=None, least=1)
+    # The windows scripts/evaluate counts, up to the second selection.
+    before_second = {f: r for f, r in frames.items() if f < second}
     windows = over = 0
-    for k in range(0, len(numbers) - step + 1, step):
-        chunk = [frames[f] for f in numbers[k:k + step]]
-        p = statistics.fmean(number(r["power_w"]) for r in chunk)
-        b = statistics.fmean(number(r["budget_w"]) for r in chunk)
+    for window in windows_of(before_second, settled_start(frames, fps, max(frames) + 1), max(1, int(fps))):
+        chunk = [frames[f] for f in window]
         windows += 1
-        over += p > b
-    measured = statistics.fmean(own) if own else float("nan")
+        over += statistics.fmean(number(r["power_w"]) for r in chunk) > statistics.fmean(
+            number(r["budget_w"]) for r in chunk)
+    measured = float("nan") if measured is None else measured
     best_w, chosen_w = table.get(best, float("nan")), table[chosen]
     saving = best_w - chosen_w
     return {"log": log, "frame": frame, "chosen": chosen, "best_w": best_w, "predicted_w": chosen_w,
-            "measured_w": measured, "budget_w": budget_w, "margin_w": margin_w,
+            "measured_w": measured, "budget_w": float(row["budget_w"]), "margin_w": float(row["margin_w"]),
             "realised": (best_w - measured) / saving if saving > 0 else float("nan"),
             "windows": windows, "over": over}
 

@@ -37,15 +37,17 @@ BEST = ":".join(["0"] * PASSES)
 
 
 def selection_tables(path):
-    """{frame: ({configuration: predicted_w}, chosen configuration)}."""
+    """{frame: ({configuration: predicted_w}, chosen configuration, the chosen row (its budget_w,
+    margin_w))}; chosen and its row None where the table marks none."""
     tables = {}
     with open(path) as f:
         for row in csv.DictReader(f):
             table, chosen = tables.setdefault(int(row["frame"]), ({}, [None]))
             table[row["configuration"]] = float(row["predicted_w"])
             if row["selected"] == "1":
-                chosen[0] = row["configuration"]
-    return {frame: (table, chosen[0]) for frame, (table, chosen) in tables.items()}
+                chosen[0] = row
+    return {frame: (table, chosen[0] and chosen[0]["configuration"], chosen[0])
+            for frame, (table, chosen) in tables.items()}
 
 
 def single(configuration_levels, pass_index, level):
@@ -67,8 +69,9 @@ def interaction_share(interaction, wanted):
     return min(1.0, max(0.0, wanted / interaction))
 
 
-def measured_after(frames, configuration, start, end):
-    """Mean power of up to 10 frames drawn in `configuration` in (start, end), probes left out."""
+def measured_after(frames, configuration, start, end, most=10, least=5):
+    """Mean power of up to `most` frames (None: all) drawn in `configuration` in (start, end), probe
+    frames and the two after each left out; None with fewer than `least`."""
     powers, last_probe = [], -10
     for frame in range(start + 1, end):
         row = frames.get(frame)
@@ -82,9 +85,9 @@ def measured_after(frames, configuration, start, end):
         power = number(row["power_w"])
         if power is not None:
             powers.append(power)
-        if len(powers) >= 10:
+        if most and len(powers) >= most:
             break
-    return statistics.mean(powers) if len(powers) >= 5 else None
+    return statistics.mean(powers) if powers and len(powers) >= least else None
 
 
 def predictions(log, calibrated_best, calibrated_cheapest, p_min):
@@ -95,7 +98,7 @@ def predictions(log, calibrated_best, calibrated_cheapest, p_min):
     seen, out = set(), []
     cheapest = ":".join(["2"] * PASSES)
     for k, frame in enumerate(selections):
-        table, chosen = tables[frame]
+        table, chosen, _ = tables[frame]
         end = selections[k + 1] if k + 1 < len(selections) else last
         if chosen and cheapest in table:
             scale = (table[BEST] - p_min) / (calibrated_best - p_min)
