@@ -76,6 +76,12 @@ def settled_start(frames, fps, frames_run):
     return (selected[0] if selected else frames_run) + int(fps) + 1
 
 
+def windows_of(frames, start, size):
+    """The frames from `start` in consecutive windows of `size` (a last partial one dropped)."""
+    numbers = sorted(f for f in frames if f >= start)
+    return [numbers[k:k + size] for k in range(0, len(numbers) - size + 1, size)]
+
+
 def frames_of(path):
     """The log's rows, one per frame (the first row of each frame carries the frame's columns)."""
     frames = {}
@@ -290,7 +296,6 @@ class Evaluation:
         true_budget = result["cheapest_w"] + float(budget) / 100.0 * (result["best_w"] - result["cheapest_w"])
         windows = within = within_true = within_window = 0
         window_budgets = []  # (first frame, last frame, the window's measured range's budget)
-        numbers = sorted(f for f in frames if f >= start)
         step = max(1, int(a.fps))
         share = float(budget) / 100.0
 
@@ -298,8 +303,7 @@ class Evaluation:
             return mean([mean([number(run[f]["power_w"]) for f in window if f in run])
                          for run in result["references"][which]])
 
-        for k in range(0, len(numbers) - step + 1, step):
-            window = numbers[k:k + step]
+        for window in windows_of(frames, start, step):
             chunk = [frames[f] for f in window]
             p = mean([number(r["power_w"]) for r in chunk])
             b = mean([number(r.get("budget_w")) for r in chunk])

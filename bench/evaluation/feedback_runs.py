@@ -32,17 +32,12 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 from evaluate import (MANIFEST, PROFILE, ROOT, Evaluation, frames_of, mean, number, selection_frames,  # noqa: E402
-                      shadow_note)
+                      shadow_note, windows_of)
 
 
 def first_selection(frames):
     selected = selection_frames(frames)
     return selected[0] if selected else None
-
-
-def windows_of(frames, start, size):
-    numbers = sorted(f for f in frames if f >= start)
-    return [numbers[k:k + size] for k in range(0, len(numbers) - size + 1, size)]
 
 
 def summarise(log, fps):

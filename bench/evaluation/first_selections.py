@@ -22,8 +22,7 @@ import statistics
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from evaluate import frames_of, number, selection_frames, settled_start  # noqa: E402
-from feedback_runs import windows_of  # noqa: E402
+from evaluate import frames_of, number, selection_frames, settled_start, windows_of  # noqa: E402
 from interactions import measured_after, selection_tables  # noqa: E402
 
 
