@@ -352,7 +352,7 @@ void handle_glBlitFramebuffer(pfn_glBlitFramebuffer real, GLint srcX0, GLint src
   GLint src[4] = {srcX0, srcY0, srcX1, srcY1}, dst[4] = {dstX0, dstY0, dstX1, dstY1};
   s->on_blit(s->app_read_framebuffer(), s->app_draw_framebuffer());
   s->blit_rectangles(s->app_read_framebuffer(), s->app_draw_framebuffer(), src, dst);
-  if (ProbeFrames* p = t_probe) p->prepare();
+  if (ProbeFrames* p = t_probe) p->prepare_blit();
   if (!s->blit_multisampled_window(s->app_read_framebuffer(), s->app_draw_framebuffer(), src, dst, mask, filter))
     real(src[0], src[1], src[2], src[3], dst[0], dst[1], dst[2], dst[3], mask, filter);
   if (ProbeFrames* p = t_probe) p->blit(app_src, app_dst, mask, filter);
@@ -369,37 +369,38 @@ void handle_glGenerateTextureMipmap(pfn_glGenerateTextureMipmap real, GLuint tex
 }
 
 namespace {
-// A clear of the app's, and on probe frames the same clear of each stream's shadow.
+// A clear of the app's (of `mask`'s buffers; `draw_buffer`: the colour buffer a glClearBuffer*
+// clears, -1: all), and on probe frames the same clear of each stream's shadow.
 template <typename F>
-void clear_with_probes(GLbitfield mask, F&& clear) {
+void clear_with_probes(GLbitfield mask, int draw_buffer, F&& clear) {
   if (TargetScaler* s = scaler()) s->on_clear(mask);
   ProbeFrames* p = t_probe;
-  if (p) p->prepare();
+  if (p) p->prepare_clear(mask, draw_buffer);
   clear();
   if (p) p->clear(clear);
 }
 }  // namespace
 
 void handle_glClear(pfn_glClear real, GLbitfield mask) {
-  clear_with_probes(mask, [&] { real(mask); });
+  clear_with_probes(mask, -1, [&] { real(mask); });
 }
 
 void handle_glClearBufferfv(pfn_glClearBufferfv real, GLenum buffer, GLint drawbuffer, const GLfloat* value) {
   clear_with_probes(buffer == GL_COLOR ? GL_COLOR_BUFFER_BIT : GL_DEPTH_BUFFER_BIT,
-                    [&] { real(buffer, drawbuffer, value); });
+                    buffer == GL_COLOR ? drawbuffer : -1, [&] { real(buffer, drawbuffer, value); });
 }
 
 void handle_glClearBufferiv(pfn_glClearBufferiv real, GLenum buffer, GLint drawbuffer, const GLint* value) {
   clear_with_probes(buffer == GL_COLOR ? GL_COLOR_BUFFER_BIT : GL_STENCIL_BUFFER_BIT,
-                    [&] { real(buffer, drawbuffer, value); });
+                    buffer == GL_COLOR ? drawbuffer : -1, [&] { real(buffer, drawbuffer, value); });
 }
 
 void handle_glClearBufferuiv(pfn_glClearBufferuiv real, GLenum buffer, GLint drawbuffer, const GLuint* value) {
-  clear_with_probes(GL_COLOR_BUFFER_BIT, [&] { real(buffer, drawbuffer, value); });
+  clear_with_probes(GL_COLOR_BUFFER_BIT, drawbuffer, [&] { real(buffer, drawbuffer, value); });
 }
 
 void handle_glClearBufferfi(pfn_glClearBufferfi real, GLenum buffer, GLint drawbuffer, GLfloat depth, GLint stencil) {
-  clear_with_probes(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, [&] { real(buffer, drawbuffer, depth, stencil); });
+  clear_with_probes(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, -1, [&] { real(buffer, drawbuffer, depth, stencil); });
 }
 
 void handle_glTextureView(pfn_glTextureView real, GLuint texture, GLenum target, GLuint origtexture,

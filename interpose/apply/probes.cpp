@@ -99,6 +99,8 @@ struct ProbeGl {
   void(APIENTRYP DeleteSync)(GLsync) = nullptr;
   void(APIENTRYP PixelStorei)(GLenum, GLint) = nullptr;
   void(APIENTRYP GetIntegeri_v)(GLenum, GLuint, GLint*) = nullptr;
+  void(APIENTRYP GetBooleanv)(GLenum, GLboolean*) = nullptr;
+  void(APIENTRYP GetBooleani_v)(GLenum, GLuint, GLboolean*) = nullptr;  // GL 3.0, ES 3.0
   void(APIENTRYP GenerateMipmap)(GLenum) = nullptr;
   bool complete = false;
 };
@@ -129,6 +131,8 @@ const ProbeGl& pgl() {
     load(p.DeleteSync, "glDeleteSync");
     load(p.PixelStorei, "glPixelStorei");
     load(p.GetIntegeri_v, "glGetIntegeri_v");
+    load(p.GetBooleanv, "glGetBooleanv");
+    load(p.GetBooleani_v, "glGetBooleani_v");
     load(p.GenerateMipmap, "glGenerateMipmap");
     const ApplyGl& a = agl();
     p.complete = a.ActiveTexture && a.GetTexParameteriv && a.TexParameteri && p.GetTexLevelParameteriv &&
@@ -212,6 +216,12 @@ struct Stream {
   std::unordered_map<GLuint, StandIn> textures;       // drawn this frame: app texture -> shadow
   std::unordered_map<GLuint, LayeredShadow> layered;  // by the app's texture
   bool complete = true;
+  // A stream starts its frame following: as long as every call so far draws the same in it as
+  // in the app's frame (follows_app) or as in stream 0 (follows_first), it draws nothing and its
+  // images are that one's. At the first call it would draw differently it forks: from then on it
+  // draws, each of its shadows starting from its lead's image (-1: the app's, 0: stream 0's).
+  bool forked = true, follows_app = false, follows_first = false;
+  int lead = -1;
 };
 
 // A probe frame's comparison queued in the context's compute shaders.
@@ -573,11 +583,10 @@ struct ProbeFrames::Impl {
     return true;
   }
 
-  // The app's framebuffer's content now, before this frame's first draw to it, into the
-  // shadow: what the app kept from before (or cleared to) is where both streams start.
   // The layers of a layered image (the attached one, or all) not yet copied this probe frame,
-  // from the app's texture at its stored size into the stream's at the shadow's. A layer the
-  // stream drew earlier in the frame keeps what it drew. Binds its own framebuffers.
+  // from the app's texture at its stored size (or the lead stream's, where it has the layer
+  // this frame) into the stream's at the shadow's. A layer the stream drew earlier in the
+  // frame keeps what it drew. Binds its own framebuffers.
   GLuint layer_fbo[2] = {0, 0};
   void copy_layers(Stream& st, const ShadowImage& im, int src_w, int src_h, int dst_w, int dst_h) {
     const ApplyGl& g = agl();
@@ -591,19 +600,26 @@ struct ProbeFrames::Impl {
                                                                 : GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT;
     if (!layer_fbo[0]) g.GenFramebuffers(2, layer_fbo);
     const GLint first = im.layer < 0 ? 0 : im.layer, last = im.layer < 0 ? im.layers - 1 : im.layer;
+    const LayeredShadow* lead = nullptr;
+    if (st.lead == 0 && &st != &streams[0]) {
+      const auto it = streams[0].layered.find(im.app);
+      if (it != streams[0].layered.end() && it->second.texture && it->second.kind == im.kind) lead = &it->second;
+    }
     for (GLint layer = first; layer <= last; ++layer) {
       uint64_t& copied = l.copied_frame[static_cast<size_t>(layer)];
       if (copied == frame) continue;
       copied = frame;
+      const bool from_lead = lead && lead->copied_frame[static_cast<size_t>(layer)] == frame;
       g.BindFramebuffer(GL_READ_FRAMEBUFFER, layer_fbo[0]);
-      attach_texture_layer(GL_READ_FRAMEBUFFER, point, im.kind, im.app, layer);
+      attach_texture_layer(GL_READ_FRAMEBUFFER, point, im.kind, from_lead ? lead->texture : im.app, layer);
       g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, layer_fbo[1]);
       attach_texture_layer(GL_DRAW_FRAMEBUFFER, point, im.kind, l.texture, layer);
       if (color) {
         g.ReadBuffer(GL_COLOR_ATTACHMENT0);
         pgl().DrawBuffers(1, &point);
       }
-      g.BlitFramebuffer(0, 0, src_w, src_h, 0, 0, dst_w, dst_h, mask, GL_NEAREST);
+      g.BlitFramebuffer(0, 0, from_lead ? lead->width : src_w, from_lead ? lead->height : src_h, 0, 0, dst_w, dst_h,
+                        mask, GL_NEAREST);
     }
   }
 
@@ -613,26 +629,26 @@ struct ProbeFrames::Impl {
     const ApplyGl& g = agl();
     const ProbeGl& p = pgl();
     const GLuint real = targets()->real_framebuffer(app);
-    g.BindFramebuffer(GL_READ_FRAMEBUFFER, real);
-    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, s.fbo);
-    int src_w = s.app_width, src_h = s.app_height;
     double sx = 1.0, sy = 1.0;
     targets()->stored_scale(app, &sx, &sy);
-    src_w = static_cast<int>(src_w * sx + 0.5);
-    src_h = static_cast<int>(src_h * sy + 0.5);
+    const int app_w = static_cast<int>(s.app_width * sx + 0.5), app_h = static_cast<int>(s.app_height * sy + 0.5);
+    // A stream that forked from stream 0 starts from stream 0's image where it has one.
+    const Shadow* lead = lead_shadow(st, app);
+    const GLuint from = lead ? lead->fbo : real;
+    const int src_w = lead ? lead->width : app_w, src_h = lead ? lead->height : app_h;
     // Multisampled images are blitted only at their own size: a shadow of another scale starts
     // undefined, as the window's content does after a swap (apps clear it first).
     bool multisampled = false;
     for (const ShadowImage& im : s.images) multisampled |= im.samples > 0;
     if (multisampled && (src_w != s.width || src_h != s.height)) return;
     for (const ShadowImage& im : s.images)
-      if (im.layered()) copy_layers(st, im, src_w, src_h, s.width, s.height);
-    g.BindFramebuffer(GL_READ_FRAMEBUFFER, real);
+      if (im.layered()) copy_layers(st, im, app_w, app_h, s.width, s.height);
+    g.BindFramebuffer(GL_READ_FRAMEBUFFER, from);
     g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, s.fbo);
     const GLint read_buffer = get(GL_READ_BUFFER);
     GLbitfield depth_stencil = 0;
     for (const ShadowImage& im : s.images) {
-      if (im.layered() || !whole) continue;
+      if (im.layered() || !whole || overwritten(im.point)) continue;
       if (im.point == GL_DEPTH_ATTACHMENT)
         depth_stencil |= GL_DEPTH_BUFFER_BIT;
       else if (im.point == GL_STENCIL_ATTACHMENT)
@@ -640,7 +656,7 @@ struct ProbeFrames::Impl {
       else if (im.point == GL_DEPTH_STENCIL_ATTACHMENT)
         depth_stencil |= GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT;
       else {
-        const GLenum source = app == 0 && !targets()->window_scaled() ? GL_BACK : im.point;
+        const GLenum source = !lead && app == 0 && !targets()->window_scaled() ? GL_BACK : im.point;
         g.ReadBuffer(source);
         const GLenum target = im.point;
         p.DrawBuffers(1, &target);
@@ -649,7 +665,7 @@ struct ProbeFrames::Impl {
     }
     // The window without a depth buffer of its own leaves the shadow's undefined: cleared
     // by the app, as it clears the window.
-    if (depth_stencil && !(app == 0 && !targets()->window_scaled() && !window_has_depth()))
+    if (depth_stencil && (lead || !(app == 0 && !targets()->window_scaled() && !window_has_depth())))
       g.BlitFramebuffer(0, 0, src_w, src_h, 0, 0, s.width, s.height, depth_stencil, GL_NEAREST);
     g.ReadBuffer(static_cast<GLenum>(read_buffer));
     // The app's draw buffers again (the copy set one at a time).
@@ -726,23 +742,127 @@ struct ProbeFrames::Impl {
     return &s;
   }
 
-  // Before the app's draw, clear or blit into its bound framebuffer: every stream's shadow of
-  // it holds the app's content from before the call.
-  void prepare() {
+  // Before the app's draw (`is_draw`), clear or blit into its bound framebuffer: every
+  // stream that draws has its shadow of it holding the app's content from before the call
+  // (or its lead's).
+  void prepare(bool is_draw, GLbitfield clear_mask, int clear_draw_buffer) {
     const OwnGlWork own(c);  // errors the shadows' making raises are the shim's
     const GLuint app = app_draw_fbo();
+    follow(app, is_draw);
+    clearing = clear_mask ? cleared_whole(clear_mask, clear_draw_buffer) : 0;
     const GLint draw = get(GL_DRAW_FRAMEBUFFER_BINDING), read = get(GL_READ_FRAMEBUFFER_BINDING);
     bool touched = false;
     for (int s = 0; s < stream_count; ++s) {
+      if (!streams[s].forked) continue;
       auto it = streams[s].shadows.find(app);
       if (it != streams[s].shadows.end() && current(it->second)) continue;
       shadow(streams[s], app);
       touched = true;
     }
+    clearing = 0;
     if (touched) {
       agl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
       agl().BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read));
     }
+  }
+
+  // The images of the bound framebuffer the clear about to be made overwrites whole, by
+  // attachment point (bit i: colour attachment i; then depth, then stencil): a shadow made or
+  // first used this frame for that clear need not start from the app's content there, a
+  // shadow map's 2048² depth among them. `draw_buffer`: the one a glClearBuffer* clears (-1:
+  // every draw buffer, glClear). None where the clear is confined (scissor, write masks,
+  // rasterizer discard) or the streams will not repeat it.
+  static constexpr uint32_t kDepthBit = 1u << kMaxColorAttachments, kStencilBit = kDepthBit << 1;
+  uint32_t clearing = 0;
+  uint32_t cleared_whole(GLbitfield mask, int draw_buffer) {
+    const ApplyGl& g = agl();
+    const ProbeGl& p = pgl();
+    if (!p.GetBooleanv || g.IsEnabled(GL_SCISSOR_TEST) || !duplicate_allowed()) return 0;
+    if (at_least(3, 0, 3, 0) && g.IsEnabled(GL_RASTERIZER_DISCARD)) return 0;
+    uint32_t bits = 0;
+    if (mask & GL_COLOR_BUFFER_BIT) {
+      const int first = draw_buffer < 0 ? 0 : draw_buffer;
+      const int last = draw_buffer < 0 ? kMaxColorAttachments - 1 : std::min(draw_buffer, kMaxColorAttachments - 1);
+      for (int i = first; i <= last; ++i) {
+        const GLint buffer = get(GL_DRAW_BUFFER0 + static_cast<GLenum>(i));
+        int point = -1;
+        if (buffer >= static_cast<GLint>(GL_COLOR_ATTACHMENT0) &&
+            buffer < static_cast<GLint>(GL_COLOR_ATTACHMENT0) + kMaxColorAttachments)
+          point = buffer - static_cast<GLint>(GL_COLOR_ATTACHMENT0);
+        else if (buffer == GL_BACK || buffer == GL_BACK_LEFT)
+          point = 0;  // the window's, whose shadow has it at colour attachment 0
+        if (point < 0) continue;
+        GLboolean rgba[4] = {GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE};
+        if (p.GetBooleani_v && at_least(3, 0, 3, 0))
+          p.GetBooleani_v(GL_COLOR_WRITEMASK, static_cast<GLuint>(i), rgba);
+        else if (i == 0)
+          p.GetBooleanv(GL_COLOR_WRITEMASK, rgba);
+        if (rgba[0] && rgba[1] && rgba[2] && rgba[3]) bits |= 1u << point;
+      }
+    }
+    if (mask & GL_DEPTH_BUFFER_BIT) {
+      GLboolean depth = GL_FALSE;
+      p.GetBooleanv(GL_DEPTH_WRITEMASK, &depth);
+      if (depth) bits |= kDepthBit;
+    }
+    if ((mask & GL_STENCIL_BUFFER_BIT) && (get(GL_STENCIL_WRITEMASK) & 0xff) == 0xff) bits |= kStencilBit;
+    return bits;
+  }
+  bool overwritten(GLenum point) const {
+    if (point == GL_DEPTH_ATTACHMENT) return clearing & kDepthBit;
+    if (point == GL_STENCIL_ATTACHMENT) return clearing & kStencilBit;
+    if (point == GL_DEPTH_STENCIL_ATTACHMENT)
+      return (clearing & (kDepthBit | kStencilBit)) == (kDepthBit | kStencilBit);
+    const GLenum i = point - GL_COLOR_ATTACHMENT0;
+    return i < static_cast<GLenum>(kMaxColorAttachments) && ((clearing >> i) & 1);
+  }
+
+  // Whether the call about to be made into the app's framebuffer `fbo` (`draw`: by the bound
+  // program; else a clear or blit, which no program takes part in) draws the same at `config`
+  // as at `other`: the same level of the program's pass, and the framebuffer at the same scale
+  // (`other_is_app`: as the app's images are stored now). What it samples was drawn by earlier
+  // calls, the same in both while they follow. A pipeline's stages may belong to several
+  // passes: the same only where the configurations are.
+  bool same_call(const Levels& config, const Levels& other, GLuint fbo, bool draw, bool other_is_app) const {
+    if (draw) {
+      if (c.pipeline && !c.program) {
+        if (!(config == other)) return false;
+      } else if (c.manifest_pass >= 0 && config[c.manifest_pass] != other[c.manifest_pass]) {
+        return false;
+      }
+    }
+    const double scale = targets()->scale_for(fbo, config);
+    return other_is_app ? targets()->stored_at(fbo, scale) : scale == targets()->scale_for(fbo, other);
+  }
+
+  // Before a call into the app's framebuffer `fbo`: each stream that still follows and would
+  // draw this call differently forks. Stream 0 first: a stream that follows it forks at the
+  // latest where it does.
+  void follow(GLuint fbo, bool draw) {
+    for (int s = 0; s < stream_count; ++s) {
+      Stream& st = streams[s];
+      if (st.forked) continue;
+      const bool app = st.follows_app && same_call(st.config, c.config, fbo, draw, true);
+      const bool first = st.follows_first && same_call(st.config, streams[0].config, fbo, draw, false);
+      if (app || first) {
+        st.follows_app = app;
+        st.follows_first = first;
+        continue;
+      }
+      st.forked = true;
+      st.lead = st.follows_app ? -1 : 0;
+      // What stream 0 drew so far is what this one would have: its draws sample it.
+      if (st.lead == 0) st.textures = streams[0].textures;
+    }
+  }
+
+  // The stream's lead's shadow of the app's framebuffer `app`, filled this frame, or null (its
+  // lead is the app, or drew into it as the app's).
+  const Shadow* lead_shadow(const Stream& st, GLuint app) const {
+    if (st.lead != 0) return nullptr;
+    const auto it = streams[0].shadows.find(app);
+    return it != streams[0].shadows.end() && it->second.usable && it->second.initialized_frame == frame ? &it->second
+                                                                                                        : nullptr;
   }
 
   // A program whose draws write buffers or count atomically: a duplicate would write twice.
@@ -785,7 +905,7 @@ struct ProbeFrames::Impl {
 
   bool set_up(int s) {
     Stream& st = streams[s];
-    if (!st.complete) return false;
+    if (!st.complete || !st.forked) return false;
     const GLuint app = app_draw_fbo();
     auto it = st.shadows.find(app);
     if (it == st.shadows.end() || !it->second.usable || it->second.initialized_frame != frame) return false;
@@ -971,7 +1091,7 @@ struct ProbeFrames::Impl {
     for (int s = 0; s < stream_count; ++s) {
       captured[s + 1] = false;
       auto it = streams[s].shadows.find(0);
-      if (!streams[s].complete || it == streams[s].shadows.end() || !it->second.usable ||
+      if (!streams[s].complete || !streams[s].forked || it == streams[s].shadows.end() || !it->second.usable ||
           it->second.initialized_frame != frame)
         continue;
       GLuint from = it->second.fbo;
@@ -991,6 +1111,27 @@ struct ProbeFrames::Impl {
       g.BlitFramebuffer(0, 0, it->second.width, it->second.height, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_LINEAR);
       captured[s + 1] = true;
     }
+    for (int s = 1; s < stream_count; ++s)
+      if (!captured[s + 1] && streams[s].complete && image_lead(s) == 0) copy_capture(1, s + 1);
+  }
+
+  // Whose window image a stream that drew none of its own has (it never forked, or forked
+  // after the last call into the window): -1 the app's, 0 stream 0's. Where stream 0 drew
+  // none either, the app's.
+  int image_lead(int s) const {
+    const Stream& st = streams[s];
+    const int lead = st.forked ? st.lead : st.follows_app ? -1 : 0;
+    return lead == 0 && s > 0 && captured[1] ? 0 : -1;
+  }
+
+  void copy_capture(int from, int to) {
+    const ApplyGl& g = agl();
+    g.BindFramebuffer(GL_READ_FRAMEBUFFER, capture_fbo[from]);
+    g.ReadBuffer(GL_COLOR_ATTACHMENT0);
+    g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, capture_fbo[to]);
+    g.BlitFramebuffer(0, 0, capture_width, capture_height, 0, 0, capture_width, capture_height, GL_COLOR_BUFFER_BIT,
+                      GL_NEAREST);
+    captured[to] = true;
   }
 
   void after_present() {
@@ -1007,6 +1148,8 @@ struct ProbeFrames::Impl {
       g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, capture_fbo[0]);
       g.BlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
       captured[0] = true;
+      for (int s = 0; s < stream_count; ++s)
+        if (!captured[s + 1] && streams[s].complete && image_lead(s) == -1) copy_capture(0, s + 1);
 
       Readback r;
       r.capture.frame = frame;
@@ -1235,9 +1378,15 @@ struct ProbeFrames::Impl {
       if (!(probed == c.config)) streams[stream_count++].config = probed;
     }
     if (stream_count == 0) return;
+    const bool follow = options().probe_follow;
     for (int s = 0; s < stream_count; ++s) {
-      streams[s].textures.clear();
-      streams[s].complete = true;
+      Stream& st = streams[s];
+      st.textures.clear();
+      st.complete = true;
+      st.forked = !follow;
+      st.follows_app = follow;
+      st.follows_first = follow && s > 0;
+      st.lead = -1;
     }
     frame = next;
     recent[recent_at++ % 16] = next;
@@ -1394,7 +1543,19 @@ bool ProbeFrames::was_probe_frame(uint64_t frame) const {
 void ProbeFrames::prepare() {
   const AppSignalsDeferred deferred;
   hold_app_signals();  // until the swap (app_signals.hpp)
-  if (impl_->frame) impl_->prepare();
+  if (impl_->frame) impl_->prepare(true, 0, -1);
+}
+
+void ProbeFrames::prepare_clear(GLbitfield mask, int draw_buffer) {
+  const AppSignalsDeferred deferred;
+  hold_app_signals();
+  if (impl_->frame) impl_->prepare(false, mask, draw_buffer);
+}
+
+void ProbeFrames::prepare_blit() {
+  const AppSignalsDeferred deferred;
+  hold_app_signals();
+  if (impl_->frame) impl_->prepare(false, 0, -1);
 }
 
 bool ProbeFrames::first() {
@@ -1422,6 +1583,13 @@ void ProbeFrames::generate_mipmap(GLuint texture) {
   for (int s = 0; s < p.stream_count; ++s) {
     const auto shadow = p.streams[s].textures.find(texture);
     if (shadow == p.streams[s].textures.end() || shadow->second.kind != GL_TEXTURE_2D) continue;
+    // A stream still following draws nothing; one that took the texture from stream 0 has it
+    // made there.
+    if (!p.streams[s].forked) continue;
+    if (s > 0 && p.streams[s].lead == 0) {
+      const auto lead = p.streams[0].textures.find(texture);
+      if (lead != p.streams[0].textures.end() && lead->second.texture == shadow->second.texture) continue;
+    }
     g.BindTexture(GL_TEXTURE_2D, shadow->second.texture);
     pgl().GenerateMipmap(GL_TEXTURE_2D);
     rebound = true;
@@ -1442,18 +1610,23 @@ void ProbeFrames::blit(const GLint* src, const GLint* dst, GLbitfield mask, GLen
   for (int s = 0; s < p.stream_count; ++s) {
     Stream& st = p.streams[s];
     auto to = st.shadows.find(app_draw);
-    if (!st.complete || to == st.shadows.end() || !to->second.usable || to->second.initialized_frame != p.frame)
+    if (!st.complete || !st.forked || to == st.shadows.end() || !to->second.usable ||
+        to->second.initialized_frame != p.frame)
       continue;
     const Shadow& d = to->second;
-    // From the stream's own image of the source when the frame drew it, else the app's.
+    // From the stream's own image of the source when the frame drew it, else its lead's, else
+    // the app's.
     GLuint from = t.real_framebuffer(app_read);
     double rx = 1.0, ry = 1.0;
     t.stored_scale(app_read, &rx, &ry);
-    auto source = st.shadows.find(app_read);
-    if (source != st.shadows.end() && source->second.usable && source->second.initialized_frame == p.frame) {
-      from = source->second.fbo;
-      rx = static_cast<double>(source->second.width) / source->second.app_width;
-      ry = static_cast<double>(source->second.height) / source->second.app_height;
+    auto own = st.shadows.find(app_read);
+    const Shadow* source = own != st.shadows.end() && own->second.usable && own->second.initialized_frame == p.frame
+                               ? &own->second
+                               : p.lead_shadow(st, app_read);
+    if (source) {
+      from = source->fbo;
+      rx = static_cast<double>(source->width) / source->app_width;
+      ry = static_cast<double>(source->height) / source->app_height;
     }
     const double dx = static_cast<double>(d.width) / d.app_width, dy = static_cast<double>(d.height) / d.app_height;
     GLint from_rect[4], to_rect[4];

@@ -6,6 +6,12 @@
 // has drawn into are read from their shadow copies in the duplicate only. What the app sees,
 // keeps and reads back is never touched.
 //
+// A stream draws only from its first call that would draw differently from the app's frame or
+// from stream 0 (another level of the bound program's pass, another scale of the framebuffer
+// drawn into): until then its images are that one's, and from then on each of its shadows
+// starts from them (GLBUDGET_PROBE_FOLLOW=0: every stream draws the whole frame). A shadow
+// first used by a clear of all of an image is not filled first.
+//
 // Streams: the best configuration s0 (unless the frame is drawn in it) and one configuration
 // with every pass best but one at its cheapest level (s_i^lmax), the pass chosen in turn (or,
 // with GLBUDGET_PROBE_ORDER=weighted, in turn until each has been probed, then by its last
@@ -92,9 +98,12 @@ class ProbeFrames {
   // This object while its context draws a probe frame, else null (for t_probe).
   ProbeFrames* drawing() { return is_probe_frame(frame_now()) ? this : nullptr; }
 
-  // Before the app's draw, clear or blit: the streams' shadows of the bound framebuffer hold
-  // what the app's holds before the call.
+  // Before the app's draw, clear (of `mask`'s buffers; `draw_buffer`: the one a
+  // glClearBuffer* clears, -1: all) or blit: the streams' shadows of the bound framebuffer
+  // hold what the app's holds before the call.
   void prepare();
+  void prepare_clear(GLbitfield mask, int draw_buffer);
+  void prepare_blit();
 
   // The duplicate of one draw: first() saves state and readies stream 0 (false: none for
   // this draw), next() the following stream, end() restores the app's state.

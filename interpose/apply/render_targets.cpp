@@ -846,6 +846,23 @@ void TargetScaler::rescale(GLuint name, Image& image, double scale, bool carry_c
   }
 }
 
+bool TargetScaler::stored_at(GLuint app_fbo, double scale) const {
+  if (app_fbo == 0) {
+    if (!window_.fbo) return scale == 1.0;
+    return window_.width == scaled(window_width_, scale) && window_.height == scaled(window_height_, scale);
+  }
+  auto it = framebuffers_.find(app_fbo);
+  if (it == framebuffers_.end()) return scale == 1.0;
+  for (const Attachment& a : it->second.attachments) {
+    const auto& images = a.renderbuffer ? renderbuffers_ : textures_;
+    auto im = images.find(a.name);
+    // An image the scaler never saw specified is stored as the app made it.
+    const double stored = im == images.end() || im->second.app_size.empty() ? 1.0 : im->second.scale;
+    if (stored != scale) return false;
+  }
+  return true;
+}
+
 void TargetScaler::scale_of(GLuint fbo, double* sx, double* sy) const {
   *sx = *sy = 1.0;
   if (fbo == 0) {

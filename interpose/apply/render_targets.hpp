@@ -225,6 +225,8 @@ class TargetScaler {
   // (0: the window), the scale its images are stored at now, and the window's size.
   double scale_for(GLuint app_fbo, const Levels& config) const;
   void stored_scale(GLuint app_fbo, double* sx, double* sy) const { scale_of(app_fbo, sx, sy); }
+  // Whether the app's images of its framebuffer (0: the window) are stored at `scale` now.
+  bool stored_at(GLuint app_fbo, double scale) const;
   int window_width() const { return window_width_; }
   int window_height() const { return window_height_; }
 

@@ -41,6 +41,9 @@ struct Options {
   // GLBUDGET_PROBE_ORDER=weighted: once every pass is probed, probes take the pass of largest
   // error × age (loop/probe_order.hpp) rather than the passes in turn.
   bool probe_order_weighted = false;
+  // GLBUDGET_PROBE_FOLLOW=0: every probe stream draws the whole frame, rather than starting at
+  // the first call it draws differently from the app or from stream s0 (apply/probes.hpp).
+  bool probe_follow = true;
   bool feedback = true;  // GLBUDGET_FEEDBACK=0: no correction from measured power (the paper's open loop)
   // GLBUDGET_FEEDBACK_OWN=1: a measured configuration's correction moves from the additive fit
   // towards its own windows' residual (loop/power_feedback.hpp, own_residuals)

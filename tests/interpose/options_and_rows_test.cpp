@@ -196,6 +196,17 @@ TEST_CASE("GLBUDGET_PROBE_STRETCH: on unless 0 or off; anything else said once, 
   CHECK(w == "glbudget: GLBUDGET_PROBE_STRETCH='rare' is not 0/1/on/off; on\n");
 }
 
+TEST_CASE("GLBUDGET_PROBE_FOLLOW: on unless 0 or off; anything else said once, on", "[unit]") {
+  std::string w;
+  CHECK(parse_env({}, &w).probe_follow);
+  CHECK(parse_env({"GLBUDGET_PROBE_FOLLOW=1"}, &w).probe_follow);
+  CHECK_FALSE(parse_env({"GLBUDGET_PROBE_FOLLOW=0"}, &w).probe_follow);
+  CHECK_FALSE(parse_env({"GLBUDGET_PROBE_FOLLOW=off"}, &w).probe_follow);
+  CHECK(w.empty());
+  CHECK(parse_env({"GLBUDGET_PROBE_FOLLOW=lead"}, &w).probe_follow);
+  CHECK(w == "glbudget: GLBUDGET_PROBE_FOLLOW='lead' is not 0/1/on/off; on\n");
+}
+
 TEST_CASE("GLBUDGET_PROBE_MAX_AGE_S and GLBUDGET_TRANSITION_S: seconds up to an hour; others said, the default",
           "[unit]") {
   std::string w;

@@ -227,6 +227,50 @@ TEST_CASE("each probe image is the demo's own image of that configuration, and i
   }
 }
 
+// The probe images a run dumped, by file name (probe_c0_f<frame>_<shown_|sN_><levels>.ppm).
+std::map<std::string, Image> dumped_probes(const ProbeRun& run) {
+  std::map<std::string, Image> images;
+  for (const auto& entry : fs::directory_iterator(run.dir + "/probes"))
+    images[entry.path().filename().string()] = read_image(entry.path().string());
+  return images;
+}
+
+TEST_CASE("a stream that follows the app or s0 until its first different call draws what a whole stream draws") {
+  // Each stream draws nothing while every call would draw the same in it as in the app's frame
+  // or in s0's, then starts from that one's images. Shown configurations: s0 itself (one stream,
+  // following the app); only the last pass cheaper (s0 follows the app until antialiasing); and
+  // the scale and the shadows changed from the first call (s0 draws whole, s_i follows s0).
+  // Probing every frame from frame 3 takes each pass in the scene at its cheapest in turn.
+  for (const std::string scene : {"hall", "valley"}) {
+    for (const std::string shown : {"0,0,0,0,0,0", "0,0,0,0,0,2", "1,0,0,1,0,0"}) {
+      if (kSanitizedRun && shown != "1,0,0,1,0,0") continue;
+      INFO(scene << " shown " << shown);
+      const ProbeRun followed = run_forced(scene, shown, 1, true);
+      const ProbeRun whole = run_forced(scene, shown, 1, true, {{"GLBUDGET_PROBE_FOLLOW", "0"}});
+      const std::map<std::string, Image> a = dumped_probes(followed), b = dumped_probes(whole);
+      CHECK(a.size() == b.size());
+      CHECK(a.size() >= 2 * (kFrames - 2));  // every frame from 3: the shown image and one stream at least
+      std::set<std::string> passes;
+      for (const auto& [name, image] : a) {
+        INFO(name);
+        const auto other = b.find(name);
+        REQUIRE(other != b.end());
+        const Difference d = compare(image, other->second);
+        CHECK(d.max == 0);
+        if (name.find("_s") != std::string::npos) passes.insert(name.substr(name.rfind('_') + 1));
+      }
+      CHECK(passes.size() >= 3);  // s0 where it is drawn, and several passes' cheapest
+      // The logged errors are the same, stream by stream.
+      for (size_t i = 0; i < followed.rows.size() && i < whole.rows.size(); ++i) {
+        CHECK(followed.rows[i].at("probe_error") == whole.rows[i].at("probe_error"));
+        CHECK(followed.rows[i].at("probe_streams") == whole.rows[i].at("probe_streams"));
+      }
+      fs::remove_all(followed.dir);
+      fs::remove_all(whole.dir);
+    }
+  }
+}
+
 // The logged probe errors of a run, by frame.
 std::map<long, double> probe_errors(const ProbeRun& run) {
   std::map<long, double> by_frame;
