@@ -10,9 +10,11 @@ machine's load hits every case alike.
 "default" in --periods leaves GLBUDGET_PROBE_PERIOD unset with a budget in force (probes every
 10 frames until every pass has been probed, then every 60), the configuration still forced.
 --ssim cpu,gpu measures each period with each place of the probe frames' comparison
-(GLBUDGET_PROBE_SSIM: the governor thread beside the app, or the app's compute shaders).
+(GLBUDGET_PROBE_SSIM: the governor thread beside the app, or the app's compute shaders);
+--follow 1,0 with streams that follow until their first different call, and drawn whole
+(GLBUDGET_PROBE_FOLLOW).
 Usage: probe_overhead.py BUILD_DIR [--rounds N] [--scene S] [--size WxH] [--periods 10,30,default]
-                         [--ssim auto|cpu|gpu,...]
+                         [--ssim auto|cpu|gpu,...] [--follow 1,0] [--config LEVELS]
 """
 import csv
 import os
@@ -39,8 +41,10 @@ def main():
     ap.add_argument("--periods", default="10,30")
     ap.add_argument("--config", default="1,0,0,1,0,0")
     ap.add_argument("--ssim", default="auto")
+    ap.add_argument("--follow", default="1")
     a = ap.parse_args()
     modes = a.ssim.split(",")
+    follows = a.follow.split(",")
     build = Build(a)
     shimmed = dict(clean_environment(), LD_PRELOAD=build.shim, GLBUDGET_SENSOR="cpu", GLBUDGET_CONFIG=MANIFEST,
                    GLBUDGET_FORCE=a.config)
@@ -52,11 +56,13 @@ def main():
             governed = dict(shimmed, GLBUDGET_POWER="100%", GLBUDGET_PROFILE=PROFILE)
             cases["governed, none"] = dict(governed, GLBUDGET_PROBE_PERIOD="0")
         for mode in modes:
-            suffix = f", {mode}" if len(modes) > 1 else ""
-            if p == "default":
-                cases[f"governed, default{suffix}"] = dict(governed, GLBUDGET_PROBE_SSIM=mode)
-            else:
-                cases[f"probes every {p}{suffix}"] = dict(shimmed, GLBUDGET_PROBE_PERIOD=p, GLBUDGET_PROBE_SSIM=mode)
+            for follow in follows:
+                suffix = (f", {mode}" if len(modes) > 1 else "") + (f", follow {follow}" if len(follows) > 1 else "")
+                knobs = dict(GLBUDGET_PROBE_SSIM=mode, GLBUDGET_PROBE_FOLLOW=follow)
+                if p == "default":
+                    cases[f"governed, default{suffix}"] = dict(governed, **knobs)
+                else:
+                    cases[f"probes every {p}{suffix}"] = dict(shimmed, GLBUDGET_PROBE_PERIOD=p, **knobs)
     args = build.demo_cmd()
     per_frame = {name: [] for name in cases}
     probe_ratio = {name: [] for name in cases}
