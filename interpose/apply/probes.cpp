@@ -1,5 +1,6 @@
 #include "probes.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cerrno>
@@ -192,6 +193,7 @@ struct LayeredShadow {
   int width = 0, height = 0;
   GLsizei layers = 0;
   std::vector<uint64_t> copied_frame;  // per layer
+  std::vector<uint64_t> copied_call;   // per layer: the probe frame's call that copied it in
 };
 
 // A shadow texture standing in for the app's in a stream's draws, and its kind.
@@ -206,6 +208,7 @@ struct Shadow {
   int width = 0, height = 0;          // the shadow's
   std::vector<ShadowImage> images;
   uint64_t initialized_frame = 0;  // content copied from the app's this frame
+  uint64_t filled_call = 0;        // the probe frame's call before which it was first filled
   uint64_t described_changes = 0;  // TargetScaler::attachment_changes() when described
   bool usable = false;
 };
@@ -222,6 +225,7 @@ struct Stream {
   // draws, each of its shadows starting from its lead's image (-1: the app's, 0: stream 0's).
   bool forked = true, follows_app = false, follows_first = false;
   int lead = -1;
+  uint64_t fork_call = 0;  // the probe frame's call it forked at (1: the first; 0: drawn whole)
 };
 
 // A probe frame's comparison queued in the context's compute shaders.
@@ -268,6 +272,11 @@ struct ProbeFrames::Impl {
   Stream streams[kMaxStreams];
   uint64_t passes_drawn = ~uint64_t{0};  // in the last probe frame (all before the first)
   uint64_t passes_now = 0;
+  uint64_t call = 0;               // the probe frame's draws, clears and blits so far
+  bool duplicating_clear = false;  // the duplicate in progress is a clear's
+  // Shadow images released during a probe frame: a stream's later draws may still sample
+  // them (an app re-attaching another texture to a framebuffer it drew this frame).
+  std::vector<GLuint> retired_textures;
   size_t next_pass = 0;               // round robin over the (pass, level) pairs probed
   std::vector<uint64_t> pair_probed;  // per (pass, level) pair: the frame it was last probed at
   std::vector<loop::ProbeCandidate> candidates;
@@ -323,7 +332,11 @@ struct ProbeFrames::Impl {
     for (ShadowImage& im : s.images) {
       if (im.renderbuffer)
         g.DeleteRenderbuffers(1, &im.shadow);
-      else if (!im.layered())  // the stream's, shared
+      else if (im.layered())  // the stream's, shared
+        continue;
+      else if (frame)
+        retired_textures.push_back(im.shadow);
+      else
         g.DeleteTextures(1, &im.shadow);
     }
     if (s.fbo) g.DeleteFramebuffers(1, &s.fbo);
@@ -527,6 +540,7 @@ struct ProbeFrames::Impl {
     l.height = height;
     l.layers = im.layers;
     l.copied_frame.assign(static_cast<size_t>(im.layers), 0);
+    l.copied_call.assign(static_cast<size_t>(im.layers), 0);
     return l;
   }
 
@@ -584,9 +598,9 @@ struct ProbeFrames::Impl {
   }
 
   // The layers of a layered image (the attached one, or all) not yet copied this probe frame,
-  // from the app's texture at its stored size (or the lead stream's, where it has the layer
-  // this frame) into the stream's at the shadow's. A layer the stream drew earlier in the
-  // frame keeps what it drew. Binds its own framebuffers.
+  // from the app's texture at its stored size (or the lead stream's, where it had the layer
+  // before this call) into the stream's at the shadow's. A layer the stream drew earlier in
+  // the frame keeps what it drew. Binds its own framebuffers.
   GLuint layer_fbo[2] = {0, 0};
   void copy_layers(Stream& st, const ShadowImage& im, int src_w, int src_h, int dst_w, int dst_h) {
     const ApplyGl& g = agl();
@@ -599,7 +613,14 @@ struct ProbeFrames::Impl {
                             : im.point == GL_STENCIL_ATTACHMENT ? GL_STENCIL_BUFFER_BIT
                                                                 : GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT;
     if (!layer_fbo[0]) g.GenFramebuffers(2, layer_fbo);
-    const GLint first = im.layer < 0 ? 0 : im.layer, last = im.layer < 0 ? im.layers - 1 : im.layer;
+    GLint first = im.layer < 0 ? 0 : im.layer, last = im.layer < 0 ? im.layers - 1 : im.layer;
+    // A stream that forked after calls it did not draw may meet the texture first with layers
+    // its lead drew before: all of them, then, from where they are.
+    if (st.fork_call > 1 &&
+        std::none_of(l.copied_frame.begin(), l.copied_frame.end(), [&](uint64_t copied) { return copied == frame; })) {
+      first = 0;
+      last = im.layers - 1;
+    }
     const LayeredShadow* lead = nullptr;
     if (st.lead == 0 && &st != &streams[0]) {
       const auto it = streams[0].layered.find(im.app);
@@ -609,7 +630,9 @@ struct ProbeFrames::Impl {
       uint64_t& copied = l.copied_frame[static_cast<size_t>(layer)];
       if (copied == frame) continue;
       copied = frame;
-      const bool from_lead = lead && lead->copied_frame[static_cast<size_t>(layer)] == frame;
+      const size_t at = static_cast<size_t>(layer);
+      l.copied_call[at] = call;
+      const bool from_lead = lead && lead->copied_frame[at] == frame && lead->copied_call[at] < call;
       g.BindFramebuffer(GL_READ_FRAMEBUFFER, layer_fbo[0]);
       attach_texture_layer(GL_READ_FRAMEBUFFER, point, im.kind, from_lead ? lead->texture : im.app, layer);
       g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, layer_fbo[1]);
@@ -731,6 +754,7 @@ struct ProbeFrames::Impl {
       }
     }
     s.initialized_frame = frame;
+    if (!again) s.filled_call = call;
     s.described_changes = targets()->attachment_changes();
     if (!ok) {
       st.complete = app != 0 && st.complete;  // the window matters; other targets: drawn as the app's
@@ -747,6 +771,7 @@ struct ProbeFrames::Impl {
   // (or its lead's).
   void prepare(bool is_draw, GLbitfield clear_mask, int clear_draw_buffer) {
     const OwnGlWork own(c);  // errors the shadows' making raises are the shim's
+    ++call;
     const GLuint app = app_draw_fbo();
     follow(app, is_draw);
     clearing = clear_mask ? cleared_whole(clear_mask, clear_draw_buffer) : 0;
@@ -850,19 +875,23 @@ struct ProbeFrames::Impl {
         continue;
       }
       st.forked = true;
+      st.fork_call = call;
       st.lead = st.follows_app ? -1 : 0;
       // What stream 0 drew so far is what this one would have: its draws sample it.
       if (st.lead == 0) st.textures = streams[0].textures;
     }
   }
 
-  // The stream's lead's shadow of the app's framebuffer `app`, filled this frame, or null (its
-  // lead is the app, or drew into it as the app's).
+  // The stream's lead's shadow of the app's framebuffer `app`, filled before the call being
+  // made, or null: its lead is the app, or drew into it as the app's, or filled it from the
+  // app's for this very call (the stream fills its own from the app's too, not through the
+  // lead's other scale).
   const Shadow* lead_shadow(const Stream& st, GLuint app) const {
     if (st.lead != 0) return nullptr;
     const auto it = streams[0].shadows.find(app);
-    return it != streams[0].shadows.end() && it->second.usable && it->second.initialized_frame == frame ? &it->second
-                                                                                                        : nullptr;
+    const bool filled = it != streams[0].shadows.end() && it->second.usable && it->second.initialized_frame == frame &&
+                        it->second.filled_call < call;
+    return filled ? &it->second : nullptr;
   }
 
   // A program whose draws write buffers or count atomically: a duplicate would write twice.
@@ -912,12 +941,13 @@ struct ProbeFrames::Impl {
     const Shadow& sh = it->second;
     // The stream's variant of the app's program (its draws may be skipped at its level).
     c.config = st.config;
+    // A level that skips its pass's draws skips no clear: the app's own clears are made.
     if (c.bound_variants) {
       bind_program(c);
-      if (!c.bound_variants->at(st.config).draws) return false;
+      if (!duplicating_clear && !c.bound_variants->at(st.config).draws) return false;
     } else if (c.pipeline && !c.program) {
       bind_pipeline_stages(c);
-      if (pipeline_skips(c)) return false;
+      if (!duplicating_clear && pipeline_skips(c)) return false;
     }
     const ApplyGl& g = agl();
     g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, sh.fbo);
@@ -1237,6 +1267,10 @@ struct ProbeFrames::Impl {
   Levels saved_config_for_frame;
 
   void end_frame() {
+    if (!retired_textures.empty()) {
+      agl().DeleteTextures(static_cast<GLsizei>(retired_textures.size()), retired_textures.data());
+      retired_textures.clear();
+    }
     // A pass that left the scene is probed again when it comes back (its error then is not
     // the one it had).
     const manifest::Manifest& m = active_manifest();
@@ -1387,7 +1421,9 @@ struct ProbeFrames::Impl {
       st.follows_app = follow;
       st.follows_first = follow && s > 0;
       st.lead = -1;
+      st.fork_call = 0;
     }
+    call = 0;
     frame = next;
     recent[recent_at++ % 16] = next;
     passes_now = 0;
@@ -1558,8 +1594,9 @@ void ProbeFrames::prepare_blit() {
   if (impl_->frame) impl_->prepare(false, 0, -1);
 }
 
-bool ProbeFrames::first() {
+bool ProbeFrames::first(bool clearing) {
   Impl& p = *impl_;
+  p.duplicating_clear = clearing;
   if (!p.begin_duplicate()) return false;
   if (p.advance()) return true;
   p.end_duplicate();

@@ -107,7 +107,7 @@ class ProbeFrames {
 
   // The duplicate of one draw: first() saves state and readies stream 0 (false: none for
   // this draw), next() the following stream, end() restores the app's state.
-  bool first();
+  bool first(bool clearing = false);
   bool next();
   void end();
   // After the app's clear or blit: the same into each stream's shadows.
@@ -130,7 +130,7 @@ extern thread_local ProbeFrames* t_probe __attribute__((tls_model("initial-exec"
 template <typename F>
 void ProbeFrames::clear(F&& call) {
   const AppSignalsDeferred deferred;
-  if (!first()) return;
+  if (!first(true)) return;
   do call();
   while (next());
   end();

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -125,7 +126,7 @@ ProbeRun run_forced(const std::string& scene, const std::string& config, int per
                                             {"GLBUDGET_LOG", run.dir + "/log.csv"},
                                             {"GLBUDGET_PROBE_PERIOD", std::to_string(period)}};
   if (dump_probes) env["GLBUDGET_DUMP_PROBES"] = run.dir + "/probes";
-  env.insert(more_env.begin(), more_env.end());
+  for (const auto& [name, value] : more_env) env[name] = value;  // the caller's win
   const ProcessResult r = run_process(demo(scene, run.dir + "/app"), env);
   run.err = r.err;
   INFO(r.err);
@@ -269,6 +270,46 @@ TEST_CASE("a stream that follows the app or s0 until its first different call dr
       fs::remove_all(whole.dir);
     }
   }
+}
+
+TEST_CASE("a level that skips its pass's draws still makes the app's clears in a probe stream") {
+  // The demo's shadows pass given a level that draws nothing. Its programs stay bound into the
+  // base pass's clears of the scene target, so a stream at that level must clear there as the
+  // app does (its shadow is not filled before a whole clear): the probe image of the shadows
+  // skipped is the app's own image forced there.
+  std::ifstream in(manifest_path());
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string manifest = text.str();
+  const std::string relative = "\"manifest/",
+                    absolute = "\"" + std::string(GLBUDGET_SOURCE_DIR) + "/testapps/demo/manifest/";
+  for (size_t at = manifest.find(relative); at != std::string::npos; at = manifest.find(relative, at + 1))
+    manifest.replace(at, relative.size(), absolute);
+  const std::string last_shadow_level = "name = \"512\"\nscale = 0.25\ntargets = [\"self\"]\n";
+  const size_t at = manifest.find(last_shadow_level);
+  REQUIRE(at != std::string::npos);
+  manifest.insert(at + last_shadow_level.size(), "[[pass.level]]\nname = \"off\"\ndraws = false\n");
+  const std::string path = temp_path("skip_shadows.toml");
+  std::ofstream(path) << manifest;
+  const std::map<std::string, std::string> env = {{"GLBUDGET_CONFIG", path}};
+  const ProbeRun probed = run_forced("hall", "0,0,0,0,0,0", 1, true, env);
+  const ProbeRun shown = run_forced("hall", "0,0,0,3,0,0", 0, false, env);
+  int checked = 0;
+  for (const auto& entry : fs::directory_iterator(probed.dir + "/probes")) {
+    const std::string name = entry.path().filename().string();
+    if (name.find("_s1_0:0:0:3:0:0") == std::string::npos) continue;
+    INFO(name);
+    const size_t f = name.find("_f"), under = name.find('_', f + 2);
+    const int frame = std::stoi(name.substr(f + 2, under - f - 2));
+    const Difference d = compare(read_image(entry.path().string()),
+                                 read_image(own_image(shown.dir + "/app", "hall", "0,0,0,0,0,0", frame)));
+    CHECK(d.max <= 1);
+    CHECK(d.channels <= static_cast<size_t>(kWidth * kHeight * 3) / 1000);
+    ++checked;
+  }
+  CHECK(checked >= 1);
+  fs::remove_all(probed.dir);
+  fs::remove_all(shown.dir);
 }
 
 // The logged probe errors of a run, by frame.
