@@ -82,6 +82,13 @@ def windows_of(frames, start, size):
     return [numbers[k:k + size] for k in range(0, len(numbers) - size + 1, size)]
 
 
+def window_power_and_budget(frames, window):
+    """A window's power and the governor's budget in it, as the evaluation counts them: the plain
+    means of its frames' `power_w` and `budget_w` (timed_windows.py counts energy over time)."""
+    chunk = [frames[f] for f in window]
+    return mean([number(r["power_w"]) for r in chunk]), mean([number(r.get("budget_w")) for r in chunk])
+
+
 def frames_of(path):
     """The log's rows, one per frame (the first row of each frame carries the frame's columns)."""
     frames = {}
@@ -304,9 +311,7 @@ class Evaluation:
                          for run in result["references"][which]])
 
         for window in windows_of(frames, start, step):
-            chunk = [frames[f] for f in window]
-            p = mean([number(r["power_w"]) for r in chunk])
-            b = mean([number(r.get("budget_w")) for r in chunk])
+            p, b = window_power_and_budget(frames, window)
             low, high = reference_w("cheapest", window), reference_w("best", window)
             windows += 1
             within += p <= b

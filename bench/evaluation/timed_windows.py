@@ -18,7 +18,7 @@ import argparse
 import os
 import statistics
 
-from evaluate import frames_of, number, settled_start, windows_of
+from evaluate import frames_of, number, settled_start, window_power_and_budget, windows_of
 
 SCENES = ("hall", "sponza", "valley", "subway")
 
@@ -27,8 +27,7 @@ def frame_counted(frames, start, fps):
     """evaluate.py's count: windows of `fps` frames, the plain mean of their powers."""
     kept = total = 0
     for window in windows_of(frames, start, max(1, int(fps))):
-        p = statistics.mean(number(frames[f]["power_w"]) for f in window)
-        b = statistics.mean(number(frames[f]["budget_w"]) for f in window)
+        p, b = window_power_and_budget(frames, window)
         total += 1
         kept += p <= b
     return kept / total if total else float("nan")

@@ -888,10 +888,15 @@ struct ProbeFrames::Impl {
   // lead's other scale).
   const Shadow* lead_shadow(const Stream& st, GLuint app) const {
     if (st.lead != 0) return nullptr;
-    const auto it = streams[0].shadows.find(app);
-    const bool filled = it != streams[0].shadows.end() && it->second.usable && it->second.initialized_frame == frame &&
-                        it->second.filled_call < call;
-    return filled ? &it->second : nullptr;
+    const Shadow* lead = filled(streams[0], app);
+    return lead && lead->filled_call < call ? lead : nullptr;
+  }
+
+  // The stream's shadow of the app's framebuffer `app` where it is usable and filled this
+  // frame, else null.
+  const Shadow* filled(const Stream& st, GLuint app) const {
+    const auto it = st.shadows.find(app);
+    return it != st.shadows.end() && it->second.usable && it->second.initialized_frame == frame ? &it->second : nullptr;
   }
 
   // A program whose draws write buffers or count atomically: a duplicate would write twice.
@@ -935,10 +940,9 @@ struct ProbeFrames::Impl {
   bool set_up(int s) {
     Stream& st = streams[s];
     if (!st.complete || !st.forked) return false;
-    const GLuint app = app_draw_fbo();
-    auto it = st.shadows.find(app);
-    if (it == st.shadows.end() || !it->second.usable || it->second.initialized_frame != frame) return false;
-    const Shadow& sh = it->second;
+    const Shadow* own = filled(st, app_draw_fbo());
+    if (!own) return false;
+    const Shadow& sh = *own;
     // The stream's variant of the app's program (its draws may be skipped at its level).
     c.config = st.config;
     // A level that skips its pass's draws skips no clear: the app's own clears are made.
@@ -1120,25 +1124,23 @@ struct ProbeFrames::Impl {
     ensure_captures(w, h);
     for (int s = 0; s < stream_count; ++s) {
       captured[s + 1] = false;
-      auto it = streams[s].shadows.find(0);
-      if (!streams[s].complete || !streams[s].forked || it == streams[s].shadows.end() || !it->second.usable ||
-          it->second.initialized_frame != frame)
-        continue;
-      GLuint from = it->second.fbo;
-      if (it->second.images[0].samples > 0 && (it->second.width != w || it->second.height != h)) {
+      const Shadow* window = filled(streams[s], 0);
+      if (!streams[s].complete || !streams[s].forked || !window) continue;
+      GLuint from = window->fbo;
+      if (window->images[0].samples > 0 && (window->width != w || window->height != h)) {
         // A multisampled shadow is resolved at its own size before it is stretched.
-        ensure_resolve(it->second.width, it->second.height);
+        ensure_resolve(window->width, window->height);
         g.BindFramebuffer(GL_READ_FRAMEBUFFER, from);
         g.ReadBuffer(GL_COLOR_ATTACHMENT0);
         g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo);
-        g.BlitFramebuffer(0, 0, it->second.width, it->second.height, 0, 0, it->second.width, it->second.height,
-                          GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        g.BlitFramebuffer(0, 0, window->width, window->height, 0, 0, window->width, window->height, GL_COLOR_BUFFER_BIT,
+                          GL_NEAREST);
         from = resolve_fbo;
       }
       g.BindFramebuffer(GL_READ_FRAMEBUFFER, from);
       g.ReadBuffer(GL_COLOR_ATTACHMENT0);
       g.BindFramebuffer(GL_DRAW_FRAMEBUFFER, capture_fbo[s + 1]);
-      g.BlitFramebuffer(0, 0, it->second.width, it->second.height, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+      g.BlitFramebuffer(0, 0, window->width, window->height, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_LINEAR);
       captured[s + 1] = true;
     }
     for (int s = 1; s < stream_count; ++s)
@@ -1646,20 +1648,16 @@ void ProbeFrames::blit(const GLint* src, const GLint* dst, GLbitfield mask, GLen
   const GLint scissor = g.IsEnabled(GL_SCISSOR_TEST);
   for (int s = 0; s < p.stream_count; ++s) {
     Stream& st = p.streams[s];
-    auto to = st.shadows.find(app_draw);
-    if (!st.complete || !st.forked || to == st.shadows.end() || !to->second.usable ||
-        to->second.initialized_frame != p.frame)
-      continue;
-    const Shadow& d = to->second;
+    const Shadow* to = p.filled(st, app_draw);
+    if (!st.complete || !st.forked || !to) continue;
+    const Shadow& d = *to;
     // From the stream's own image of the source when the frame drew it, else its lead's, else
     // the app's.
     GLuint from = t.real_framebuffer(app_read);
     double rx = 1.0, ry = 1.0;
     t.stored_scale(app_read, &rx, &ry);
-    auto own = st.shadows.find(app_read);
-    const Shadow* source = own != st.shadows.end() && own->second.usable && own->second.initialized_frame == p.frame
-                               ? &own->second
-                               : p.lead_shadow(st, app_read);
+    const Shadow* own = p.filled(st, app_read);
+    const Shadow* source = own ? own : p.lead_shadow(st, app_read);
     if (source) {
       from = source->fbo;
       rx = static_cast<double>(source->width) / source->app_width;
