@@ -590,6 +590,40 @@ TEST_CASE("probe overhead in windows: a probe's whole excess where more windows 
   CHECK(none.window_margin_w(1.0, 0.95) == 0.0);
 }
 
+TEST_CASE("probe overhead is energy: a probe frame that overruns its slot counts for every slot it fills",
+          "[loop][extremes]") {
+  // 10 frames a second at 10 W; every 20th frame a probe that lasts 2.5 slots at 20 W, the
+  // frame after it shortened to half a slot (the pacing catching up) at 20 W, the third at
+  // 10.5 W. Its energy over the frames before: 2.5 x 10 + 0.5 x 10 + 0.5 = 30.5 W x slots,
+  // 3.05 J; counted a frame each it would be 20.5.
+  constexpr std::int64_t kSlotNs = 100'000'000;
+  ProbeOverhead overrun;
+  std::int64_t t = 0;
+  double energy_j = 0.0, excess_j = 0.0;
+  for (int k = 0; k < 2000; ++k) {
+    const int phase = k % 20;
+    const std::int64_t length = phase == 10 ? 5 * kSlotNs / 2 : phase == 11 ? kSlotNs / 2 : kSlotNs;
+    const double power = phase == 10 || phase == 11 ? 20.0 : phase == 12 ? 10.5 : 10.0;
+    t += length;
+    overrun.add(phase == 10, power, t);
+    energy_j += power * static_cast<double>(length) * 1e-9;
+    if (phase >= 10 && phase <= 12) excess_j += (power - 10.0) * static_cast<double>(length) * 1e-9;
+  }
+  const double run_s = static_cast<double>(t) * 1e-9;
+  // A window of a second that holds a probe holds its 3.05 J over the frames' 10 W.
+  CHECK(overrun.whole_excess_margin_w(1.0) == Approx(3.05).epsilon(0.05));
+  // The mean: what the probes add to a long reading, energy over time.
+  CHECK(overrun.watts() == Approx(excess_j / run_s).epsilon(0.05));
+  CHECK(overrun.watts() == Approx(energy_j / run_s - 10.0).epsilon(0.05));
+  // Untimed, each frame counts one.
+  ProbeOverhead untimed;
+  for (int k = 0; k < 2000; ++k) {
+    const int phase = k % 20;
+    untimed.add(phase == 10, phase == 10 || phase == 11 ? 20.0 : phase == 12 ? 10.5 : 10.0);
+  }
+  CHECK(untimed.excess_w() == Approx(20.5));
+}
+
 TEST_CASE("one probe per window: the shortest gap that leaves no window two probes' spans", "[loop][extremes]") {
   // Frames a probe's span raises, probes every `gap` frames from frame 0: the most spans any
   // window of `window` consecutive frames touches.

@@ -27,8 +27,12 @@ void ProbeOverhead::close_span() {
 }
 
 void ProbeOverhead::add(bool probe, double power_w, std::int64_t time_ns) {
+  // The frame's length in frames at the recent rate: its power counts for as long as it lasted
+  // (1 where either is not known).
+  double length_frames = 1.0;
   if (time_ns >= 0 && last_time_ns_ >= 0 && time_ns > last_time_ns_) {
     const double interval = static_cast<double>(time_ns - last_time_ns_) * 1e-9;
+    if (interval_s_ > 0.0) length_frames = std::min(interval, kLongestInterval_s) / interval_s_;
     // A pause (loading, a breakpoint) is no frame rate: it would hold the windows' frames low
     // for seconds after it.
     if (interval < kLongestInterval_s)
@@ -55,7 +59,7 @@ void ProbeOverhead::add(bool probe, double power_w, std::int64_t time_ns) {
     // The probe frame's power must be measured for the span to count; the next frame's
     // excess is added when it is.
     if (finite && have_recent_ && (probe || span_measured_)) {
-      span_excess_w_ += power_w - recent_w_;
+      span_excess_w_ += length_frames * (power_w - recent_w_);
       span_measured_ = true;
     }
     if (--span_left_ == 0) close_span();

@@ -5,8 +5,15 @@
 // power of all frames, probe frames included: each probe's excess over the frames drawn just
 // before it, summed over the probe frame and the two after it (the probe's image is compared
 // one frame late, behind a fence, and some of that work spills into the frame after), times
-// the share of frames that are probes. A selection keeps it under the budget besides the
-// spread's margin, and windows are held to the budget with it.
+// the share of frames that are probes.
+// The excess is energy, as a meter reads it: each frame's excess times its length in frames at
+// the recent rate. A probe frame that overruns its slot at the app's pace (1.5-2.5 slots at 10
+// frames a second on the demo's Hall and Sponza) counts for every slot it fills, and the frame
+// after it, shortened while the pacing catches up, for the part of one it fills. Counted as a
+// frame each, the demo's probes at 50 % looked half what they cost on Sponza and Subway, and
+// a tenth less on Hall (docs/evaluation/budgets.md, run L).
+// A selection keeps the excess under the budget besides the spread's margin, and windows are
+// held to the budget with it.
 // The mean is what a long meter reading sees; a window of a second sees all of a probe or
 // none of it. Where more windows hold a probe than the probes' part of the share a budget may
 // leave over it (a probe every 60 frames at 10 frames a second: one window in six), each such
@@ -49,8 +56,9 @@ class ProbeOverhead {
 
   // Watts the probes add to the mean of all frames (>= 0; 0 before a probe with power).
   double watts() const;
-  // The mean excess of a probe (its frame and the next) over the frames before it (may be
-  // negative), and the share of recent frames that were probes.
+  // The mean excess of a probe (its span's frames, each times its length in frames at the
+  // recent rate: watts times frames) over the frames before it (may be negative), and the
+  // share of recent frames that were probes.
   double excess_w() const { return excess_w_; }
   double share() const;
   // What a selection keeps under the budget for the probes so that about `keep_share` of the
