@@ -20,9 +20,11 @@ It writes into --out:
     Spearman's rho and the mean absolute error per scene;
   - the power model against Vatjus-Anttila's on the recorded logs (tests/data/logs, replayed by
     bench/model/replay_summary.py).
-Budgets kept are counted over 1-s windows after the first selection and its transition: against
-the budget the governor logged (a share of its predicted range) and
-against the same share of the measured range (cheapest + P% of best - cheapest).
+Budgets kept are counted over 1-s windows of the log's time after the first selection and its
+transition, as a power meter reads them (each frame's power over its own interval, so that a
+probe frame that overruns its slot counts for every slot it fills): against the budget the
+governor logged (a share of its predicted range) and against the same share of the measured
+range (cheapest + P% of best - cheapest). Mean powers are energy over time likewise.
 
 Usage: evaluate.py BUILD_DIR --out DIR [--quick] [--scenes hall,sponza,valley,subway]
        [--budgets 40,50,60] [--frames 200] [--fps 10] [--size 320x180] [--detail 0.2]
@@ -83,10 +85,65 @@ def windows_of(frames, start, size):
 
 
 def window_power_and_budget(frames, window):
-    """A window's power and the governor's budget in it, as the evaluation counts them: the plain
-    means of its frames' `power_w` and `budget_w` (timed_windows.py counts energy over time)."""
+    """A window of consecutive frames' power and the governor's budget in it, as evaluations before
+    2026-11-30 counted them: the plain means of its frames' `power_w` and `budget_w`. A probe frame
+    that overran its slot counted as one frame; timed_windows.py compares this with timed_windows."""
     chunk = [frames[f] for f in window]
     return mean([number(r["power_w"]) for r in chunk]), mean([number(r.get("budget_w")) for r in chunk])
+
+
+def spans_of(frames, numbers=None):
+    """(frame, begin_s, end_s, power_w) of each frame with power whose previous frame is logged: its
+    power held over its own interval, from the previous frame's end to its own."""
+    spans = []
+    for f in sorted(frames if numbers is None else numbers):
+        if f not in frames or f - 1 not in frames:
+            continue
+        begin, end = int(frames[f - 1]["time_ns"]) * 1e-9, int(frames[f]["time_ns"]) * 1e-9
+        p = number(frames[f]["power_w"])
+        if end > begin and p is not None:
+            spans.append((f, begin, end, p))
+    return spans
+
+
+def energy_mean(spans):
+    """The mean power over the spans' time: their energy over their length (NaN when empty)."""
+    length = sum(end - begin for _, begin, end, _ in spans)
+    return sum(p * (end - begin) for _, begin, end, p in spans) / length if length > 0 else float("nan")
+
+
+def timed_windows(frames, start, window_s):
+    """A power meter's windows: consecutive windows of `window_s` seconds of the log's time from
+    the end of frame start - 1 (a last partial one dropped). Each is (frames, power_w, budget_w):
+    the frames whose intervals overlap it, its energy over its length (each frame's power over
+    the part of its interval inside the window), and the governor's budget over the same time."""
+    spans = [s for s in spans_of(frames) if s[0] >= start]
+    windows = []
+    if not spans:
+        return windows
+    t, first = spans[0][1], 0
+    while t + window_s <= spans[-1][2]:
+        while first < len(spans) and spans[first][2] <= t:
+            first += 1
+        energy = length = budget = budget_length = 0.0
+        numbers = []
+        for f, begin, end, p in spans[first:]:
+            if begin >= t + window_s:
+                break
+            overlap = min(end, t + window_s) - max(begin, t)
+            if overlap <= 0:
+                continue
+            numbers.append(f)
+            energy += p * overlap
+            length += overlap
+            b = number(frames[f].get("budget_w"))
+            if b is not None:
+                budget += b * overlap
+                budget_length += overlap
+        if length > 0 and budget_length > 0:
+            windows.append((numbers, energy / length, budget / budget_length))
+        t += window_s
+    return windows
 
 
 def frames_of(path):
@@ -269,12 +326,12 @@ class Evaluation:
         self.governed_env["GLBUDGET_COSTS"] = self.level_costs(scene)
         truth = os.path.join(self.tmp, f"{scene}_truth")
         self.quiet(self.common(scene) + ["--dump", truth, "--dump-every", str(a.every)])
-        tail = lambda frames: [number(r["power_w"]) for f, r in frames.items() if f > a.frames // 2]
+        tail = lambda frames: energy_mean(spans_of(frames, [f for f in frames if f > a.frames // 2]))
         best = frames_of(self.run(scene, "best", ["--force", "0,0,0,0,0,0", "--config", MANIFEST]))
         cheapest_shown = os.path.join(self.tmp, f"{scene}_cheapest_shown")
         cheapest = frames_of(self.run(scene, "cheapest", ["--force", "2,2,2,2,2,2", "--config", MANIFEST],
                                       dump=cheapest_shown))
-        result["best_w"], result["cheapest_w"] = mean(tail(best)), mean(tail(cheapest))
+        result["best_w"], result["cheapest_w"] = tail(best), tail(cheapest)
         result["cheapest_error"] = mean(self.true_errors(truth, cheapest_shown))
         logs = []
         for budget in a.budgets.split(","):
@@ -286,8 +343,8 @@ class Evaluation:
         # measured before and after the governed runs, and its mean taken.
         best_after = frames_of(self.run(scene, "best_after", ["--force", "0,0,0,0,0,0", "--config", MANIFEST]))
         cheapest_after = frames_of(self.run(scene, "cheapest_after", ["--force", "2,2,2,2,2,2", "--config", MANIFEST]))
-        result["best_before_after_w"] = (result["best_w"], mean(tail(best_after)))
-        result["cheapest_before_after_w"] = (result["cheapest_w"], mean(tail(cheapest_after)))
+        result["best_before_after_w"] = (result["best_w"], tail(best_after))
+        result["cheapest_before_after_w"] = (result["cheapest_w"], tail(cheapest_after))
         # The demo's camera path is a function of the frame number: frame f of every run shows
         # the same view, so each window's range can be measured on the same frames.
         result["references"] = {"best": (best, best_after), "cheapest": (cheapest, cheapest_after)}
@@ -303,15 +360,12 @@ class Evaluation:
         true_budget = result["cheapest_w"] + float(budget) / 100.0 * (result["best_w"] - result["cheapest_w"])
         windows = within = within_true = within_window = 0
         window_budgets = []  # (first frame, last frame, the window's measured range's budget)
-        step = max(1, int(a.fps))
         share = float(budget) / 100.0
 
         def reference_w(which, window):
-            return mean([mean([number(run[f]["power_w"]) for f in window if f in run])
-                         for run in result["references"][which]])
+            return mean([energy_mean(spans_of(run, window)) for run in result["references"][which]])
 
-        for window in windows_of(frames, start, step):
-            p, b = window_power_and_budget(frames, window)
+        for window, p, b in timed_windows(frames, start, 1.0):
             low, high = reference_w("cheapest", window), reference_w("best", window)
             windows += 1
             within += p <= b
@@ -320,7 +374,7 @@ class Evaluation:
             window_budgets.append((window[0], window[-1], low + share * (high - low)))
         errors = self.true_errors(truth, shown)
         return {"budget": budget, "log": log, "selections": log + ".selections.csv",
-                "power_w": mean([number(r["power_w"]) for f, r in frames.items() if f >= start]),
+                "power_w": energy_mean(spans_of(frames, [f for f in frames if f >= start])),
                 "windows": windows, "within": within / windows if windows else float("nan"),
                 "within_true": within_true / windows if windows else float("nan"), "true_budget_w": true_budget,
                 "within_window": within_window / windows if windows else float("nan"), "window_budgets": window_budgets,
@@ -522,8 +576,9 @@ def write_markdown(results, fig10, replay, command, a):
              f"({'glbudget calibrate --app per scene' if a.costs == 'measure' else 'none'}). "
              f"Configurations are levels of ({KNOBS}).", "",
              "## Power and quality (the paper's Fig. 13)", "",
-             "Windows: the share of 1-s windows after the first selection whose mean measured power (probe frames "
-             "included) is at or under the budget the governor logged (from its predicted range) / under the same "
+             "Windows: the share of 1-s windows of the log's time after the first selection whose energy over "
+             "their length (each frame's power over its own interval, probe frames included; mean powers likewise) "
+             "is at or under the budget the governor logged (from its predicted range) / under the same "
              "share of the *measured* range of the window's own frames (cheapest + P % × (best − cheapest), the "
              "paper's budget, which follows the scene along the camera path) / of the whole run's measured range. "
              "Best and cheapest are each run before and after the "

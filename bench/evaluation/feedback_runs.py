@@ -32,7 +32,7 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 from evaluate import (MANIFEST, PROFILE, ROOT, Evaluation, frames_of, mean, number, selection_frames,  # noqa: E402
-                      shadow_note, windows_of)
+                      shadow_note, timed_windows)
 
 
 def first_selection(frames):
@@ -45,16 +45,11 @@ def summarise(log, fps):
     first = first_selection(frames)
     if first is None:
         return None
-    size = max(1, int(fps))
-    start = first + size + 1  # as evaluate.py: after the first selection's transition began
+    start = first + max(1, int(fps)) + 1  # as evaluate.py: after the first selection's transition began
     within = total = 0
     residuals = []
-    for window in windows_of(frames, start, size):
+    for window, power, budget in timed_windows(frames, start, 1.0):
         rows = [frames[f] for f in window]
-        power = mean([number(r["power_w"]) for r in rows])
-        budget = mean([number(r.get("budget_w")) for r in rows])
-        if power is None or budget is None:
-            continue
         total += 1
         within += power <= budget
         predicted = [number(r.get("predicted_w")) for r in rows]

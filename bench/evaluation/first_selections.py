@@ -22,7 +22,7 @@ import statistics
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from evaluate import frames_of, number, selection_frames, settled_start, windows_of  # noqa: E402
+from evaluate import frames_of, selection_frames, settled_start, timed_windows  # noqa: E402
 from interactions import measured_after, selection_tables  # noqa: E402
 
 
@@ -41,11 +41,9 @@ def first_selection(log, fps):
     # The windows scripts/evaluate counts, up to the second selection.
     before_second = {f: r for f, r in frames.items() if f < second}
     windows = over = 0
-    for window in windows_of(before_second, settled_start(frames, fps, max(frames) + 1), max(1, int(fps))):
-        chunk = [frames[f] for f in window]
+    for _, power, budget in timed_windows(before_second, settled_start(frames, fps, max(frames) + 1), 1.0):
         windows += 1
-        over += statistics.fmean(number(r["power_w"]) for r in chunk) > statistics.fmean(
-            number(r["budget_w"]) for r in chunk)
+        over += power > budget
     measured = float("nan") if measured is None else measured
     best_w, chosen_w = table.get(best, float("nan")), table[chosen]
     saving = best_w - chosen_w

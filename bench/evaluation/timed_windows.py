@@ -1,24 +1,24 @@
 #!/usr/bin/env python3
-"""The governed runs' windows kept, counted as a power meter counts them, from kept logs.
+"""The governed runs' windows kept, counted as a power meter counts them and as evaluations before
+2026-11-30 counted them, from kept logs.
 
-scripts/evaluate counts a window as `--fps` consecutive frames and its power as the plain mean of
-those frames' powers. A frame that overruns its slot at the app's pace (a probe frame: 140-250 ms
-at 10 fps on the demo's Hall) counts there as one frame of ten though it lasts two or three
-slots, and the frame after it, shortened while the pacing catches up, counts as a whole one. A
-meter reads energy over time: this script splits each run after its first selection's transition
-into windows of `--window` seconds of the log's own time and takes each window's energy (each
-frame's power times the part of its interval inside the window) over its length, against the
-governor's budget in force (the mean of its frames' `budget_w`). Both counts are printed per
-scene and budget.
+Before 2026-11-30 scripts/evaluate counted a window as `--fps` consecutive frames and its power as
+the plain mean of those frames' powers. A frame that overruns its slot at the app's pace (a probe
+frame: 140-250 ms at 10 fps on the demo's Hall) counted there as one frame of ten though it lasts
+two or three slots, and the frame after it, shortened while the pacing catches up, counted as a
+whole one. A meter reads energy over time, as scripts/evaluate now does (evaluate.timed_windows):
+each run after its first selection's transition in windows of `--window` seconds of the log's own
+time, each window's energy (each frame's power times the part of its interval inside the window)
+over its length, against the governor's budget in force over the same time. Both counts are
+printed per scene and budget.
 
 Usage: timed_windows.py LOGS_DIR [LOGS_DIR ...] [--fps 10] [--window 1.0] [--budgets 40,50,60]
 LOGS_DIR: what `scripts/evaluate --keep-logs DIR` kept (SCENE_pBUDGET.csv).
 """
 import argparse
 import os
-import statistics
 
-from evaluate import frames_of, number, settled_start, window_power_and_budget, windows_of
+from evaluate import frames_of, settled_start, timed_windows, window_power_and_budget, windows_of
 
 SCENES = ("hall", "sponza", "valley", "subway")
 
@@ -34,34 +34,9 @@ def frame_counted(frames, start, fps):
 
 
 def time_counted(frames, start, window_s):
-    """Windows of `window_s` seconds of the log's time from the end of frame start - 1: each
-    frame's power spread over its own interval (from the previous frame's end to its own)."""
-    spans = []  # (begin_s, end_s, power_w, budget_w)
-    for f in sorted(frames):
-        if f < start or f - 1 not in frames:
-            continue
-        begin, end = int(frames[f - 1]["time_ns"]) * 1e-9, int(frames[f]["time_ns"]) * 1e-9
-        p, b = number(frames[f]["power_w"]), number(frames[f]["budget_w"])
-        if end > begin and p is not None and b is not None:
-            spans.append((begin, end, p, b))
-    if not spans:
-        return float("nan")
-    kept = total = 0
-    t = spans[0][0]
-    while t + window_s <= spans[-1][1]:
-        energy = length = 0.0
-        budgets = []
-        for begin, end, p, b in spans:
-            overlap = min(end, t + window_s) - max(begin, t)
-            if overlap > 0:
-                energy += p * overlap
-                length += overlap
-                budgets.append(b)
-        if length > 0:
-            total += 1
-            kept += energy / length <= statistics.mean(budgets)
-        t += window_s
-    return kept / total if total else float("nan")
+    """evaluate.py's count (since 2026-11-30): windows of `window_s` seconds of the log's time."""
+    windows = timed_windows(frames, start, window_s)
+    return sum(p <= b for _, p, b in windows) / len(windows) if windows else float("nan")
 
 
 def main():
@@ -71,7 +46,7 @@ def main():
     ap.add_argument("--window", type=float, default=1.0)
     ap.add_argument("--budgets", default="40,50,60")
     a = ap.parse_args()
-    print("| logs | scene | windows kept, frames (evaluate.py) | windows kept, time (a meter) |")
+    print("| logs | scene | windows kept, frames (before 2026-11-30) | windows kept, time (a meter, evaluate.py) |")
     print("|---|---|---|---|")
     for logs in a.logs:
         for scene in SCENES:
