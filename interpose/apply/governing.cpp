@@ -626,6 +626,7 @@ bool governor_start() {
     settings.level_interactions = o.level_interactions;
     settings.error_feedback.enabled = o.error_feedback;
     settings.feedback.keep_share = o.keep_share;
+    settings.feedback.first_saving_discount = o.first_saving_discount;
     if (!o.probe_stretch) settings.probe_stretch_gain = 0.0;
     const std::string path = default_profile_path();
     std::optional<model::PlatformProfile> profile;

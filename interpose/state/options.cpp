@@ -44,6 +44,7 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_PROBE_STRETCH",
     "GLBUDGET_PROBE_MAX_AGE_S",
     "GLBUDGET_KEEP_SHARE",
+    "GLBUDGET_FIRST_SAVING_DISCOUNT",
     "GLBUDGET_WARM_BLITS",
     "GLBUDGET_DUMP_PROBES",
     "GLBUDGET_PROBE_SCALE",
@@ -186,6 +187,11 @@ Options parse_options(char** env, std::string* warnings) {
         o.keep_share = *k;
       else
         warn(warnings, "GLBUDGET_KEEP_SHARE='" + value + "' is not a share in [0.5, 0.999] (0.98 or 98%); 0.98");
+    } else if (name == "GLBUDGET_FIRST_SAVING_DISCOUNT") {
+      if (const auto d = share(value, 0.0, 1.0))
+        o.first_saving_discount = *d;
+      else
+        warn(warnings, "GLBUDGET_FIRST_SAVING_DISCOUNT='" + value + "' is not a share in [0, 1] (0.25 or 25%); 0");
     } else if (name == "GLBUDGET_PROBE_PERIOD") {
       if (const auto n = whole_number(value, 0, 1000000))
         o.probe_period = static_cast<int64_t>(*n);

@@ -71,6 +71,10 @@ struct Options {
   // one window short), aimed at 0.98 in 1 of 12, at 0.007 more true error
   // (docs/evaluation/budgets.md, "the share of windows kept").
   double keep_share = 0.98;
+  // GLBUDGET_FIRST_SAVING_DISCOUNT: the share of an unmeasured configuration's predicted saving
+  // the governor does not count on until it has measured a configuration beyond the one the
+  // app started in (loop/power_feedback.hpp, first_saving_discount); 0, the default: off.
+  double first_saving_discount = 0.0;
   // GLBUDGET_WARM_BLITS=0: the blits a switch of scale makes are not made once ahead on tiny
   // images (apply/blit_warmup.cpp); the first switch to each scale then pays the driver's
   // shader builds for them.

@@ -1649,6 +1649,66 @@ TEST_CASE("configurations never measured are kept further under the budget once 
   CHECK(share_on >= share_off + 0.05);
 }
 
+TEST_CASE("the first selection counts on part of an unmeasured configuration's predicted saving", "[loop][feedback]") {
+  // Every configuration saves a fifth less than the counts say, as on the demo's scenes, where a
+  // model fitted on the starting configuration's frames alone overstated the savings of the
+  // first selection (it realised 0.38-1.5 of them, median 0.87). Until a second configuration
+  // is measured nothing shows that; the first configuration selected draws over the budget
+  // unless the selection counts on less of the saving.
+  const HiddenModel hidden = model::testing::six_pass_hidden_model();
+  SceneGenerator scene(hidden, kNoiseW, 7);
+  const Truth start(hidden, scene.sample(0, Configuration(6, 0)).passes);
+  const double best_w = start.power(Configuration(6, 0));
+  const auto unseen = [&](const Configuration& c) { return 0.2 * (best_w - start.power(c)); };
+  // Watts the first configuration selected drew over the budget, on average from when the
+  // transition arrived there to the next selection (0 where the first choice was to explore
+  // the cheapest, which measures a configuration first); and its estimated error.
+  auto first_excess = [&](const char* budget, unsigned seed, double discount, double* error, int* runs) {
+    GovernorSettings settings = power_budget(budget);
+    settings.feedback.first_saving_discount = discount;
+    App app(settings, Configuration(6, 0), seed, 64, unseen);
+    const std::vector<Step> steps = app.run(20 * kFps);
+    std::size_t first = 0, next = steps.size();
+    for (std::size_t k = 0; k < steps.size() && next == steps.size(); ++k) {
+      if (steps[k].decision.event == Event::explore && !first) return 0.0;
+      if (steps[k].decision.event != Event::select) continue;
+      if (!first)
+        first = k;
+      else
+        next = k;
+    }
+    REQUIRE(first > 0);
+    const Configuration& target = steps[first].target;
+    double power = 0.0, limit = 0.0;
+    int frames = 0;
+    for (std::size_t k = first; k < next; ++k)
+      if (steps[k].record.configuration == target) {
+        power += steps[k].true_power_w;
+        limit += steps[k].decision.budget_w;
+        ++frames;
+      }
+    REQUIRE(frames > 0);
+    *error += app.governor().errors().estimate(target);
+    ++*runs;
+    return std::max(0.0, (power - limit) / frames);
+  };
+  double excess_on = 0.0, excess_off = 0.0, error_on = 0.0, error_off = 0.0;
+  int runs_on = 0, runs_off = 0;
+  for (const char* budget : {"40%", "50%", "60%"})
+    for (const unsigned seed : {7u, 13u, 17u, 19u, 23u}) {
+      excess_on += first_excess(budget, seed, 0.25, &error_on, &runs_on);
+      excess_off += first_excess(budget, seed, 0.0, &error_off, &runs_off);
+    }
+  INFO("the first configurations' watts over the budget, summed over "
+       << runs_on << " and " << runs_off << " runs: " << excess_on << " discounted, " << excess_off
+       << " not; their mean estimated error " << error_on / runs_on << " against " << error_off / runs_off);
+  REQUIRE(runs_on >= 10);
+  REQUIRE(runs_off >= 10);
+  CHECK(excess_off >= 2.0);
+  CHECK(excess_on <= 0.25 * excess_off);
+  CHECK(error_on / runs_on > error_off / runs_off);  // the price: the first configuration shows more error
+}
+
 TEST_CASE("a refit leaves the corrected prediction of the configuration drawn where its windows measured it",
           "[loop][feedback]") {
   // Costs the counts do not explain (every cheaper level 0.6 W more): each refit over the

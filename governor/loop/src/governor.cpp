@@ -235,7 +235,7 @@ bool Governor::select(const FrameRecord& record) {
                           ? std::numeric_limits<double>::infinity()
                           : probe_overhead_.window_margin_w(settings_.feedback.window_s, settings_.feedback.keep_share);
     margin_w_ = whole_range ? 0.0 : margin_without_probes_w + probe_margin_w_;
-    guard_unmeasured(whole_range ? 0.0 : feedback_.unmeasured_margin_w());
+    guard_unmeasured(whole_range ? 0.0 : feedback_.unmeasured_margin_w(), !whole_range);
     if (!whole_range) want_probe_period(budget_w, margin_without_probes_w);
   }
   const model::Selection selection = aim_ == Aim::power
@@ -271,10 +271,26 @@ bool Governor::select(const FrameRecord& record) {
 // demo's Sponza a configuration differing from the best in one level was predicted 7 W under
 // what its first window measured: the additive correction cannot see a level whose saving
 // depends on the others'. Measured ones are held to what their windows showed.
-void Governor::guard_unmeasured(double extra_w) {
+// Before the first surprise, no window has shown how far such predictions miss: each
+// unmeasured configuration is raised by first_saving_discount of its predicted saving below the
+// configuration measured (the one the run started in), instead (power_feedback.hpp).
+void Governor::guard_unmeasured(double extra_w, bool discount_first) {
   guarded_.assign(power_.begin(), power_.end());
-  if (!(extra_w > 0.0)) return;
-  for (double& p : guarded_) p += extra_w;
+  const FeedbackSettings& feedback = feedback_.settings();
+  double reference_w = std::numeric_limits<double>::quiet_NaN();
+  if (discount_first && feedback.enabled && feedback.guard_unmeasured && feedback.first_saving_discount > 0.0 &&
+      feedback_.surprises() == 0) {
+    const std::vector<model::Configuration> measured = feedback_.measured_configurations();
+    const model::Configuration& reference = measured.empty() ? current_ : measured.front();
+    if (space_.contains(reference)) reference_w = power_[space_.index_of(reference)];
+  }
+  const double discount = std::clamp(feedback.first_saving_discount, 0.0, 1.0);
+  if (!(extra_w > 0.0) && !std::isfinite(reference_w)) return;
+  for (std::size_t i = 0; i < guarded_.size(); ++i) {
+    if (extra_w > 0.0) guarded_[i] += extra_w;
+    if (std::isfinite(reference_w) && std::isfinite(power_[i]))
+      guarded_[i] += discount * std::max(0.0, reference_w - power_[i]);
+  }
   for (const model::Configuration& c : feedback_.measured_configurations())
     if (space_.contains(c)) {
       const std::size_t i = space_.index_of(c);

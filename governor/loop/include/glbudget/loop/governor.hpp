@@ -184,7 +184,7 @@ class Governor {
   // Returns true when it chose to explore instead (explore_cheapest).
   bool select(const FrameRecord& record);
   bool explore_cheapest(double budget_w) const;
-  void guard_unmeasured(double extra_w);
+  void guard_unmeasured(double extra_w, bool discount_first);
   void hold(const FrameRecord& record);
   void feed_back(const FrameRecord& record, Decision& decision);
   double initial_budget_w() const;
