@@ -85,9 +85,10 @@ def windows_of(frames, start, size):
 
 
 def window_power_and_budget(frames, window):
-    """A window of consecutive frames' power and the governor's budget in it, as evaluations before
-    2026-11-30 counted them: the plain means of its frames' `power_w` and `budget_w`. A probe frame
-    that overran its slot counted as one frame; timed_windows.py compares this with timed_windows."""
+    """A window of consecutive frames' power and the governor's budget in it, as evaluations
+    before run M (2026-11-29) counted them: the plain means of its frames' `power_w` and
+    `budget_w`. A probe frame that overran its slot counted as one frame; timed_windows.py
+    compares this count with timed_windows'."""
     chunk = [frames[f] for f in window]
     return mean([number(r["power_w"]) for r in chunk]), mean([number(r.get("budget_w")) for r in chunk])
 

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
-"""The governed runs' windows kept, counted as a power meter counts them and as evaluations before
-2026-11-30 counted them, from kept logs.
+"""The governed runs' windows kept, counted as a power meter counts them and as evaluations
+before run M (2026-11-29) counted them, from kept logs.
 
-Before 2026-11-30 scripts/evaluate counted a window as `--fps` consecutive frames and its power as
+Before run M scripts/evaluate counted a window as `--fps` consecutive frames and its power as
 the plain mean of those frames' powers. A frame that overruns its slot at the app's pace (a probe
 frame: 140-250 ms at 10 fps on the demo's Hall) counted there as one frame of ten though it lasts
 two or three slots, and the frame after it, shortened while the pacing catches up, counted as a
@@ -10,15 +10,17 @@ whole one. A meter reads energy over time, as scripts/evaluate now does (evaluat
 each run after its first selection's transition in windows of `--window` seconds of the log's own
 time, each window's energy (each frame's power times the part of its interval inside the window)
 over its length, against the governor's budget in force over the same time. Both counts are
-printed per scene and budget.
+printed per scene and budget, and then each probe's excess counted a frame each and by time (what
+the governor's loop::ProbeOverhead counted before run M, and counts since).
 
-Usage: timed_windows.py LOGS_DIR [LOGS_DIR ...] [--fps 10] [--window 1.0] [--budgets 40,50,60]
+Usage: timed_windows.py LOGS_DIR [LOGS_DIR ...] [--fps 10] [--window 1.0] [--budgets 40,50,60] [--split FRAME]
 LOGS_DIR: what `scripts/evaluate --keep-logs DIR` kept (SCENE_pBUDGET.csv).
 """
 import argparse
 import os
+import statistics
 
-from evaluate import frames_of, settled_start, timed_windows, window_power_and_budget, windows_of
+from evaluate import frames_of, number, settled_start, timed_windows, window_power_and_budget, windows_of
 
 SCENES = ("hall", "sponza", "valley", "subway")
 
@@ -34,9 +36,34 @@ def frame_counted(frames, start, fps):
 
 
 def time_counted(frames, start, window_s):
-    """evaluate.py's count (since 2026-11-30): windows of `window_s` seconds of the log's time."""
+    """evaluate.py's count (since run M, 2026-11-29): windows of `window_s` seconds of the log's time."""
     windows = timed_windows(frames, start, window_s)
     return sum(p <= b for _, p, b in windows) / len(windows) if windows else float("nan")
+
+
+def probe_excess(frames):
+    """Each probe's excess over the mean of the nine frames before it (none a probe's span), over
+    its frame and the two after it, counted a frame each and by time (each frame's excess times
+    its interval over the median interval of the frames before): their means."""
+    by_frame, by_time = [], []
+    for f in sorted(frames):
+        if frames[f].get("probe") != "1" or f + 2 not in frames:
+            continue
+        before = [g for g in range(f - 9, f) if g - 1 in frames and g in frames and frames[g].get("probe") != "1"
+                  and number(frames[g]["power_w"]) is not None]
+        if len(before) < 5:
+            continue
+        base = statistics.fmean(number(frames[g]["power_w"]) for g in before)
+        slot = statistics.median(int(frames[g]["time_ns"]) - int(frames[g - 1]["time_ns"]) for g in before)
+        span = [(number(frames[g]["power_w"]), int(frames[g]["time_ns"]) - int(frames[g - 1]["time_ns"]))
+                for g in (f, f + 1, f + 2)]
+        if slot <= 0 or any(p is None for p, _ in span):
+            continue
+        by_frame.append(sum(p - base for p, _ in span))
+        by_time.append(sum((p - base) * interval / slot for p, interval in span))
+    if not by_frame:
+        return float("nan"), float("nan"), 0
+    return statistics.fmean(by_frame), statistics.fmean(by_time), len(by_frame)
 
 
 def main():
@@ -45,8 +72,10 @@ def main():
     ap.add_argument("--fps", type=float, default=10.0)
     ap.add_argument("--window", type=float, default=1.0)
     ap.add_argument("--budgets", default="40,50,60")
+    ap.add_argument("--split", type=int, default=None,
+                    help="also count the windows over the budget (by time) that begin before and after this frame")
     a = ap.parse_args()
-    print("| logs | scene | windows kept, frames (before 2026-11-30) | windows kept, time (a meter, evaluate.py) |")
+    print("| logs | scene | windows kept, frames (before run M) | windows kept, time (a meter, evaluate.py) |")
     print("|---|---|---|---|")
     for logs in a.logs:
         for scene in SCENES:
@@ -62,6 +91,40 @@ def main():
             if by_frames:
                 print(f"| {logs} | {scene} | {' / '.join(f'{x:.2f}' for x in by_frames)} | "
                       f"{' / '.join(f'{x:.2f}' for x in by_time)} |")
+    if a.split is not None:
+        print()
+        print(f"Windows over the budget (by time), beginning before / after frame {a.split}, all scenes and budgets:")
+        print()
+        for logs in a.logs:
+            before = after = total = 0
+            for scene in SCENES:
+                for budget in a.budgets.split(","):
+                    path = os.path.join(logs, f"{scene}_p{budget}.csv")
+                    if not os.path.exists(path):
+                        continue
+                    frames = frames_of(path)
+                    for window, p, b in timed_windows(frames, settled_start(frames, a.fps, max(frames)), a.window):
+                        total += 1
+                        before += p > b and window[0] < a.split
+                        after += p > b and window[0] >= a.split
+            print(f"- {logs}: {before} / {after} of {total} windows")
+    print()
+    print("A probe's excess (its frame and the two after it over the nine frames before, W x frames), "
+          "counted a frame each and by time, at each budget:")
+    print()
+    print("| logs | scene | probes | a frame each | by time | ratio |")
+    print("|---|---|---|---|---|---|")
+    for logs in a.logs:
+        for scene in SCENES:
+            cells = []
+            for budget in a.budgets.split(","):
+                path = os.path.join(logs, f"{scene}_p{budget}.csv")
+                if os.path.exists(path):
+                    cells.append(probe_excess(frames_of(path)))
+            if cells:
+                print(f"| {logs} | {scene} | {' / '.join(str(n) for _, _, n in cells)} | "
+                      f"{' / '.join(f'{f:.1f}' for f, _, _ in cells)} | {' / '.join(f'{t:.1f}' for _, t, _ in cells)} | "
+                      f"{' / '.join(f'{f / t:.2f}' if t else 'nan' for f, t, _ in cells)} |")
     return 0
 
 
