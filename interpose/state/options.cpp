@@ -188,10 +188,12 @@ Options parse_options(char** env, std::string* warnings) {
       else
         warn(warnings, "GLBUDGET_KEEP_SHARE='" + value + "' is not a share in [0.5, 0.999] (0.98 or 98%); 0.98");
     } else if (name == "GLBUDGET_FIRST_SAVING_DISCOUNT") {
-      if (const auto d = share(value, 0.0, 1.0))
+      // 1 would raise every unmeasured configuration to the one measured: nothing would fit, and
+      // the selection could keep the measured one, so that the discount never lifts.
+      if (const auto d = share(value, 0.0, 0.9))
         o.first_saving_discount = *d;
       else
-        warn(warnings, "GLBUDGET_FIRST_SAVING_DISCOUNT='" + value + "' is not a share in [0, 1] (0.25 or 25%); 0");
+        warn(warnings, "GLBUDGET_FIRST_SAVING_DISCOUNT='" + value + "' is not a share in [0, 0.9] (0.25 or 25%); 0");
     } else if (name == "GLBUDGET_PROBE_PERIOD") {
       if (const auto n = whole_number(value, 0, 1000000))
         o.probe_period = static_cast<int64_t>(*n);

@@ -615,6 +615,24 @@ TEST_CASE("probe overhead is energy: a probe frame that overruns its slot counts
   // The mean: what the probes add to a long reading, energy over time.
   CHECK(overrun.watts() == Approx(excess_j / run_s).epsilon(0.05));
   CHECK(overrun.watts() == Approx(energy_j / run_s - 10.0).epsilon(0.05));
+  // A pause in a probe's span (a breakpoint, a shader built on the spot) is not the probe's:
+  // the span is left out, and the others still count.
+  ProbeOverhead paused;
+  t = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const int phase = k % 20;
+    const bool pause = k == 1010;  // the frame after the 51st probe: two seconds at 2 W
+    const std::int64_t length = pause         ? 20 * kSlotNs
+                                : phase == 10 ? 5 * kSlotNs / 2
+                                : phase == 11 ? kSlotNs / 2
+                                              : kSlotNs;
+    const double power = pause ? 2.0 : phase == 10 || phase == 11 ? 20.0 : phase == 12 ? 10.5 : 10.0;
+    t += length;
+    paused.add(phase == 10, power, t);
+  }
+  CHECK(paused.probes_measured() == 99);
+  CHECK(paused.whole_excess_margin_w(1.0) == Approx(overrun.whole_excess_margin_w(1.0)).epsilon(0.05));
+  CHECK(paused.watts() == Approx(overrun.watts()).epsilon(0.05));
   // Untimed, each frame counts one.
   ProbeOverhead untimed;
   for (int k = 0; k < 2000; ++k) {

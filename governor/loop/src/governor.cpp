@@ -284,7 +284,8 @@ void Governor::guard_unmeasured(double extra_w, bool discount_first) {
     const model::Configuration& reference = measured.empty() ? current_ : measured.front();
     if (space_.contains(reference)) reference_w = power_[space_.index_of(reference)];
   }
-  const double discount = std::clamp(feedback.first_saving_discount, 0.0, 1.0);
+  // Under 1, so that the configurations keep their order and one cheaper than the measured fits.
+  const double discount = std::clamp(feedback.first_saving_discount, 0.0, 0.9);
   if (!(extra_w > 0.0) && !std::isfinite(reference_w)) return;
   for (std::size_t i = 0; i < guarded_.size(); ++i) {
     if (extra_w > 0.0) guarded_[i] += extra_w;

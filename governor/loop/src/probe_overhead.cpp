@@ -24,15 +24,22 @@ void ProbeOverhead::close_span() {
   span_left_ = 0;
   span_excess_w_ = 0.0;
   span_measured_ = false;
+  span_paused_ = false;
 }
 
 void ProbeOverhead::add(bool probe, double power_w, std::int64_t time_ns) {
   // The frame's length in frames at the recent rate: its power counts for as long as it lasted
   // (1 where either is not known).
   double length_frames = 1.0;
+  bool paused = false;
   if (time_ns >= 0 && last_time_ns_ >= 0 && time_ns > last_time_ns_) {
     const double interval = static_cast<double>(time_ns - last_time_ns_) * 1e-9;
-    if (interval_s_ > 0.0) length_frames = std::min(interval, kLongestInterval_s) / interval_s_;
+    // Where no frame rate is known (every interval a pause: an app under 2 frames a second),
+    // frames count one each.
+    if (interval_s_ > 0.0) {
+      length_frames = interval / interval_s_;
+      paused = interval >= kLongestInterval_s;
+    }
     // A pause (loading, a breakpoint) is no frame rate: it would hold the windows' frames low
     // for seconds after it.
     if (interval < kLongestInterval_s)
@@ -56,9 +63,15 @@ void ProbeOverhead::add(bool probe, double power_w, std::int64_t time_ns) {
   const bool finite = std::isfinite(power_w);
   last_in_span_ = span_left_ > 0;
   if (span_left_ > 0) {
+    // A pause in the span (a breakpoint, loading, a shader built on the spot) is not the
+    // probe's: its power over seconds would stand for dozens of frames. The span is not counted.
+    if (paused) {
+      span_paused_ = true;
+      span_measured_ = false;
+    }
     // The probe frame's power must be measured for the span to count; the next frame's
     // excess is added when it is.
-    if (finite && have_recent_ && (probe || span_measured_)) {
+    if (finite && have_recent_ && !span_paused_ && (probe || span_measured_)) {
       span_excess_w_ += length_frames * (power_w - recent_w_);
       span_measured_ = true;
     }

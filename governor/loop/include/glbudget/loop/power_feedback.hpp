@@ -48,8 +48,8 @@ struct FeedbackSettings {
   // selection counts on 1 - first_saving_discount of each unmeasured configuration's predicted
   // saving below the one measured (governor.cpp, guard_unmeasured). A model fitted on the
   // starting configuration's frames alone overstates what the knobs save: the first
-  // selections of 39 governed 600-frame runs on the demo's scenes realised 0.40-1.5 of their
-  // predicted saving (median 0.79), and 14 of them drew over the budget for their first
+  // selections of 47 governed 600-frame runs on the demo's scenes realised 0.38-1.5 of their
+  // predicted saving (median 0.87), and 14 of them drew over the budget for their first
   // windows (docs/evaluation/budgets.md, "the first selection"). 0 (the default): off; 0.25
   // kept those first windows within the budget in one full evaluation, at more image error
   // (budgets.md, "run M and N"), and on the loop tests' synthetic scene left a low budget with

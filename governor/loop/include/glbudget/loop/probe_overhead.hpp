@@ -90,6 +90,7 @@ class ProbeOverhead {
   int span_left_ = 0;
   double span_excess_w_ = 0.0;
   bool span_measured_ = false;
+  bool span_paused_ = false;  // a frame of the span lasted kLongestInterval_s or more
   bool last_in_span_ = false;
   double excess_w_ = 0.0;                       // the probes' excess, exponentially (about 4 probes)
   std::array<double, 4> recent_excess_w_ = {};  // the last probes' excess, by measured_ modulo 4
