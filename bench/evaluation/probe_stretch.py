@@ -22,21 +22,17 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 from evaluate import (MANIFEST, PROFILE, ROOT, Evaluation, frames_of, mean, number, settled_start,  # noqa: E402
-                      shadow_note)
+                      shadow_note, timed_windows)
 
 
 def probe_windows(log, start, fps):
-    """Share of 1-s windows from `start` that hold a probe frame or the frame reading it back."""
+    """Share of 1-s windows of the log's time from `start` (evaluate.timed_windows) that hold a
+    probe frame or the frame reading it back."""
     frames = frames_of(log)
-    numbers = sorted(f for f in frames if f >= start)
-    step = max(1, int(fps))
     probes = {f for f, r in frames.items() if r.get("probe") == "1"}
-    windows = held = 0
-    for k in range(0, len(numbers) - step + 1, step):
-        window = numbers[k:k + step]
-        windows += 1
-        held += any(f in probes or f - 1 in probes for f in window)
-    return held / windows if windows else float("nan"), len(probes)
+    windows = timed_windows(frames, start, 1.0)
+    held = sum(any(f in probes or f - 1 in probes for f in window) for window, _, _ in windows)
+    return held / len(windows) if windows else float("nan"), len(probes)
 
 
 def estimated_error(log, start):

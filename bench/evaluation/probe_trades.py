@@ -35,8 +35,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, "..", "interpose"))
 from error_estimates import Study  # noqa: E402
-from evaluate import (MANIFEST, frames_of, mean, number, parse_study_arguments, settled_start,  # noqa: E402
-                      shadow_note, study_arguments)
+from evaluate import (MANIFEST, energy_mean, frames_of, mean, number, parse_study_arguments,  # noqa: E402
+                      settled_start, shadow_note, spans_of, study_arguments, timed_windows)
 from demo_bench import clean_environment, run  # noqa: E402
 
 SETTINGS = "default,scale=2,scale=4,period=10,period=30,period=60,period=120"
@@ -84,15 +84,13 @@ def budget_kept(log, fps, frames_run):
     the frames shown) from a second after the first selection to the end, as evaluate.py counts;
     NaN where the run never selected."""
     frames = frames_of(log)
-    numbers = sorted(f for f in frames if f >= settled_start(frames, fps, frames_run))
-    step, windows, within = max(1, int(fps)), 0, 0
-    for k in range(0, len(numbers) - step + 1, step):
-        chunk = [frames[f] for f in numbers[k:k + step]]
-        windows += 1
-        within += mean([number(r["power_w"]) for r in chunk]) <= mean([number(r.get("budget_w")) for r in chunk])
-    power = mean([number(frames[f]["power_w"]) for f in numbers])
+    start = settled_start(frames, fps, frames_run)
+    numbers = sorted(f for f in frames if f >= start)
+    windows = timed_windows(frames, start, 1.0)
+    within = sum(p <= b for _, p, b in windows)
+    power = energy_mean(spans_of(frames, numbers))
     error = mean([number(frames[f].get("est_error")) for f in numbers])
-    return power, within / windows if windows else float("nan"), error
+    return power, within / len(windows) if windows else float("nan"), error
 
 
 class Trades(Study):

@@ -46,11 +46,12 @@ def probe_excess(frames):
     its frame and the two after it, counted a frame each and by time (each frame's excess times
     its interval over the median interval of the frames before): their means."""
     by_frame, by_time = [], []
-    for f in sorted(frames):
-        if frames[f].get("probe") != "1" or f + 2 not in frames:
+    probes = {f for f, r in frames.items() if r.get("probe") == "1"}
+    for f in sorted(probes):
+        if not all(g in frames for g in (f - 1, f, f + 1, f + 2)):
             continue
-        before = [g for g in range(f - 9, f) if g - 1 in frames and g in frames and frames[g].get("probe") != "1"
-                  and number(frames[g]["power_w"]) is not None]
+        before = [g for g in range(f - 9, f) if g - 1 in frames and g in frames
+                  and not probes & {g, g - 1, g - 2} and number(frames[g]["power_w"]) is not None]
         if len(before) < 5:
             continue
         base = statistics.fmean(number(frames[g]["power_w"]) for g in before)
