@@ -277,10 +277,10 @@ bool Governor::select(const FrameRecord& record) {
 void Governor::guard_unmeasured(double extra_w, bool discount_first) {
   guarded_.assign(power_.begin(), power_.end());
   const FeedbackSettings& feedback = feedback_.settings();
+  const std::vector<model::Configuration> measured = feedback_.measured_configurations();
   double reference_w = std::numeric_limits<double>::quiet_NaN();
   if (discount_first && feedback.enabled && feedback.guard_unmeasured && feedback.first_saving_discount > 0.0 &&
       feedback_.surprises() == 0) {
-    const std::vector<model::Configuration> measured = feedback_.measured_configurations();
     const model::Configuration& reference = measured.empty() ? current_ : measured.front();
     if (space_.contains(reference)) reference_w = power_[space_.index_of(reference)];
   }
@@ -292,7 +292,7 @@ void Governor::guard_unmeasured(double extra_w, bool discount_first) {
     if (std::isfinite(reference_w) && std::isfinite(power_[i]))
       guarded_[i] += discount * std::max(0.0, reference_w - power_[i]);
   }
-  for (const model::Configuration& c : feedback_.measured_configurations())
+  for (const model::Configuration& c : measured)
     if (space_.contains(c)) {
       const std::size_t i = space_.index_of(c);
       if (i < guarded_.size()) guarded_[i] = power_[i];

@@ -51,9 +51,10 @@ struct FeedbackSettings {
   // selections of 47 governed 600-frame runs on the demo's scenes realised 0.38-1.5 of their
   // predicted saving (median 0.87), and 14 of them drew over the budget for their first
   // windows (docs/evaluation/budgets.md, "the first selection"). 0 (the default): off; 0.25
-  // kept those first windows within the budget in one full evaluation, at more image error
-  // (budgets.md, "run M and N"), and on the loop tests' synthetic scene left a low budget with
-  // nothing that fits for seconds after an exploration.
+  // kept those first windows within the budget in run I and halved them in run N, while the
+  // runs' later windows over scattered by as much (budgets.md, "runs M and N"), and on the loop
+  // tests' synthetic scene left a low budget with nothing that fits for seconds after an
+  // exploration.
   double first_saving_discount = 0.0;
   // The governor moves the residual of the configuration being drawn by the change a refit
   // makes to its prediction (rebase()); false: it stays as measured against the old
