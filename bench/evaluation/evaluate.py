@@ -113,6 +113,11 @@ def energy_mean(spans):
     return sum(p * (end - begin) for _, begin, end, p in spans) / length if length > 0 else float("nan")
 
 
+def energy_mean_from(frames, first):
+    """The mean power, energy over time, of the frames from `first` on."""
+    return energy_mean(spans_of(frames, [f for f in frames if f >= first]))
+
+
 def timed_windows(frames, start, window_s):
     """A power meter's windows: consecutive windows of `window_s` seconds of the log's time from
     the end of frame start - 1 (a last partial one dropped). Each is (frames, power_w, budget_w):
@@ -327,7 +332,7 @@ class Evaluation:
         self.governed_env["GLBUDGET_COSTS"] = self.level_costs(scene)
         truth = os.path.join(self.tmp, f"{scene}_truth")
         self.quiet(self.common(scene) + ["--dump", truth, "--dump-every", str(a.every)])
-        tail = lambda frames: energy_mean(spans_of(frames, [f for f in frames if f > a.frames // 2]))
+        tail = lambda frames: energy_mean_from(frames, a.frames // 2 + 1)
         best = frames_of(self.run(scene, "best", ["--force", "0,0,0,0,0,0", "--config", MANIFEST]))
         cheapest_shown = os.path.join(self.tmp, f"{scene}_cheapest_shown")
         cheapest = frames_of(self.run(scene, "cheapest", ["--force", "2,2,2,2,2,2", "--config", MANIFEST],
@@ -375,7 +380,7 @@ class Evaluation:
             window_budgets.append((window[0], window[-1], low + share * (high - low)))
         errors = self.true_errors(truth, shown)
         return {"budget": budget, "log": log, "selections": log + ".selections.csv",
-                "power_w": energy_mean(spans_of(frames, [f for f in frames if f >= start])),
+                "power_w": energy_mean_from(frames, start),
                 "windows": windows, "within": within / windows if windows else float("nan"),
                 "within_true": within_true / windows if windows else float("nan"), "true_budget_w": true_budget,
                 "within_window": within_window / windows if windows else float("nan"), "window_budgets": window_budgets,

@@ -31,8 +31,8 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from evaluate import (MANIFEST, PROFILE, ROOT, Evaluation, energy_mean, frames_of, mean, number,  # noqa: E402
-                      selection_frames, shadow_note, spans_of, timed_windows)
+from evaluate import (MANIFEST, PROFILE, ROOT, Evaluation, energy_mean_from, frames_of, mean,  # noqa: E402
+                      number, selection_frames, shadow_note, timed_windows)
 
 
 def first_selection(frames):
@@ -77,7 +77,7 @@ def summarise(log, fps):
             "step": statistics.fmean(steps) if steps else float("nan"), "refits": len(steps),
             "residual": math.sqrt(statistics.fmean(r * r for r in residuals)) if residuals else float("nan"),
             "margin": statistics.fmean(margins) if margins else float("nan"),
-            "power": energy_mean(spans_of(frames, [f for f in frames if f >= start])),
+            "power": energy_mean_from(frames, start),
             "budget": mean([number(r.get("budget_w")) for r in after]),
             "est_error": mean([number(r.get("est_error")) for r in after])}
 

@@ -35,8 +35,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, "..", "interpose"))
 from error_estimates import Study  # noqa: E402
-from evaluate import (MANIFEST, energy_mean, frames_of, mean, number, parse_study_arguments,  # noqa: E402
-                      settled_start, shadow_note, spans_of, study_arguments, timed_windows)
+from evaluate import (MANIFEST, energy_mean_from, frames_of, mean, number, parse_study_arguments,  # noqa: E402
+                      settled_start, shadow_note, study_arguments, timed_windows)
 from demo_bench import clean_environment, run  # noqa: E402
 
 SETTINGS = "default,scale=2,scale=4,period=10,period=30,period=60,period=120"
@@ -88,7 +88,7 @@ def budget_kept(log, fps, frames_run):
     numbers = sorted(f for f in frames if f >= start)
     windows = timed_windows(frames, start, 1.0)
     within = sum(p <= b for _, p, b in windows)
-    power = energy_mean(spans_of(frames, numbers))
+    power = energy_mean_from(frames, start)
     error = mean([number(frames[f].get("est_error")) for f in numbers])
     return power, within / len(windows) if windows else float("nan"), error
 

@@ -76,35 +76,34 @@ def main():
     ap.add_argument("--split", type=int, default=None,
                     help="also count the windows over the budget (by time) that begin before and after this frame")
     a = ap.parse_args()
-    print("| logs | scene | windows kept, frames (before run M) | windows kept, time (a meter, evaluate.py) |")
-    print("|---|---|---|---|")
+    budgets = a.budgets.split(",")
+    # {logs: {scene: [(budget, frames, start)]}}, each log read once.
+    runs = {}
     for logs in a.logs:
         for scene in SCENES:
-            by_frames, by_time = [], []
-            for budget in a.budgets.split(","):
+            for budget in budgets:
                 path = os.path.join(logs, f"{scene}_p{budget}.csv")
-                if not os.path.exists(path):
-                    continue
-                frames = frames_of(path)
-                start = settled_start(frames, a.fps, max(frames))
-                by_frames.append(frame_counted(frames, start, a.fps))
-                by_time.append(time_counted(frames, start, a.window))
-            if by_frames:
-                print(f"| {logs} | {scene} | {' / '.join(f'{x:.2f}' for x in by_frames)} | "
-                      f"{' / '.join(f'{x:.2f}' for x in by_time)} |")
+                if os.path.exists(path):
+                    frames = frames_of(path)
+                    runs.setdefault(logs, {}).setdefault(scene, []).append(
+                        (budget, frames, settled_start(frames, a.fps, max(frames))))
+    print("| logs | scene | windows kept, frames (before run M) | windows kept, time (a meter, evaluate.py) |")
+    print("|---|---|---|---|")
+    for logs, scenes in runs.items():
+        for scene, cells in scenes.items():
+            by_frames = [frame_counted(frames, start, a.fps) for _, frames, start in cells]
+            by_time = [time_counted(frames, start, a.window) for _, frames, start in cells]
+            print(f"| {logs} | {scene} | {' / '.join(f'{x:.2f}' for x in by_frames)} | "
+                  f"{' / '.join(f'{x:.2f}' for x in by_time)} |")
     if a.split is not None:
         print()
         print(f"Windows over the budget (by time), beginning before / after frame {a.split}, all scenes and budgets:")
         print()
-        for logs in a.logs:
+        for logs, scenes in runs.items():
             before = after = total = 0
-            for scene in SCENES:
-                for budget in a.budgets.split(","):
-                    path = os.path.join(logs, f"{scene}_p{budget}.csv")
-                    if not os.path.exists(path):
-                        continue
-                    frames = frames_of(path)
-                    for window, p, b in timed_windows(frames, settled_start(frames, a.fps, max(frames)), a.window):
+            for cells in scenes.values():
+                for _, frames, start in cells:
+                    for window, p, b in timed_windows(frames, start, a.window):
                         total += 1
                         before += p > b and window[0] < a.split
                         after += p > b and window[0] >= a.split
@@ -115,17 +114,12 @@ def main():
     print()
     print("| logs | scene | probes | a frame each | by time | ratio |")
     print("|---|---|---|---|---|---|")
-    for logs in a.logs:
-        for scene in SCENES:
-            cells = []
-            for budget in a.budgets.split(","):
-                path = os.path.join(logs, f"{scene}_p{budget}.csv")
-                if os.path.exists(path):
-                    cells.append(probe_excess(frames_of(path)))
-            if cells:
-                print(f"| {logs} | {scene} | {' / '.join(str(n) for _, _, n in cells)} | "
-                      f"{' / '.join(f'{f:.1f}' for f, _, _ in cells)} | {' / '.join(f'{t:.1f}' for _, t, _ in cells)} | "
-                      f"{' / '.join(f'{f / t:.2f}' if t else 'nan' for f, t, _ in cells)} |")
+    for logs, scenes in runs.items():
+        for scene, runs_of_scene in scenes.items():
+            cells = [probe_excess(frames) for _, frames, _ in runs_of_scene]
+            print(f"| {logs} | {scene} | {' / '.join(str(n) for _, _, n in cells)} | "
+                  f"{' / '.join(f'{f:.1f}' for f, _, _ in cells)} | {' / '.join(f'{t:.1f}' for _, t, _ in cells)} | "
+                  f"{' / '.join(f'{f / t:.2f}' if t else 'nan' for f, t, _ in cells)} |")
     return 0
 
 
