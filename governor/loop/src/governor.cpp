@@ -14,6 +14,12 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// Every pass at its best level: probes shown there draw one stream fewer (probe_overhead.hpp).
+bool is_best(const model::Configuration& configuration) {
+  return !configuration.empty() &&
+         std::all_of(configuration.begin(), configuration.end(), [](int level) { return level == 0; });
+}
+
 double microseconds_since(Clock::time_point start) {
   return std::chrono::duration<double, std::micro>(Clock::now() - start).count();
 }
@@ -231,11 +237,21 @@ bool Governor::select(const FrameRecord& record) {
     // Besides the spread's margin and the windows' overshoot, what the quality probes add to
     // the windows: the model's predictions leave them out, the user's meter not.
     const double margin_without_probes_w = feedback_.margin_w() + overshoot_w_;
+    // Until a probe shown away from the best is measured, it is taken to draw one frame of the
+    // best configuration above idle more than those measured (probe_overhead.hpp).
+    const std::size_t best = space_.index_of(model::Configuration(space_.pass_count(), 0));
+    if (best < power_.size()) probe_overhead_.set_best_stream_w(power_[best] - p_min_w_);
     probe_margin_w_ = whole_range
                           ? std::numeric_limits<double>::infinity()
                           : probe_overhead_.window_margin_w(settings_.feedback.window_s, settings_.feedback.keep_share);
     margin_w_ = whole_range ? 0.0 : margin_without_probes_w + probe_margin_w_;
     guard_unmeasured(whole_range ? 0.0 : feedback_.unmeasured_margin_w(), !whole_range);
+    // The best's own probes draw one stream fewer: it keeps only what they cost.
+    if (!whole_range && best < guarded_.size()) {
+      const double at_best_w =
+          probe_overhead_.window_margin_w(settings_.feedback.window_s, settings_.feedback.keep_share, true);
+      guarded_[best] -= std::max(0.0, probe_margin_w_ - at_best_w);
+    }
     if (!whole_range) want_probe_period(budget_w, margin_without_probes_w);
   }
   const model::Selection selection = aim_ == Aim::power
@@ -435,7 +451,7 @@ void Governor::feed_back(const FrameRecord& record, Decision& decision) {
       reselect_now_ = true;
     } else if (std::isfinite(budget_w_) && selections_ > 0) {
       // The window as the user's meter sees it: its frames and the probes drawn among them.
-      const double measured_w = window->measured_w + probe_overhead_.watts();
+      const double measured_w = window->measured_w + probe_overhead_.watts(is_best(record.configuration));
       if (measured_w > budget_w_) reselect_now_ = true;
       // Beyond the paper: windows over the budget accumulate, and windows under it pay back,
       // what the next selection keeps under the budget besides the spread's margin (integral
@@ -501,7 +517,7 @@ void Governor::want_probe_period(double budget_w, double margin_without_probes_w
 Decision Governor::on_frame(const FrameRecord& frame) {
   if (!started_) start(frame);
   probe_overhead_.set_period_in_force(frame.probe_period);
-  probe_overhead_.add(frame.probe, frame.power_w, frame.time_ns);
+  probe_overhead_.add(frame.probe, frame.power_w, frame.time_ns, is_best(frame.configuration));
   // The frame after a probe reads the probe's images back and compares them, and the one after
   // that still finishes some of its work: part of their power is the probe's (counted by
   // probe_overhead_), so neither the model nor the feedback takes it for their configuration's;

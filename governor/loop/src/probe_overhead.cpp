@@ -15,19 +15,35 @@ constexpr double kLongestInterval_s = 0.5;
 constexpr double kProbeShareOfOver = 0.5;
 }  // namespace
 
+void ProbeOverhead::Record::add(double excess) {
+  excess_w = measured == 0 ? excess : excess_w + kExcessWeight * (excess - excess_w);
+  recent[measured % recent.size()] = excess;
+  ++measured;
+}
+
+double ProbeOverhead::Record::largest() const {
+  const std::size_t n = std::min(measured, recent.size());
+  double out = 0.0;
+  for (std::size_t i = 0; i < n; ++i) out = std::max(out, recent[i]);
+  return out;
+}
+
 void ProbeOverhead::close_span() {
-  if (span_measured_) {
-    excess_w_ = measured_ == 0 ? span_excess_w_ : excess_w_ + kExcessWeight * (span_excess_w_ - excess_w_);
-    recent_excess_w_[measured_ % recent_excess_w_.size()] = span_excess_w_;
-    ++measured_;
-  }
+  if (span_measured_) (span_at_best_ ? at_best_ : away_).add(span_excess_w_);
   span_left_ = 0;
   span_excess_w_ = 0.0;
   span_measured_ = false;
   span_paused_ = false;
+  span_at_best_ = false;
 }
 
-void ProbeOverhead::add(bool probe, double power_w, std::int64_t time_ns) {
+double ProbeOverhead::excess_w(bool shown_best) const {
+  if (shown_best && at_best_.measured > 0) return at_best_.excess_w;
+  if (away_.measured > 0) return away_.excess_w;
+  return at_best_.measured > 0 ? at_best_.excess_w + best_stream_w_ : 0.0;
+}
+
+void ProbeOverhead::add(bool probe, double power_w, std::int64_t time_ns, bool shown_best) {
   // The frame's length in frames at the recent rate: its power counts for as long as it lasted
   // (1 where either is not known).
   double length_frames = 1.0;
@@ -59,6 +75,7 @@ void ProbeOverhead::add(bool probe, double power_w, std::int64_t time_ns) {
   if (probe) {
     close_span();
     span_left_ = kProbeSpanFrames;
+    span_at_best_ = shown_best;
   }
   const bool finite = std::isfinite(power_w);
   last_in_span_ = span_left_ > 0;
@@ -83,12 +100,14 @@ void ProbeOverhead::add(bool probe, double power_w, std::int64_t time_ns) {
   have_recent_ = true;
 }
 
-double ProbeOverhead::watts() const { return measured_ == 0 ? 0.0 : std::max(0.0, excess_w_) * share(); }
+double ProbeOverhead::watts(bool shown_best) const {
+  return probes_measured() == 0 ? 0.0 : std::max(0.0, excess_w(shown_best)) * share();
+}
 
 double ProbeOverhead::share() const {
   // One in the period the shim plans, or once probes have come twice in their mean gap, or in
   // the frames since the last where that is longer (they slowed down or stopped).
-  if (period_in_force_ > 0.0 && measured_ > 0) return 1.0 / std::max(period_in_force_, since_probe_);
+  if (period_in_force_ > 0.0 && probes_measured() > 0) return 1.0 / std::max(period_in_force_, since_probe_);
   if (gap_frames_ > 0.0) return 1.0 / std::max(gap_frames_, since_probe_);
   return frames_ > 0.0 ? probes_ / frames_ : 0.0;
 }
@@ -97,16 +116,15 @@ double ProbeOverhead::frames_per_window(double window_s) const {
   return interval_s_ > 0.0 && window_s > 0.0 ? std::max(1.0, window_s / interval_s_) : 0.0;
 }
 
-double ProbeOverhead::largest_recent_excess_w() const {
-  const std::size_t n = std::min(measured_, recent_excess_w_.size());
-  double largest = 0.0;
-  for (std::size_t i = 0; i < n; ++i) largest = std::max(largest, recent_excess_w_[i]);
-  return largest;
+double ProbeOverhead::largest_recent_excess_w(bool shown_best) const {
+  if (shown_best && at_best_.measured > 0) return at_best_.largest();
+  if (away_.measured > 0) return away_.largest();
+  return at_best_.measured > 0 ? at_best_.largest() + best_stream_w_ : 0.0;
 }
 
-double ProbeOverhead::whole_excess_margin_w(double window_s) const {
+double ProbeOverhead::whole_excess_margin_w(double window_s, bool shown_best) const {
   const double frames = frames_per_window(window_s);
-  return measured_ == 0 || frames <= 0.0 ? 0.0 : largest_recent_excess_w() / frames;
+  return probes_measured() == 0 || frames <= 0.0 ? 0.0 : largest_recent_excess_w(shown_best) / frames;
 }
 
 double ProbeOverhead::rare_gap(double window_s, double keep_share) const {
@@ -116,18 +134,18 @@ double ProbeOverhead::rare_gap(double window_s, double keep_share) const {
   return std::ceil((frames + kProbeSpanFrames - 1) / (kProbeShareOfOver * (1.0 - std::max(0.0, keep_share)))) + 1.0;
 }
 
-double ProbeOverhead::watts_at_gap(double gap) const {
-  return measured_ == 0 || !(gap > 0.0) ? 0.0 : std::max(0.0, excess_w_) / gap;
+double ProbeOverhead::watts_at_gap(double gap, bool shown_best) const {
+  return probes_measured() == 0 || !(gap > 0.0) ? 0.0 : std::max(0.0, excess_w(shown_best)) / gap;
 }
 
-double ProbeOverhead::window_margin_w(double window_s, double keep_share) const {
+double ProbeOverhead::window_margin_w(double window_s, double keep_share, bool shown_best) const {
   const double frames = frames_per_window(window_s);
-  if (measured_ == 0 || frames <= 0.0) return watts();
+  if (probes_measured() == 0 || frames <= 0.0) return watts(shown_best);
   // Probes per window (a probe's span of three frames touches two more window starts than the
   // window has frames): under one, that share of windows holds one (and the rest none).
   const double per_window = share() * (frames + kProbeSpanFrames - 1);
-  if (per_window <= kProbeShareOfOver * (1.0 - keep_share)) return watts();
-  return std::max(watts(), whole_excess_margin_w(window_s));
+  if (per_window <= kProbeShareOfOver * (1.0 - keep_share)) return watts(shown_best);
+  return std::max(watts(shown_best), whole_excess_margin_w(window_s, shown_best));
 }
 
 }  // namespace glbudget::loop

@@ -21,6 +21,14 @@
 // (window_margin_w).
 // Probed rarely enough that at most that share of windows holds one (rare_gap), each window
 // keeps the mean again: the governor asks for that where it buys quality (governor.hpp).
+// A probe shown at the best configuration draws one stream fewer: the best, s0, is what the
+// app drew. Its excess is no guide to a probe anywhere else, which a selection under a budget
+// is about: on the demo at 10 frames a second, probes shown at the best drew 0-1 J over their
+// neighbours and those shown elsewhere 1.5-3.3 J (runs L, M and N), so the first selection,
+// made while the app still drew its best, kept almost nothing for them, and its first windows
+// holding a probe went over the budget. Such probes are kept apart: until a probe shown
+// elsewhere is measured, their excess plus the stream they lack (one frame of the best
+// configuration above idle power, set_best_stream_w) stands in for it.
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -45,8 +53,12 @@ inline std::uint64_t one_probe_per_window_gap(double frames_per_window) {
 class ProbeOverhead {
  public:
   // Every frame, in order; power NaN when not measured; time_ns (when the frame ended, any
-  // origin) gives the frame rate, negative when not known.
-  void add(bool probe, double power_w, std::int64_t time_ns = -1);
+  // origin) gives the frame rate, negative when not known; shown_best: the frame drew the
+  // best configuration (read on probe frames).
+  void add(bool probe, double power_w, std::int64_t time_ns = -1, bool shown_best = false);
+  // What a probe shown elsewhere draws beyond one shown at the best, until one is measured:
+  // the best configuration's stream, one frame of its power above idle (watts times frames).
+  void set_best_stream_w(double w) { best_stream_w_ = std::isfinite(w) && w > 0.0 ? w : 0.0; }
   // The frames between probes the shim plans now (0: not known; the gaps measured then
   // tell). Probes may come rarer than planned, never more often.
   void set_period_in_force(double frames) { period_in_force_ = frames > 0.0 ? frames : 0.0; }
@@ -54,34 +66,47 @@ class ProbeOverhead {
   // configuration's own.
   bool in_span() const { return last_in_span_; }
 
+  // What probes cost is read for probes shown away from the best (the default: what a
+  // selection under a budget moves to) or, with shown_best, at the best: the probes measured
+  // there, else those measured elsewhere.
   // Watts the probes add to the mean of all frames (>= 0; 0 before a probe with power).
-  double watts() const;
+  double watts(bool shown_best = false) const;
   // The mean excess of a probe (its span's frames, each times its length in frames at the
   // recent rate: watts times frames) over the frames before it (may be negative), and the
   // share of recent frames that were probes.
-  double excess_w() const { return excess_w_; }
+  double excess_w(bool shown_best = false) const;
   double share() const;
   // What a selection keeps under the budget for the probes so that about `keep_share` of the
   // windows of window_s seconds, probes included, stay within it: watts() where at most half
   // of 1 - keep_share of the windows hold a probe (the other half is left to the sensor's
   // scatter), or the frame rate is not known; else a probe's whole excess spread over one
   // window's frames.
-  double window_margin_w(double window_s, double keep_share) const;
+  double window_margin_w(double window_s, double keep_share, bool shown_best = false) const;
   // Frames in a window of window_s seconds at the recent frame rate (0: not known).
   double frames_per_window(double window_s) const;
   // A probe's whole excess spread over one window's frames (0 while unknown): the largest of
   // the last few probes', since each window must fit the probe it holds, not the mean probe
   // (their excess scatters by a tenth with the configuration shown and the frame).
-  double whole_excess_margin_w(double window_s) const;
-  double largest_recent_excess_w() const;
+  double whole_excess_margin_w(double window_s, bool shown_best = false) const;
+  double largest_recent_excess_w(bool shown_best = false) const;
   // The frames between probes from which at most 1 - keep_share of the windows hold one, so
   // that window_margin_w is the mean (0: the frame rate is not known).
   double rare_gap(double window_s, double keep_share) const;
   // What the probes would add to the mean with one every `gap` frames.
-  double watts_at_gap(double gap) const;
-  std::size_t probes_measured() const { return measured_; }
+  double watts_at_gap(double gap, bool shown_best = false) const;
+  std::size_t probes_measured() const { return away_.measured + at_best_.measured; }
+  // Of them, those shown at a configuration other than the best.
+  std::size_t probes_measured_away() const { return away_.measured; }
 
  private:
+  // The probes measured, shown at the best or elsewhere.
+  struct Record {
+    double excess_w = 0.0;              // exponentially (about 4 probes)
+    std::array<double, 4> recent = {};  // the last probes' excess, by measured modulo 4
+    std::size_t measured = 0;
+    void add(double excess);
+    double largest() const;
+  };
   void close_span();
 
   double recent_w_ = 0.0;  // the frames before, exponentially (about 8 frames)
@@ -90,11 +115,11 @@ class ProbeOverhead {
   int span_left_ = 0;
   double span_excess_w_ = 0.0;
   bool span_measured_ = false;
-  bool span_paused_ = false;  // a frame of the span lasted kLongestInterval_s or more
+  bool span_paused_ = false;   // a frame of the span lasted kLongestInterval_s or more
+  bool span_at_best_ = false;  // the probe was shown at the best configuration
   bool last_in_span_ = false;
-  double excess_w_ = 0.0;                       // the probes' excess, exponentially (about 4 probes)
-  std::array<double, 4> recent_excess_w_ = {};  // the last probes' excess, by measured_ modulo 4
-  std::size_t measured_ = 0;
+  Record away_, at_best_;
+  double best_stream_w_ = 0.0;
   double probes_ = 0.0, frames_ = 0.0;  // decaying counts (about 200 frames), until a gap is seen
   // Frames between probes, exponentially (about 4 gaps), and since the last probe: sparse
   // probes (one every 600 frames) are not a share the decaying counts can hold.
