@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "glbudget/loop/error_selection.hpp"
+#include "glbudget/loop/expected_selection.hpp"
 #include "glbudget/model/additive_levels.hpp"
 #include "glbudget/model/temporal_filter.hpp"
 
@@ -254,9 +255,9 @@ bool Governor::select(const FrameRecord& record) {
     }
     if (!whole_range) want_probe_period(budget_w, margin_without_probes_w);
   }
-  const model::Selection selection = aim_ == Aim::power
-                                         ? model::select_configuration(guarded_, error_, budget_w, margin_w_)
-                                         : select_within_error(power_, error_, *settings_.error_budget);
+  model::Selection selection = aim_ == Aim::power ? model::select_configuration(guarded_, error_, budget_w, margin_w_)
+                                                  : select_within_error(power_, error_, *settings_.error_budget);
+  if (aim_ == Aim::power) selection = select_at_expected_power(selection, budget_w, feedback_.unmeasured_margin_w());
   times_.select.add(microseconds_since(start));
 
   ++selections_;
@@ -313,6 +314,15 @@ void Governor::guard_unmeasured(double extra_w, bool discount_first) {
       const std::size_t i = space_.index_of(c);
       if (i < guarded_.size()) guarded_[i] = power_[i];
     }
+}
+
+// The guard less the typical surprise, for select_at_expected_power (expected_selection.hpp).
+model::Selection Governor::select_at_expected_power(const model::Selection& guarded, double budget_w, double extra_w) {
+  const double lowered = extra_w - feedback_.typical_surprise_w();
+  if (!(lowered > 0.0) || !(margin_w_ > 0.0)) return guarded;
+  measured_.assign(guarded_.size(), false);
+  for (std::size_t i = 0; i < measured_.size(); ++i) measured_[i] = feedback_.measured(space_.decode(i));
+  return loop::select_at_expected_power(guarded, guarded_, measured_, error_, budget_w, margin_w_, lowered);
 }
 
 // Beyond the paper. A model fitted on the frames of one configuration whose counts barely

@@ -212,6 +212,11 @@ double PowerFeedback::unmeasured_margin_w() const {
   return std::max(0.0, z_ * std::sqrt(surprise_sq_) - margin_w());
 }
 
+double PowerFeedback::typical_surprise_w() const {
+  if (!settings_.enabled || !settings_.guard_unmeasured || surprises_ == 0) return 0.0;
+  return std::sqrt(surprise_sq_);
+}
+
 std::vector<model::Configuration> PowerFeedback::measured_configurations() const {
   std::vector<model::Configuration> out;
   out.reserve(residuals_.size());

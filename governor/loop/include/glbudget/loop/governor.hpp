@@ -185,6 +185,9 @@ class Governor {
   bool select(const FrameRecord& record);
   bool explore_cheapest(double budget_w) const;
   void guard_unmeasured(double extra_w, bool discount_first);
+  // Where the guard leaves nothing within the margin: the selection with unmeasured
+  // configurations at their expected power (expected_selection.hpp); extra_w: the guard.
+  model::Selection select_at_expected_power(const model::Selection& guarded, double budget_w, double extra_w);
   void hold(const FrameRecord& record);
   void feed_back(const FrameRecord& record, Decision& decision);
   double initial_budget_w() const;
@@ -251,6 +254,7 @@ class Governor {
   std::vector<double> power_;        // reused by selections: corrected predictions
   std::vector<double> model_power_;  // and the model's own
   std::vector<double> guarded_;      // and as the selection weighs them (guard_unmeasured)
+  std::vector<bool> measured_;       // and whether each was measured (select_at_expected_power)
   std::vector<double> summed_;       // and as their levels' changes summed (hold_interactions)
   std::vector<double> error_;
   StepTimes times_;

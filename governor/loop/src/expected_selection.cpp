@@ -1,0 +1,22 @@
+#include "glbudget/loop/expected_selection.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace glbudget::loop {
+
+model::Selection select_at_expected_power(const model::Selection& guarded, std::span<const double> guarded_w,
+                                          const std::vector<bool>& measured, std::span<const double> error,
+                                          double budget_w, double margin_w, double lowered_w) {
+  if (!(margin_w > 0.0) || !std::isfinite(budget_w) || !(lowered_w > 0.0) || !std::isfinite(lowered_w) ||
+      guarded_w.empty() || measured.size() != guarded_w.size() || error.size() != guarded_w.size())
+    return guarded;
+  const double limit = budget_w - margin_w;
+  if (std::any_of(guarded_w.begin(), guarded_w.end(), [&](double p) { return p <= limit; })) return guarded;
+  std::vector<double> expected(guarded_w.begin(), guarded_w.end());
+  for (std::size_t i = 0; i < expected.size(); ++i)
+    if (!measured[i]) expected[i] -= lowered_w;
+  return model::select_configuration(expected, error, budget_w, margin_w);
+}
+
+}  // namespace glbudget::loop
