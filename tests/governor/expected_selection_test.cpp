@@ -1,6 +1,5 @@
 #include <catch2/catch.hpp>
 
-#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -24,27 +23,43 @@ TEST_CASE("where the guard leaves nothing within the margin, unmeasured configur
   CHECK(expected.index == 2);  // at 13.9 W expected: the closest to keeping the margin
   CHECK(expected.budget_w == 15.23);
 
-  // Something fits the margin under the guard: the selection stands.
-  const std::vector<double> roomy = {20.5, 11.0, 12.24 + 3.4};
-  const auto kept = select_configuration(roomy, error, 15.23, 3.56);
-  CHECK(select_at_expected_power(kept, roomy, measured, error, 15.23, 3.56, 1.74).index == kept.index);
-
-  // Lowered, an unmeasured one fits the margin: the lowest error among those that do.
-  const std::vector<double> two = {20.5, 15.04, 13.0, 13.2};
+  // Lowered, unmeasured ones fit the margin: the lowest error among those that do.
+  const std::vector<double> two = {20.5, 15.04, 15.5, 15.7};
   const std::vector<bool> two_measured = {true, true, false, false};
   const std::vector<double> two_error = {0.0, 0.011, 0.05, 0.03};
   const auto first = select_configuration(two, two_error, 15.23, 3.56);
-  CHECK(select_at_expected_power(first, two, two_measured, two_error, 15.23, 3.56, 2.0).index == 3);
+  CHECK(first.index == 1);
+  CHECK(select_at_expected_power(first, two, two_measured, two_error, 15.23, 3.56, 4.2).index == 3);
+}
 
-  // Nothing to lower, no margin, no budget, or sizes that do not agree: the selection stands.
-  for (const double lowered :
-       {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()})
-    CHECK(select_at_expected_power(guarded, guarded_w, measured, error, 15.23, 3.56, lowered).index == 1);
-  CHECK(select_at_expected_power(guarded, guarded_w, measured, error, 15.23, 0.0, 1.74).index == 1);
-  CHECK(
-      select_at_expected_power(guarded, guarded_w, measured, error, std::numeric_limits<double>::infinity(), 3.56, 1.74)
-          .index == 1);
-  CHECK(select_at_expected_power(guarded, guarded_w, {true, true}, error, 15.23, 3.56, 1.74).index == 1);
-  // Every configuration measured: lowering changes nothing.
-  CHECK(select_at_expected_power(guarded, guarded_w, {true, true, true}, error, 15.23, 3.56, 1.74).index == 1);
+TEST_CASE("the expected power is not used where the guard leaves room, or picked one never measured",
+          "[loop][extremes]") {
+  // As in run P, but the unmeasured configuration has the lower error: lowered, it would be
+  // chosen however the selection runs.
+  const std::vector<double> error = {0.0, 0.02, 0.011};
+  const std::vector<bool> measured = {true, true, false};
+  // Something fits the margin under the guard: the selection stands.
+  const std::vector<double> roomy = {20.5, 11.0, 12.24 + 3.4};
+  const auto kept = select_configuration(roomy, error, 15.23, 3.56);
+  REQUIRE(kept.index == 1);
+  CHECK(select_at_expected_power(kept, roomy, measured, error, 15.23, 3.56, 1.74).index == 1);
+  // No finite margin or budget: nothing to fall back from.
+  const std::vector<double> tight = {20.5, 15.04, 12.24 + 3.4};
+  const auto held = select_configuration(tight, error, 15.23, 3.56);
+  REQUIRE(held.index == 1);
+  REQUIRE(select_at_expected_power(held, tight, measured, error, 15.23, 3.56, 1.74).index == 2);
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  CHECK(select_at_expected_power(held, tight, measured, error, 15.23, kInf, 1.74).index == 1);
+  CHECK(select_at_expected_power(held, tight, measured, error, kInf, 3.56, 1.74).index == 1);
+  CHECK(select_at_expected_power(held, tight, measured, error, 15.23, 3.56, kInf).index == 1);
+  // Every configuration measured: nothing is lowered.
+  CHECK(select_at_expected_power(held, tight, {true, true, true}, error, 15.23, 3.56, 1.74).index == 1);
+  // The guard's own pick was never measured (the cheapest even at its quantile): it stands,
+  // though lowering every unmeasured one alike would let a dearer one of lower error in.
+  const std::vector<double> unmeasured_pick = {20.5, 16.0, 15.1, 15.3};
+  const std::vector<bool> pick_measured = {true, true, false, false};
+  const std::vector<double> pick_error = {0.0, 0.01, 0.03, 0.02};
+  const auto cheapest = select_configuration(unmeasured_pick, pick_error, 15.23, 3.56);
+  REQUIRE(cheapest.index == 2);
+  CHECK(select_at_expected_power(cheapest, unmeasured_pick, pick_measured, pick_error, 15.23, 3.56, 4.0).index == 2);
 }

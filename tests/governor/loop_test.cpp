@@ -678,9 +678,27 @@ TEST_CASE("probe overhead: a probe shown at the best draws one stream fewer than
   CHECK(o.excess_w(true) == Approx(1.0));
   CHECK(o.largest_recent_excess_w(true) == Approx(1.0));
   CHECK(o.whole_excess_margin_w(1.0, true) == Approx(0.1).epsilon(0.01));
+  CHECK(o.window_margin_w(1.0, 0.98, true) == Approx(0.1).epsilon(0.01));  // every window holds one
+  CHECK(o.window_margin_w(1.0, 0.98) == Approx(3.0).epsilon(0.01));
+  CHECK(o.watts(true) == Approx(1.0 / 20).epsilon(0.01));
+  CHECK(o.watts_at_gap(100.0, true) == Approx(0.01));
+  CHECK(o.watts_at_gap(100.0) == Approx(0.3));
   ProbeOverhead away_only;  // no probe at the best yet: those elsewhere, the larger, stand in
   for (int j = 0; j < 100; ++j) away_only.add(j % 20 == 10, j % 20 == 10 ? 50.0 : 20.0, j * kSlotNs, false);
   CHECK(away_only.excess_w(true) == Approx(30.0));
+  // A stand-in that is not finite leaves the last one.
+  ProbeOverhead kept;
+  for (int j = 0; j < 100; ++j) kept.add(j % 20 == 10, j % 20 == 10 ? 21.0 : 20.0, j * kSlotNs, true);
+  kept.set_best_stream_w(15.0);
+  kept.set_best_stream_w(std::nan(""));
+  CHECK(kept.excess_w() == Approx(16.0));
+  // Probes at the best that cost less than their neighbours: the stand-in is the stream less
+  // that, in the mean and in the largest alike.
+  ProbeOverhead cheaper;
+  for (int j = 0; j < 100; ++j) cheaper.add(j % 20 == 10, j % 20 == 10 ? 18.0 : 20.0, j * kSlotNs, true);
+  cheaper.set_best_stream_w(15.0);
+  CHECK(cheaper.excess_w() == Approx(13.0));
+  CHECK(cheaper.largest_recent_excess_w() == Approx(13.0));
   // A stand-in that is not a power above idle adds nothing.
   ProbeOverhead best_only;
   for (int j = 0; j < 100; ++j) best_only.add(j % 20 == 10, j % 20 == 10 ? 21.0 : 20.0, j * kSlotNs, true);
@@ -766,7 +784,7 @@ TEST_CASE("the first selection keeps room for probes shown elsewhere, though tho
   // kept none for them (0.07 W against 0.04 W without probes), and its first windows were
   // 0.19 W under the budget on average against 0.30 W without probes.
   struct Run {
-    double first_margin_w = 0.0, mean_excess_w = 0.0;
+    double first_margin_w = 0.0, mean_excess_w = 0.0, stream_w = 0.0;
     int windows = 0;
   };
   auto run = [](bool probes) {
@@ -786,6 +804,11 @@ TEST_CASE("the first selection keeps room for probes shown elsewhere, though tho
         settled = steps.size();
     }
     REQUIRE(settled);
+    REQUIRE(*settled + 5 * kFps <= steps.size());
+    // The best's power above P_m over a window: what a probe elsewhere adds besides the frame.
+    double best_w = 0.0;
+    for (int k = 0; k < kFps; ++k) best_w += steps[static_cast<std::size_t>(k)].true_power_w / kFps;
+    r.stream_w = (best_w - model::testing::synthetic_profile().p_min_w) / kFps;
     // The first five seconds after it, before the windows' own feedback moves the margin.
     for (std::size_t start = *settled; start + kFps <= *settled + 5 * kFps; start += kFps) {
       for (std::size_t k = start; k < start + kFps; ++k)
@@ -796,7 +819,7 @@ TEST_CASE("the first selection keeps room for probes shown elsewhere, though tho
     return r;
   };
   const Run probed = run(true), unprobed = run(false);
-  const double stream_w = 0.8 * 34.0 / kFps;  // a probe elsewhere over a window, about
+  const double stream_w = probed.stream_w;
   INFO("first selection's margin " << probed.first_margin_w << " W with probes, " << unprobed.first_margin_w
                                    << " W without; first windows' mean power over the budget " << probed.mean_excess_w
                                    << " W with probes, " << unprobed.mean_excess_w << " W without");

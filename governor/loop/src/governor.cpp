@@ -15,9 +15,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Every pass at its best level: probes shown there draw one stream fewer (probe_overhead.hpp).
-bool is_best(const model::Configuration& configuration) {
-  return !configuration.empty() &&
+// The configuration of the space with every pass at its best level: probes shown there draw one
+// stream fewer (probe_overhead.hpp).
+bool is_best(const model::ConfigurationSpace& space, const model::Configuration& configuration) {
+  return space.contains(configuration) &&
          std::all_of(configuration.begin(), configuration.end(), [](int level) { return level == 0; });
 }
 
@@ -247,13 +248,14 @@ bool Governor::select(const FrameRecord& record) {
                           : probe_overhead_.window_margin_w(settings_.feedback.window_s, settings_.feedback.keep_share);
     margin_w_ = whole_range ? 0.0 : margin_without_probes_w + probe_margin_w_;
     guard_unmeasured(whole_range ? 0.0 : feedback_.unmeasured_margin_w(), !whole_range);
-    // The best's own probes draw one stream fewer: it keeps only what they cost.
+    if (!whole_range) want_probe_period(budget_w, margin_without_probes_w);
+    // The best's own probes draw one stream fewer: it keeps only what they cost. After the
+    // probe period is weighed, whose two margins would each need their own lowering.
     if (!whole_range && best < guarded_.size()) {
       const double at_best_w =
           probe_overhead_.window_margin_w(settings_.feedback.window_s, settings_.feedback.keep_share, true);
       guarded_[best] -= std::max(0.0, probe_margin_w_ - at_best_w);
     }
-    if (!whole_range) want_probe_period(budget_w, margin_without_probes_w);
   }
   model::Selection selection = aim_ == Aim::power ? model::select_configuration(guarded_, error_, budget_w, margin_w_)
                                                   : select_within_error(power_, error_, *settings_.error_budget);
@@ -319,9 +321,12 @@ void Governor::guard_unmeasured(double extra_w, bool discount_first) {
 // The guard less the typical surprise, for select_at_expected_power (expected_selection.hpp).
 model::Selection Governor::select_at_expected_power(const model::Selection& guarded, double budget_w, double extra_w) {
   const double lowered = extra_w - feedback_.typical_surprise_w();
-  if (!(lowered > 0.0) || !(margin_w_ > 0.0)) return guarded;
+  if (!(lowered > 0.0) || !(margin_w_ > 0.0) || !std::isfinite(margin_w_)) return guarded;
+  const double limit = budget_w - margin_w_;
+  if (std::any_of(guarded_.begin(), guarded_.end(), [&](double p) { return p <= limit; })) return guarded;
   measured_.assign(guarded_.size(), false);
-  for (std::size_t i = 0; i < measured_.size(); ++i) measured_[i] = feedback_.measured(space_.decode(i));
+  for (const model::Configuration& c : feedback_.measured_configurations())
+    if (space_.contains(c) && space_.index_of(c) < measured_.size()) measured_[space_.index_of(c)] = true;
   return loop::select_at_expected_power(guarded, guarded_, measured_, error_, budget_w, margin_w_, lowered);
 }
 
@@ -461,7 +466,7 @@ void Governor::feed_back(const FrameRecord& record, Decision& decision) {
       reselect_now_ = true;
     } else if (std::isfinite(budget_w_) && selections_ > 0) {
       // The window as the user's meter sees it: its frames and the probes drawn among them.
-      const double measured_w = window->measured_w + probe_overhead_.watts(is_best(record.configuration));
+      const double measured_w = window->measured_w + probe_overhead_.watts(is_best(space_, record.configuration));
       if (measured_w > budget_w_) reselect_now_ = true;
       // Beyond the paper: windows over the budget accumulate, and windows under it pay back,
       // what the next selection keeps under the budget besides the spread's margin (integral
@@ -527,7 +532,7 @@ void Governor::want_probe_period(double budget_w, double margin_without_probes_w
 Decision Governor::on_frame(const FrameRecord& frame) {
   if (!started_) start(frame);
   probe_overhead_.set_period_in_force(frame.probe_period);
-  probe_overhead_.add(frame.probe, frame.power_w, frame.time_ns, is_best(frame.configuration));
+  probe_overhead_.add(frame.probe, frame.power_w, frame.time_ns, is_best(space_, frame.configuration));
   // The frame after a probe reads the probe's images back and compares them, and the one after
   // that still finishes some of its work: part of their power is the probe's (counted by
   // probe_overhead_), so neither the model nor the feedback takes it for their configuration's;

@@ -23,8 +23,8 @@ void ProbeOverhead::Record::add(double excess) {
 
 double ProbeOverhead::Record::largest() const {
   const std::size_t n = std::min(measured, recent.size());
-  double out = 0.0;
-  for (std::size_t i = 0; i < n; ++i) out = std::max(out, recent[i]);
+  double out = recent[0];
+  for (std::size_t i = 1; i < n; ++i) out = std::max(out, recent[i]);
   return out;
 }
 
@@ -117,9 +117,9 @@ double ProbeOverhead::frames_per_window(double window_s) const {
 }
 
 double ProbeOverhead::largest_recent_excess_w(bool shown_best) const {
-  if (shown_best && at_best_.measured > 0) return at_best_.largest();
-  if (away_.measured > 0) return away_.largest();
-  return at_best_.measured > 0 ? at_best_.largest() + best_stream_w_ : 0.0;
+  if (shown_best && at_best_.measured > 0) return std::max(0.0, at_best_.largest());
+  if (away_.measured > 0) return std::max(0.0, away_.largest());
+  return at_best_.measured > 0 ? std::max(0.0, at_best_.largest() + best_stream_w_) : 0.0;
 }
 
 double ProbeOverhead::whole_excess_margin_w(double window_s, bool shown_best) const {

@@ -19,9 +19,9 @@ namespace glbudget::loop {
 // `guarded_w`: each configuration's power as the selection weighed it, the unmeasured ones
 // raised by the guard; `measured`: whether each was measured (and so not raised); `lowered_w`:
 // the guard less the typical surprise. Returns `guarded` (the selection made on guarded_w)
-// where some configuration fits budget_w - margin_w under guarded_w, or where there is no
-// margin or nothing to lower; else the selection on guarded_w with the unmeasured ones
-// lowered by lowered_w. Requires guarded_w, measured and error of one size.
+// where some configuration fits budget_w - margin_w under guarded_w, where it chose one never
+// measured, or where there is no finite margin or nothing to lower (or the sizes disagree);
+// else the selection on guarded_w with the unmeasured ones lowered by lowered_w.
 model::Selection select_at_expected_power(const model::Selection& guarded, std::span<const double> guarded_w,
                                           const std::vector<bool>& measured, std::span<const double> error,
                                           double budget_w, double margin_w, double lowered_w);

@@ -112,8 +112,9 @@ class PowerFeedback {
   // measured: z * the typical surprise of first windows, less margin_w(), never negative. 0
   // until a configuration measured after the first has closed a window.
   double unmeasured_margin_w() const;
-  // The typical surprise itself (its root mean square), what a configuration never measured is
-  // expected to draw over its corrected prediction; 0 where unmeasured_margin_w() is not kept.
+  // The typical surprise itself: the root mean square of first windows' excess over their
+  // corrected prediction (those under it counted as none), which unmeasured_margin_w() takes
+  // z times; 0 where the guard is off or before the first surprise.
   double typical_surprise_w() const;
   // Configurations measured for the first time after the run's first measured one (their first
   // window is a surprise, or none); 0 while only one configuration has been measured.

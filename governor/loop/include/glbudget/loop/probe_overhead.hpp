@@ -57,8 +57,13 @@ class ProbeOverhead {
   // best configuration (read on probe frames).
   void add(bool probe, double power_w, std::int64_t time_ns = -1, bool shown_best = false);
   // What a probe shown elsewhere draws beyond one shown at the best, until one is measured:
-  // the best configuration's stream, one frame of its power above idle (watts times frames).
-  void set_best_stream_w(double w) { best_stream_w_ = std::isfinite(w) && w > 0.0 ? w : 0.0; }
+  // the best configuration's stream, about one frame of its power above idle (watts times
+  // frames; less where the stream follows the app's frame up to its first lowered pass, more
+  // where a best frame lasts longer than the frames drawn now). A value that is not finite
+  // leaves the last one; one under 0 is 0.
+  void set_best_stream_w(double w) {
+    if (std::isfinite(w)) best_stream_w_ = w > 0.0 ? w : 0.0;
+  }
   // The frames between probes the shim plans now (0: not known; the gaps measured then
   // tell). Probes may come rarer than planned, never more often.
   void set_period_in_force(double frames) { period_in_force_ = frames > 0.0 ? frames : 0.0; }
@@ -105,7 +110,7 @@ class ProbeOverhead {
     std::array<double, 4> recent = {};  // the last probes' excess, by measured modulo 4
     std::size_t measured = 0;
     void add(double excess);
-    double largest() const;
+    double largest() const;  // of the recent ones (may be negative; requires measured > 0)
   };
   void close_span();
 
