@@ -11,7 +11,9 @@ each run after its first selection's transition in windows of `--window` seconds
 time, each window's energy (each frame's power times the part of its interval inside the window)
 over its length, against the governor's budget in force over the same time. Both counts are
 printed per scene and budget, and then each probe's excess counted a frame each and by time (what
-the governor's loop::ProbeOverhead counted before run M, and counts since).
+the governor's loop::ProbeOverhead counted before run M, and counts since), and by time for
+probes shown at the best configuration and elsewhere (the governor keeps those apart since run P:
+a probe shown at the best draws no stream of the best).
 
 Usage: timed_windows.py LOGS_DIR [LOGS_DIR ...] [--fps 10] [--window 1.0] [--budgets 40,50,60] [--split FRAME]
 LOGS_DIR: what `scripts/evaluate --keep-logs DIR` kept (SCENE_pBUDGET.csv).
@@ -44,8 +46,9 @@ def time_counted(frames, start, window_s):
 def probe_excess(frames):
     """Each probe's excess over the mean of the nine frames before it (none a probe's span), over
     its frame and the two after it, counted a frame each and by time (each frame's excess times
-    its interval over the median interval of the frames before): their means."""
-    by_frame, by_time = [], []
+    its interval over the median interval of the frames before): their means and count, and the
+    excesses by time of the probes shown at the best configuration and of those shown elsewhere."""
+    by_frame, by_time, at_best, away = [], [], [], []
     probes = {f for f, r in frames.items() if r.get("probe") == "1"}
     for f in sorted(probes):
         if not all(g in frames for g in (f - 1, f, f + 1, f + 2)):
@@ -62,9 +65,16 @@ def probe_excess(frames):
             continue
         by_frame.append(sum(p - base for p, _ in span))
         by_time.append(sum((p - base) * interval / slot for p, interval in span))
+        (at_best if shown_best(frames[f]) else away).append(by_time[-1])
     if not by_frame:
-        return float("nan"), float("nan"), 0
-    return statistics.fmean(by_frame), statistics.fmean(by_time), len(by_frame)
+        return float("nan"), float("nan"), 0, at_best, away
+    return statistics.fmean(by_frame), statistics.fmean(by_time), len(by_frame), at_best, away
+
+
+def shown_best(row):
+    """Whether the frame drew every pass at its best level (its probe drew no stream of the best)."""
+    levels = row.get("configuration", "")
+    return bool(levels) and all(level == "0" for level in levels.split(":"))
 
 
 def main():
@@ -116,10 +126,25 @@ def main():
     print("|---|---|---|---|---|---|")
     for logs, scenes in runs.items():
         for scene, runs_of_scene in scenes.items():
-            cells = [probe_excess(frames) for _, frames, _ in runs_of_scene]
+            cells = [probe_excess(frames)[:3] for _, frames, _ in runs_of_scene]
             print(f"| {logs} | {scene} | {' / '.join(str(n) for _, _, n in cells)} | "
                   f"{' / '.join(f'{f:.1f}' for f, _, _ in cells)} | {' / '.join(f'{t:.1f}' for _, t, _ in cells)} | "
                   f"{' / '.join(f'{f / t:.2f}' if t else 'nan' for f, t, _ in cells)} |")
+    print()
+    print("A probe shown at the best configuration draws no stream of the best: its excess by time "
+          f"(J at {a.fps:g} frames a second, the median and the number of probes) shown at the best and "
+          "elsewhere, at each budget:")
+    print()
+    print("| logs | scene | shown at the best | shown elsewhere |")
+    print("|---|---|---|---|")
+
+    def median_j(excesses):
+        return f"{statistics.median(excesses) / a.fps:.2f} ({len(excesses)})" if excesses else "– (0)"
+    for logs, scenes in runs.items():
+        for scene, runs_of_scene in scenes.items():
+            cells = [probe_excess(frames)[3:] for _, frames, _ in runs_of_scene]
+            print(f"| {logs} | {scene} | {' / '.join(median_j(b) for b, _ in cells)} | "
+                  f"{' / '.join(median_j(e) for _, e in cells)} |")
     return 0
 
 
