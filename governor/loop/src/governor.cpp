@@ -297,6 +297,9 @@ void Governor::guard_unmeasured(double extra_w, bool discount_first) {
   guarded_.assign(power_.begin(), power_.end());
   const FeedbackSettings& feedback = feedback_.settings();
   const std::vector<model::Configuration> measured = feedback_.measured_configurations();
+  measured_.assign(guarded_.size(), false);
+  for (const model::Configuration& c : measured)
+    if (space_.contains(c) && space_.index_of(c) < measured_.size()) measured_[space_.index_of(c)] = true;
   double reference_w = std::numeric_limits<double>::quiet_NaN();
   if (discount_first && feedback.enabled && feedback.guard_unmeasured && feedback.first_saving_discount > 0.0 &&
       feedback_.surprises() == 0) {
@@ -311,23 +314,15 @@ void Governor::guard_unmeasured(double extra_w, bool discount_first) {
     if (std::isfinite(reference_w) && std::isfinite(power_[i]))
       guarded_[i] += discount * std::max(0.0, reference_w - power_[i]);
   }
-  for (const model::Configuration& c : measured)
-    if (space_.contains(c)) {
-      const std::size_t i = space_.index_of(c);
-      if (i < guarded_.size()) guarded_[i] = power_[i];
-    }
+  for (std::size_t i = 0; i < guarded_.size(); ++i)
+    if (measured_[i]) guarded_[i] = power_[i];
 }
 
-// The guard less the typical surprise, for select_at_expected_power (expected_selection.hpp).
+// The guard less the typical surprise, for select_at_expected_power (expected_selection.hpp),
+// over the configurations guard_unmeasured found measured.
 model::Selection Governor::select_at_expected_power(const model::Selection& guarded, double budget_w, double extra_w) {
-  const double lowered = extra_w - feedback_.typical_surprise_w();
-  if (!(lowered > 0.0) || !(margin_w_ > 0.0) || !std::isfinite(margin_w_)) return guarded;
-  const double limit = budget_w - margin_w_;
-  if (std::any_of(guarded_.begin(), guarded_.end(), [&](double p) { return p <= limit; })) return guarded;
-  measured_.assign(guarded_.size(), false);
-  for (const model::Configuration& c : feedback_.measured_configurations())
-    if (space_.contains(c) && space_.index_of(c) < measured_.size()) measured_[space_.index_of(c)] = true;
-  return loop::select_at_expected_power(guarded, guarded_, measured_, error_, budget_w, margin_w_, lowered);
+  return loop::select_at_expected_power(guarded, guarded_, measured_, error_, budget_w, margin_w_,
+                                        extra_w - feedback_.typical_surprise_w());
 }
 
 // Beyond the paper. A model fitted on the frames of one configuration whose counts barely

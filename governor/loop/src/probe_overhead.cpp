@@ -37,10 +37,16 @@ void ProbeOverhead::close_span() {
   span_at_best_ = false;
 }
 
+std::pair<const ProbeOverhead::Record*, double> ProbeOverhead::source(bool shown_best) const {
+  if (shown_best && at_best_.measured > 0) return {&at_best_, 0.0};
+  if (away_.measured > 0) return {&away_, 0.0};
+  if (at_best_.measured > 0) return {&at_best_, best_stream_w_};
+  return {nullptr, 0.0};
+}
+
 double ProbeOverhead::excess_w(bool shown_best) const {
-  if (shown_best && at_best_.measured > 0) return at_best_.excess_w;
-  if (away_.measured > 0) return away_.excess_w;
-  return at_best_.measured > 0 ? at_best_.excess_w + best_stream_w_ : 0.0;
+  const auto [record, stream_w] = source(shown_best);
+  return record ? record->excess_w + stream_w : 0.0;
 }
 
 void ProbeOverhead::add(bool probe, double power_w, std::int64_t time_ns, bool shown_best) {
@@ -117,9 +123,8 @@ double ProbeOverhead::frames_per_window(double window_s) const {
 }
 
 double ProbeOverhead::largest_recent_excess_w(bool shown_best) const {
-  if (shown_best && at_best_.measured > 0) return std::max(0.0, at_best_.largest());
-  if (away_.measured > 0) return std::max(0.0, away_.largest());
-  return at_best_.measured > 0 ? std::max(0.0, at_best_.largest() + best_stream_w_) : 0.0;
+  const auto [record, stream_w] = source(shown_best);
+  return record ? std::max(0.0, record->largest() + stream_w) : 0.0;
 }
 
 double ProbeOverhead::whole_excess_margin_w(double window_s, bool shown_best) const {

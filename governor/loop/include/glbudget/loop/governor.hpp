@@ -254,7 +254,7 @@ class Governor {
   std::vector<double> power_;        // reused by selections: corrected predictions
   std::vector<double> model_power_;  // and the model's own
   std::vector<double> guarded_;      // and as the selection weighs them (guard_unmeasured)
-  std::vector<bool> measured_;       // and whether each was measured (select_at_expected_power)
+  std::vector<bool> measured_;       // and whether each was measured (guard_unmeasured)
   std::vector<double> summed_;       // and as their levels' changes summed (hold_interactions)
   std::vector<double> error_;
   StepTimes times_;

@@ -33,6 +33,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 
 namespace glbudget::loop {
 
@@ -113,6 +114,10 @@ class ProbeOverhead {
     double largest() const;  // of the recent ones (may be negative; requires measured > 0)
   };
   void close_span();
+  // The record a read of what probes cost takes (watts()): at the best its own where measured,
+  // else those shown elsewhere, else those at the best with the stream they lack, which is
+  // returned beside it (0 otherwise); nullptr before any probe is measured.
+  std::pair<const Record*, double> source(bool shown_best) const;
 
   double recent_w_ = 0.0;  // the frames before, exponentially (about 8 frames)
   bool have_recent_ = false;
