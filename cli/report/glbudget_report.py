@@ -216,8 +216,9 @@ def read_frames(path, label):
 
 
 def read_selections(path, label):
-    """{frame: [(levels text, predicted_w, est_error, selected, budget_w, margin_w)]}, or None.
-    margin_w (optional): what the governor kept under the budget at that selection."""
+    """{frame: [(levels text, predicted_w, est_error, selected, budget_w, margin_w, weighed_w)]}, or None.
+    margin_w (optional): what the governor kept under the budget at that selection; weighed_w
+    (optional): the power as the selection weighed it, the margin kept below it."""
     if not os.path.exists(path):
         return None
     table = read_table(path, label, ["frame", "predicted_w", "est_error"])
@@ -233,7 +234,7 @@ def read_selections(path, label):
         selected = table.text(fields, "selected") in ("1", "true", "yes")
         selections.setdefault(int(frame), []).append(
             (table.text(fields, "configuration"), power, error, selected, table.number(line, fields, "budget_w"),
-             table.number(line, fields, "margin_w")))
+             table.number(line, fields, "margin_w"), table.number(line, fields, "weighed_w")))
     table.report_bad_numbers()
     if not selections:
         say(f"{label}: no usable rows: the scatter is left out")
@@ -427,13 +428,17 @@ def pick_selection(selections, at):
 def scatter_figure(selections, at):
     frame = pick_selection(selections, at)
     rows = selections[frame]
+    # The power as the selection weighed it where the log has it (unmeasured configurations
+    # raised by the guard), so that the margin's line divides what it admitted from the rest.
+    weighed = all(finite(r[6]) for r in rows)
+    power = [r[6] if weighed else r[1] for r in rows]
     fig, ax = plt.subplots(figsize=(7, 4.6))
-    ax.scatter([r[1] for r in rows], [r[2] for r in rows], s=10, color="tab:blue", alpha=0.5,
+    ax.scatter(power, [r[2] for r in rows], s=10, color="tab:blue", alpha=0.5,
                label=f"configurations ({len(rows)})")
-    chosen = [r for r in rows if r[3]]
-    for r in chosen:
-        ax.scatter([r[1]], [r[2]], s=160, marker="*", color="tab:red", edgecolor="black", zorder=3,
-                   label=f"selected {r[0]}")
+    for p, r in zip(power, rows):
+        if r[3]:
+            ax.scatter([p], [r[2]], s=160, marker="*", color="tab:red", edgecolor="black", zorder=3,
+                       label=f"selected {r[0]}")
     budgets = [r[4] for r in rows if finite(r[4])]
     lines = []
     if budgets:
@@ -443,21 +448,24 @@ def scatter_figure(selections, at):
         if margins:
             lines.append(budgets[0] - margins[0])
             ax.axvline(lines[-1], color="tab:red", ls=":", lw=1.2, label=f"budget − margin {lines[-1]:.1f} W")
-    xs = [r[1] for r in rows] + lines  # the budget's lines in view, as the points are
+    xs = power + lines  # the budget's lines in view, as the points are
     pad = 0.05 * ((max(xs) - min(xs)) or 1.0)
     ax.set_xlim(min(xs) - pad, max(xs) + pad)
-    ax.set_xlabel("predicted power (W)")
+    power_label = "power (W) as the selection weighed it" if weighed else "predicted power (W)"
+    ax.set_xlabel(power_label)
     ax.set_ylabel("estimated error (1 − SSIM)")
     ax.set_title(f"Every configuration at the selection of frame {frame}")
     ax.grid(alpha=0.3)
     ax.legend(loc="upper right", fontsize=8)
     fig.tight_layout()
     return render(fig, "scatter.png", f"Power and error at the selection of frame {frame}",
-                  "Every configuration's predicted power and estimated error when the governor selected; "
+                  "Every configuration's " + ("power as the selection weighed it (its corrected prediction, "
+                  "raised by the guard where the run never measured it)" if weighed else "predicted power")
+                  + " and estimated error when the governor selected; "
                   "the selected one is the star, the budget the dashed line (budget less the governor's "
                   "margin dotted, where it kept one): the lowest error left of the line, wherever the "
                   "budget falls, not a point of a Pareto frontier fixed in advance.",
-                  "predicted power (W), estimated error (1 − SSIM)")
+                  power_label + ", estimated error (1 − SSIM)")
 
 
 # --- summary ---------------------------------------------------------------------------------

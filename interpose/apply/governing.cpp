@@ -526,16 +526,18 @@ class GovernorThread {
         say("cannot write " + log + ".selections.csv; the selections are not kept");
         return;
       }
-      std::fputs("frame,configuration,predicted_w,est_error,selected,budget_w,margin_w\n", selections_);
+      std::fputs("frame,configuration,predicted_w,est_error,selected,budget_w,margin_w,weighed_w\n", selections_);
     }
     const loop::Governor::SelectionTable t = governor_.last_selection();
     const model::ConfigurationSpace& space = governor_.space();
+    const bool weighed = t.weighed_w->size() == t.power_w->size();
     for (size_t i = 0; i < t.power_w->size() && i < t.error->size(); ++i) {
       const model::Configuration c = space.decode(i);
       std::string text;
       for (size_t p = 0; p + 1 < c.size(); ++p) text += (p ? ":" : "") + std::to_string(c[p]);
-      std::fprintf(selections_, "%llu,%s,%.4f,%.6f,%d,%.4f,%.4f\n", static_cast<unsigned long long>(t.frame),
-                   text.c_str(), (*t.power_w)[i], (*t.error)[i], i == t.chosen ? 1 : 0, t.budget_w, t.margin_w);
+      std::fprintf(selections_, "%llu,%s,%.4f,%.6f,%d,%.4f,%.4f,%.4f\n", static_cast<unsigned long long>(t.frame),
+                   text.c_str(), (*t.power_w)[i], (*t.error)[i], i == t.chosen ? 1 : 0, t.budget_w, t.margin_w,
+                   weighed ? (*t.weighed_w)[i] : (*t.power_w)[i]);
     }
     std::fflush(selections_);
   }
@@ -623,6 +625,7 @@ bool governor_start() {
     settings.transition_s = o.transition_s;
     settings.feedback.enabled = o.feedback;
     settings.feedback.own_residuals = o.feedback_own;
+    settings.explore_when_held = o.explore_held;
     settings.level_interactions = o.level_interactions;
     settings.error_feedback.enabled = o.error_feedback;
     settings.feedback.keep_share = o.keep_share;

@@ -45,6 +45,7 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_PROBE_MAX_AGE_S",
     "GLBUDGET_KEEP_SHARE",
     "GLBUDGET_FIRST_SAVING_DISCOUNT",
+    "GLBUDGET_EXPLORE_HELD",
     "GLBUDGET_WARM_BLITS",
     "GLBUDGET_DUMP_PROBES",
     "GLBUDGET_PROBE_SCALE",
@@ -219,6 +220,8 @@ Options parse_options(char** env, std::string* warnings) {
       parse_switch(name, value, o.feedback, warnings);
     } else if (name == "GLBUDGET_FEEDBACK_OWN") {
       parse_switch(name, value, o.feedback_own, warnings);
+    } else if (name == "GLBUDGET_EXPLORE_HELD") {
+      parse_switch(name, value, o.explore_held, warnings);
     } else if (name == "GLBUDGET_LEVEL_INTERACTIONS") {
       using L = loop::LevelInteractions;
       parse_choice<L>(name, value, {{"calibrated", L::calibrated}, {"additive", L::additive}, {"model", L::model}},

@@ -48,6 +48,10 @@ struct Options {
   // GLBUDGET_FEEDBACK_OWN=1: a measured configuration's correction moves from the additive fit
   // towards its own windows' residual (loop/power_feedback.hpp, own_residuals)
   bool feedback_own = false;
+  // GLBUDGET_EXPLORE_HELD=0: a run held over a power budget at a measured configuration, where
+  // the range says the cheapest draws less, stays held rather than drawing the cheapest for one
+  // window (loop/governor.hpp, explore_when_held)
+  bool explore_held = true;
   // GLBUDGET_LEVEL_INTERACTIONS=calibrated|additive|model: where `glbudget calibrate --app`
   // measured each level alone, how a combination of levels is predicted (loop/governor.hpp,
   // level_interactions; model/additive_levels.hpp)

@@ -196,6 +196,16 @@ TEST_CASE("GLBUDGET_PROBE_STRETCH: on unless 0 or off; anything else said once, 
   CHECK(w == "glbudget: GLBUDGET_PROBE_STRETCH='rare' is not 0/1/on/off; on\n");
 }
 
+TEST_CASE("GLBUDGET_EXPLORE_HELD: on unless 0 or off; anything else said once, on", "[unit]") {
+  std::string w;
+  CHECK(parse_env({}, &w).explore_held);
+  CHECK(parse_env({"GLBUDGET_EXPLORE_HELD=on"}, &w).explore_held);
+  CHECK_FALSE(parse_env({"GLBUDGET_EXPLORE_HELD=0"}, &w).explore_held);
+  CHECK(w.empty());
+  CHECK(parse_env({"GLBUDGET_EXPLORE_HELD=sometimes"}, &w).explore_held);
+  CHECK(w == "glbudget: GLBUDGET_EXPLORE_HELD='sometimes' is not 0/1/on/off; on\n");
+}
+
 TEST_CASE("GLBUDGET_PROBE_FOLLOW: on unless 0 or off; anything else said once, on", "[unit]") {
   std::string w;
   CHECK(parse_env({}, &w).probe_follow);

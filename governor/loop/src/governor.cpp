@@ -7,6 +7,7 @@
 
 #include "glbudget/loop/error_selection.hpp"
 #include "glbudget/loop/expected_selection.hpp"
+#include "glbudget/loop/held_exploration.hpp"
 #include "glbudget/model/additive_levels.hpp"
 #include "glbudget/model/temporal_filter.hpp"
 
@@ -257,6 +258,7 @@ bool Governor::select(const FrameRecord& record) {
       guarded_[best] -= std::max(0.0, probe_margin_w_ - at_best_w);
     }
   }
+  if (aim_ != Aim::power) guarded_.assign(power_.begin(), power_.end());  // weighed as predicted
   model::Selection selection = aim_ == Aim::power ? model::select_configuration(guarded_, error_, budget_w, margin_w_)
                                                   : select_within_error(power_, error_, *settings_.error_budget);
   if (aim_ == Aim::power) selection = select_at_expected_power(selection, budget_w, feedback_.unmeasured_margin_w());
@@ -269,7 +271,7 @@ bool Governor::select(const FrameRecord& record) {
   budget_w_ = selection.budget_w;
   within_budget_ = selection.within_budget;
   model::Configuration chosen = space_.decode(selection.index);
-  const bool explore = aim_ == Aim::power && explore_cheapest(budget_w);
+  const bool explore = aim_ == Aim::power && (explore_cheapest(budget_w) || explore_held(selection, budget_w));
   if (explore) {
     chosen = space_.cheapest();
     chosen_index_ = space_.index_of(chosen);
@@ -349,6 +351,17 @@ bool Governor::explore_cheapest(double budget_w) const {
   return asks_less && model_power_[b] - model_power_[c] < kUnseenSaving * (best_w - p_min_w_);
 }
 
+// Held over the budget at a measured configuration where the range says the cheapest draws
+// less: the cheapest is drawn for one window, once per run (held_exploration.hpp).
+bool Governor::explore_held(const model::Selection& selection, double budget_w) const {
+  if (explored_ || !settings_.explore_when_held || !feedback_.settings().enabled || space_.size() < 2) return false;
+  if (feedback_.measured(space_.cheapest()) || selection.index >= power_.size()) return false;
+  const bool at_best = is_best(space_, space_.decode(selection.index));
+  const HeldSelection held{
+      selection.index, guarded_, power_, &measured_, budget_w, margin_w_, probe_overhead_.watts(at_best)};
+  return explore_where_held(held, range_ends().low_w, feedback_.margin_w());
+}
+
 // The calibration's watts above P_m to the run's: the best's power now above P_m over the
 // calibrated best's; NaN without a calibrated range, or when either is not above P_m.
 double Governor::calibrated_scale(double best_now_w) const {
@@ -377,9 +390,11 @@ double Governor::calibrated_cheapest_w(double best_now_w) const {
 // learnt at another configuration (a level whose saving the model misjudged) moves every
 // corrected prediction drawing that level, the cheapest's too; a range over corrected
 // predictions follows it away from what the app draws, and the budget with it.
-double Governor::share_of_range_w() const {
+Governor::RangeEnds Governor::range_ends() const {
+  RangeEnds ends;
   const std::size_t top = model::range_top(model_power_, error_);
-  if (top >= power_.size()) return std::numeric_limits<double>::infinity();
+  if (top >= power_.size()) return ends;
+  ends.top = top;
   const double high = model_power_[top] + feedback_.residual(space_.decode(top));
   const double shift = high - model_power_[top];
   double low = std::numeric_limits<double>::infinity();
@@ -396,6 +411,16 @@ double Governor::share_of_range_w() const {
     const model::Configuration c = space_.decode(cheapest);
     low = model_power_[cheapest] + (feedback_.measured(c) ? feedback_.residual(c) : shift);
   }
+  ends.low_w = low;
+  ends.high_w = high;
+  return ends;
+}
+
+double Governor::share_of_range_w() const {
+  const RangeEnds ends = range_ends();
+  if (ends.top >= power_.size()) return std::numeric_limits<double>::infinity();
+  const double low = ends.low_w, high = ends.high_w;
+  const std::size_t top = ends.top;
   const double share = settings_.power.value;
   // 0 % admits exactly the configuration the selection takes for the cheapest, 100 % the best
   // as the selection sees it, measured or not.

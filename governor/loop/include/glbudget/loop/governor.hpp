@@ -75,6 +75,11 @@ struct GovernorSettings {
   // whatever the gain where no configuration fits a probe's whole excess beside the sensor's
   // scatter but some fit rare probes' mean, bursts included (probe_bursts_spaced). 0: never.
   double probe_stretch_gain = 0.005;
+  // Beyond the paper: where the selection finds nothing within the budget's margin and holds a
+  // measured configuration whose windows, probes included, are over the budget, while the
+  // range's low end says the cheapest draws less, the cheapest is drawn for one window, once per
+  // run (Governor::explore_held). false: the run stays where it is held.
+  bool explore_when_held = true;
   model::FitSettings fit = {};
   model::HistorySettings history = {};
 };
@@ -150,7 +155,9 @@ class Governor {
   // the budget, so that each window holding a probe would be over it.
   bool probe_bursts_spaced() const { return probe_bursts_spaced_; }
   // The last selection: every configuration's predicted power (corrected) and estimated
-  // error, by ConfigurationSpace index, and the margin kept under the budget.
+  // error, by ConfigurationSpace index, the power as the selection weighed it (unmeasured
+  // configurations raised by the guard, the best lowered by the probes it does not draw), and
+  // the margin kept under the budget below that.
   struct SelectionTable {
     std::uint64_t frame = 0;
     std::size_t chosen = 0;
@@ -158,9 +165,10 @@ class Governor {
     double margin_w = 0.0;
     const std::vector<double>* power_w = nullptr;
     const std::vector<double>* error = nullptr;
+    const std::vector<double>* weighed_w = nullptr;
   };
   SelectionTable last_selection() const {
-    return {last_selection_frame_, chosen_index_, budget_w_, margin_w_, &power_, &error_};
+    return {last_selection_frame_, chosen_index_, budget_w_, margin_w_, &power_, &error_, &guarded_};
   }
   const GovernorSettings& settings() const { return settings_; }
   // The share of the run-time model's interaction between levels the last selection kept
@@ -184,6 +192,7 @@ class Governor {
   // Returns true when it chose to explore instead (explore_cheapest).
   bool select(const FrameRecord& record);
   bool explore_cheapest(double budget_w) const;
+  bool explore_held(const model::Selection& selection, double budget_w) const;
   void guard_unmeasured(double extra_w, bool discount_first);
   // Where the guard leaves nothing within the margin: the selection with unmeasured
   // configurations at their expected power (expected_selection.hpp); extra_w: the guard.
@@ -195,6 +204,14 @@ class Governor {
   bool probes_outgrew_margin() const;
   double calibrated_scale(double best_now_w) const;
   double calibrated_cheapest_w(double best_now_w) const;
+  // The range a share of it is taken of: the cheapest's power and the best's (range_top), each
+  // as share_of_range_w says; top is past the space where there are no finite predictions.
+  struct RangeEnds {
+    double low_w = std::numeric_limits<double>::infinity();
+    double high_w = std::numeric_limits<double>::infinity();
+    std::size_t top = std::numeric_limits<std::size_t>::max();
+  };
+  RangeEnds range_ends() const;
   double share_of_range_w() const;
   double estimated_error(const model::Configuration& configuration) const;
   // The prediction of `configuration` for the frame last given to the model, whose own is
