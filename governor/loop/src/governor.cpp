@@ -356,9 +356,13 @@ bool Governor::explore_cheapest(double budget_w) const {
 bool Governor::explore_held(const model::Selection& selection, double budget_w) const {
   if (explored_ || !settings_.explore_when_held || !feedback_.settings().enabled || space_.size() < 2) return false;
   if (feedback_.measured(space_.cheapest()) || selection.index >= power_.size()) return false;
+  // The probes as the pick's windows hold them: the margin the selection kept for them (a
+  // probe's whole excess where most windows hold one), the best's own at the best.
   const bool at_best = is_best(space_, space_.decode(selection.index));
-  const HeldSelection held{
-      selection.index, guarded_, power_, &measured_, budget_w, margin_w_, probe_overhead_.watts(at_best)};
+  const double probes_w =
+      at_best ? probe_overhead_.window_margin_w(settings_.feedback.window_s, settings_.feedback.keep_share, true)
+              : probe_margin_w_;
+  const HeldSelection held{selection.index, guarded_, power_, &measured_, budget_w, margin_w_, probes_w};
   return explore_where_held(held, range_ends().low_w, feedback_.margin_w());
 }
 

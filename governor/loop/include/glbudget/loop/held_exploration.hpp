@@ -4,8 +4,8 @@
 // the guard raises every unmeasured one further (power_feedback.hpp). On the demo's Sponza at
 // 40 % (run Q, 2026-11-29) that put every configuration cheaper than the one drawn above it:
 // nothing fitted the margin, and even at their expected power (expected_selection.hpp) the
-// measured configuration came closest, so the selection held it, over the budget with its
-// probes, for 31 s (30 of 33 windows over). The cheapest was then predicted at 22.1 W, the
+// measured configuration came closest, so the selection held it, its windows with a probe over
+// the budget, for 31 s (30 of 33 windows over). The cheapest was then predicted at 22.1 W, the
 // range's low end (the calibrated cheapest) said 15.7 W, and it drew 16.7 W. Held over the
 // budget at a measured configuration, a run learns of a cheaper one only by drawing it: where
 // the range's low end says the cheapest draws less than the configuration held, beyond the
@@ -26,7 +26,9 @@ struct HeldSelection {
   const std::vector<bool>* measured = nullptr;  // whether each was measured in the run
   double budget_w = 0.0;
   double margin_w = 0.0;  // what the selection kept under the budget
-  double probes_w = 0.0;  // what the probes add to the pick's windows (ProbeOverhead::watts)
+  // What the probes add to the pick's windows, as the selection's margin holds them
+  // (ProbeOverhead::window_margin_w: a probe's whole excess where most windows hold one).
+  double probes_w = 0.0;
 };
 
 // Whether the selection holds a measured configuration over the budget: nothing is weighed
