@@ -244,18 +244,14 @@ bool Governor::select(const FrameRecord& record) {
     // best configuration above idle more than those measured (probe_overhead.hpp).
     const std::size_t best = space_.index_of(model::Configuration(space_.pass_count(), 0));
     if (best < power_.size()) probe_overhead_.set_best_stream_w(power_[best] - p_min_w_);
-    probe_margin_w_ = whole_range
-                          ? std::numeric_limits<double>::infinity()
-                          : probe_overhead_.window_margin_w(settings_.feedback.window_s, settings_.feedback.keep_share);
+    probe_margin_w_ = whole_range ? std::numeric_limits<double>::infinity() : probe_window_margin_w();
     margin_w_ = whole_range ? 0.0 : margin_without_probes_w + probe_margin_w_;
     guard_unmeasured(whole_range ? 0.0 : feedback_.unmeasured_margin_w(), !whole_range);
     if (!whole_range) want_probe_period(budget_w, margin_without_probes_w);
     // The best's own probes draw one stream fewer: it keeps only what they cost. After the
     // probe period is weighed, whose two margins would each need their own lowering.
     if (!whole_range && best < guarded_.size()) {
-      const double at_best_w =
-          probe_overhead_.window_margin_w(settings_.feedback.window_s, settings_.feedback.keep_share, true);
-      guarded_[best] -= std::max(0.0, probe_margin_w_ - at_best_w);
+      guarded_[best] -= std::max(0.0, probe_margin_w_ - probe_window_margin_w(true));
     }
   }
   if (aim_ != Aim::power) guarded_.assign(power_.begin(), power_.end());  // weighed as predicted
@@ -358,10 +354,8 @@ bool Governor::explore_held(const model::Selection& selection, double budget_w) 
   if (feedback_.measured(space_.cheapest()) || selection.index >= power_.size()) return false;
   // The probes as the pick's windows hold them: the margin the selection kept for them (a
   // probe's whole excess where most windows hold one), the best's own at the best.
-  const bool at_best = is_best(space_, space_.decode(selection.index));
   const double probes_w =
-      at_best ? probe_overhead_.window_margin_w(settings_.feedback.window_s, settings_.feedback.keep_share, true)
-              : probe_margin_w_;
+      is_best(space_, space_.decode(selection.index)) ? probe_window_margin_w(true) : probe_margin_w_;
   const HeldSelection held{selection.index, guarded_, power_, &measured_, budget_w, margin_w_, probes_w};
   return explore_where_held(held, range_ends().low_w, feedback_.margin_w());
 }
@@ -511,9 +505,12 @@ void Governor::feed_back(const FrameRecord& record, Decision& decision) {
 bool Governor::probes_outgrew_margin() const {
   if (aim_ != Aim::power || selections_ == 0 || !std::isfinite(probe_margin_w_)) return false;
   constexpr double kRise = 0.25;  // of a probe's whole excess in a window: not the excess's own drift
-  const double window_s = settings_.feedback.window_s;
-  return probe_overhead_.window_margin_w(window_s, settings_.feedback.keep_share) >
-         probe_margin_w_ + kRise * probe_overhead_.whole_excess_margin_w(window_s);
+  return probe_window_margin_w() >
+         probe_margin_w_ + kRise * probe_overhead_.whole_excess_margin_w(settings_.feedback.window_s);
+}
+
+double Governor::probe_window_margin_w(bool shown_best) const {
+  return probe_overhead_.window_margin_w(settings_.feedback.window_s, settings_.feedback.keep_share, shown_best);
 }
 
 // Probes rare enough that windows keep their mean margin, where the selection would then show

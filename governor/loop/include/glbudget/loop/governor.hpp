@@ -202,6 +202,9 @@ class Governor {
   double initial_budget_w() const;
   void want_probe_period(double budget_w, double margin_without_probes_w);
   bool probes_outgrew_margin() const;
+  // What a selection keeps under the budget for the probes in the feedback's windows
+  // (ProbeOverhead::window_margin_w), for probes shown away from the best or at it.
+  double probe_window_margin_w(bool shown_best = false) const;
   double calibrated_scale(double best_now_w) const;
   double calibrated_cheapest_w(double best_now_w) const;
   // The range a share of it is taken of: the cheapest's power and the best's (range_top), each
