@@ -49,6 +49,14 @@ void RunTimeModel::predict_all(std::vector<double>& out) const {
     out.assign(space_.size(), std::numeric_limits<double>::quiet_NaN());
 }
 
+const ConfigurationPredictor* RunTimeModel::predictor_for(const FrameSample& frame,
+                                                          const Configuration& configuration) const {
+  if (!predictor_) return nullptr;
+  scratch_ = *predictor_;
+  scratch_->set_frame(frame.passes, space_.contains(configuration) ? configuration : fitted_configuration_);
+  return &*scratch_;
+}
+
 // The history's coefficients explain several configurations over the last few hundred frames;
 // the power of the configuration being drawn may have drifted since (a sensor's slow drift, a
 // machine's speed, a scene's lighting). Shifting the per-frame load by the mean residual of

@@ -33,6 +33,10 @@ class RunTimeModel {
   // Another configuration for the frame last given to predict_frame().
   double predict(const Configuration& configuration) const;
   void predict_all(std::vector<double>& out) const;
+  // The coefficients of the moment for another frame's counts (drawn in `configuration`),
+  // leaving the current frame as it is: a scratch copy of the predictor, valid until the next
+  // call; null before the first fit.
+  const ConfigurationPredictor* predictor_for(const FrameSample& frame, const Configuration& configuration) const;
   // Beyond a fit: the fragments measured at every render-scale or shadow-map level the history
   // holds replace the declared ones now (fragment_scales.hpp), so that a level drawn since the
   // last fit predicts the others from what it was measured to draw.
@@ -67,6 +71,7 @@ class RunTimeModel {
   std::vector<ConfiguredSample> history_;
   PowerModel model_;
   std::optional<ConfigurationPredictor> predictor_;
+  mutable std::optional<ConfigurationPredictor> scratch_;  // predictor_for()
   Configuration current_;
   Configuration fitted_configuration_;
   std::set<Configuration> fitted_configurations_;
