@@ -46,6 +46,7 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_KEEP_SHARE",
     "GLBUDGET_FIRST_SAVING_DISCOUNT",
     "GLBUDGET_EXPLORE_HELD",
+    "GLBUDGET_MEASURED_AT_WINDOWS",
     "GLBUDGET_WARM_BLITS",
     "GLBUDGET_DUMP_PROBES",
     "GLBUDGET_PROBE_SCALE",
@@ -222,6 +223,8 @@ Options parse_options(char** env, std::string* warnings) {
       parse_switch(name, value, o.feedback_own, warnings);
     } else if (name == "GLBUDGET_EXPLORE_HELD") {
       parse_switch(name, value, o.explore_held, warnings);
+    } else if (name == "GLBUDGET_MEASURED_AT_WINDOWS") {
+      parse_switch(name, value, o.measured_at_windows, warnings);
     } else if (name == "GLBUDGET_LEVEL_INTERACTIONS") {
       using L = loop::LevelInteractions;
       parse_choice<L>(name, value, {{"calibrated", L::calibrated}, {"additive", L::additive}, {"model", L::model}},

@@ -52,6 +52,10 @@ struct Options {
   // the range says the cheapest draws less, stays held rather than drawing the cheapest for one
   // window (loop/governor.hpp, explore_when_held)
   bool explore_held = true;
+  // GLBUDGET_MEASURED_AT_WINDOWS=1: a configuration measured in the run is weighed, and taken for
+  // an end of a share's range, at its windows' measured power moved by the model's change between
+  // their counts and the frame's (loop/governor.hpp, measured_at_windows)
+  bool measured_at_windows = false;
   // GLBUDGET_LEVEL_INTERACTIONS=calibrated|additive|model: where `glbudget calibrate --app`
   // measured each level alone, how a combination of levels is predicted (loop/governor.hpp,
   // level_interactions; model/additive_levels.hpp)

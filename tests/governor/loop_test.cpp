@@ -1393,6 +1393,40 @@ TEST_CASE("a model that cannot tell the configurations apart: the cheapest is me
   for (std::size_t k = explore_frame; k < steps.size(); ++k) CHECK(steps[k].target != Configuration{0});
 }
 
+TEST_CASE("measured at their windows: the best keeps what it drew once refits re-anchor the model at the cheapest",
+          "[loop]") {
+  // The scene above: after the exploration the refits re-anchor every prediction at the cheapest,
+  // the best's included, and the best's residual, measured against the coefficients of the run's
+  // first seconds, no longer lifts it to what it drew. Weighed at its windows' power moved by the
+  // model's change since their counts (measured_at_windows), the best stays the top of the
+  // range as measured, and the budget 60 % of the way up the measured range.
+  const UnseenKnob knob(kUnseenKnob);
+  constexpr double kSavingW = 3.0;  // a level
+  auto run = [&](bool at_windows, double* budget_w, double* drawn_w, double* best_w) {
+    GovernorSettings settings = power_budget("60%");
+    settings.measured_at_windows = at_windows;
+    Governor governor(model::testing::synthetic_profile(), knob.space, ErrorTable(knob.space), settings);
+    const std::vector<Step> steps = knob.run(governor, 40 * kFps, kSavingW);
+    *budget_w = *drawn_w = *best_w = 0.0;
+    for (std::size_t k = steps.size() - 10 * kFps; k < steps.size(); ++k) {
+      *drawn_w += steps[k].true_power_w / (10 * kFps);
+      *budget_w += steps[k].decision.budget_w / (10 * kFps);
+      *best_w += (steps[k].true_power_w + kSavingW * steps[k].record.configuration[0]) / (10 * kFps);
+    }
+  };
+  double budget_on = 0, drawn_on = 0, budget_off = 0, drawn_off = 0, best_w = 0;
+  run(true, &budget_on, &drawn_on, &best_w);
+  run(false, &budget_off, &drawn_off, &best_w);
+  const double true_budget_w = best_w - 0.4 * 2 * kSavingW;
+  INFO("the last 10 s: budget " << budget_on << " W, drawn " << drawn_on << " W (measured at their windows); "
+                                << budget_off << " W, " << drawn_off << " W (not); 60 % of the true range "
+                                << true_budget_w << " W");
+  CHECK(std::abs(budget_on - true_budget_w) < 0.5);
+  CHECK(std::abs(budget_on - true_budget_w) < std::abs(budget_off - true_budget_w));
+  CHECK(drawn_on <= budget_on + kToleranceW);
+  CHECK(drawn_on < best_w - 1.5);
+}
+
 TEST_CASE("exploring the cheapest: never when the model predicts savings, a full budget or feedback off",
           "[loop][extremes]") {
   const UnseenKnob knob(kUnseenKnob);

@@ -206,6 +206,16 @@ TEST_CASE("GLBUDGET_EXPLORE_HELD: on unless 0 or off; anything else said once, o
   CHECK(w == "glbudget: GLBUDGET_EXPLORE_HELD='sometimes' is not 0/1/on/off; on\n");
 }
 
+TEST_CASE("GLBUDGET_MEASURED_AT_WINDOWS: off unless 1 or on; anything else said once, off", "[unit]") {
+  std::string w;
+  CHECK_FALSE(parse_env({}, &w).measured_at_windows);
+  CHECK(parse_env({"GLBUDGET_MEASURED_AT_WINDOWS=1"}, &w).measured_at_windows);
+  CHECK_FALSE(parse_env({"GLBUDGET_MEASURED_AT_WINDOWS=off"}, &w).measured_at_windows);
+  CHECK(w.empty());
+  CHECK_FALSE(parse_env({"GLBUDGET_MEASURED_AT_WINDOWS=often"}, &w).measured_at_windows);
+  CHECK(w == "glbudget: GLBUDGET_MEASURED_AT_WINDOWS='often' is not 0/1/on/off; off\n");
+}
+
 TEST_CASE("GLBUDGET_PROBE_FOLLOW: on unless 0 or off; anything else said once, on", "[unit]") {
   std::string w;
   CHECK(parse_env({}, &w).probe_follow);

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -80,6 +81,12 @@ struct GovernorSettings {
   // range's low end says the cheapest draws less, the cheapest is drawn for one window, once per
   // run (Governor::explore_held). false: the run stays where it is held.
   bool explore_when_held = true;
+  // Beyond the paper: a configuration measured in the run is weighed by the selection, and taken
+  // for an end of a share's range, at what its windows measured, moved by what the coefficients
+  // of the moment predict between those windows' counts and this frame's
+  // (Governor::measured_now_w). false: at its prediction now corrected by the residuals the
+  // windows measured against the coefficients of their time.
+  bool measured_at_windows = false;
   model::FitSettings fit = {};
   model::HistorySettings history = {};
 };
@@ -220,6 +227,14 @@ class Governor {
   // The prediction of `configuration` for the frame last given to the model, whose own is
   // model_w, with the levels' interaction as the last selection held it (level_interactions).
   double predicted_for_frame(const model::Configuration& configuration, double model_w) const;
+  // The frame just given to the feedback (closed: the window it closed) in the counts of its
+  // open window; a closed window's mean counts and power join its configuration's.
+  void count_window_frame(const FrameRecord& record, const std::optional<PowerFeedback::Window>& closed);
+  // A configuration's power now (by space index, after a selection's predictions): where its
+  // windows were measured (measured_at_windows), what they measured moved by the model's
+  // prediction now less its prediction at their counts; else its own prediction plus the
+  // residual measured against the coefficients of the windows' time.
+  double measured_now_w(std::size_t index) const;
   void hold_interactions();
   void set_calibrated_prior();
 
@@ -269,7 +284,19 @@ class Governor {
   bool holding_ = false;
   bool hold_noted_ = false;
 
-  model::FrameSample sample_;        // reused: the record as the model sees it
+  model::FrameSample sample_;  // reused: the record as the model sees it
+  // The summed counts of the feedback's open window; and each measured configuration's windows:
+  // their mean counts and power, averaged as the feedback averages its residual.
+  struct OpenCounts {
+    std::vector<model::PassFrame> sum;
+    std::size_t frames = 0;
+  };
+  struct WindowCounts {
+    model::FrameSample mean;  // power_w: the windows' measured power
+    std::size_t windows = 0;
+  };
+  OpenCounts open_counts_;
+  std::map<model::Configuration, WindowCounts> window_counts_;
   std::uint64_t fitted_frame_ = 0;   // the frame of the model's first fit
   std::vector<double> power_;        // reused by selections: corrected predictions
   std::vector<double> model_power_;  // and the model's own

@@ -96,6 +96,8 @@ class PowerFeedback {
   // does the window open at it. A window open at another configuration, or a change that is
   // not finite, drops the open window and moves nothing.
   void rebase(const model::Configuration& configuration, double change_w);
+  // Frames in the window now open (0: none is open; 1: the last frame opened it).
+  std::size_t open_frames() const { return open_ ? open_->frames : 0; }
 
   // The correction of a configuration's prediction (0 before any window): the additive fit's,
   // moved towards the configuration's own residual where it has one (own_residuals).
