@@ -1414,10 +1414,12 @@ TEST_CASE("measured at their windows: the best keeps what it drew once refits re
       *best_w += (steps[k].true_power_w + kSavingW * steps[k].record.configuration[0]) / (10 * kFps);
     }
   };
-  double budget_on = 0, drawn_on = 0, budget_off = 0, drawn_off = 0, best_w = 0;
-  run(true, &budget_on, &drawn_on, &best_w);
-  run(false, &budget_off, &drawn_off, &best_w);
-  const double true_budget_w = best_w - 0.4 * 2 * kSavingW;
+  double budget_on = 0, drawn_on = 0, best_on = 0, budget_off = 0, drawn_off = 0, best_off = 0;
+  run(true, &budget_on, &drawn_on, &best_on);
+  run(false, &budget_off, &drawn_off, &best_off);
+  // The runs draw the same frames: the best's power over the last 10 s is the same in both.
+  REQUIRE(best_on == Approx(best_off).epsilon(1e-9));
+  const double best_w = best_on, true_budget_w = best_w - 0.4 * 2 * kSavingW;
   INFO("the last 10 s: budget " << budget_on << " W, drawn " << drawn_on << " W (measured at their windows); "
                                 << budget_off << " W, " << drawn_off << " W (not); 60 % of the true range "
                                 << true_budget_w << " W");
@@ -1745,6 +1747,29 @@ TEST_CASE("power feedback: a refit moves a residual by its change, and the open 
   PowerFeedback off(FeedbackSettings{false});
   off.rebase(a, 1.0);
   CHECK(off.bias(a) == 0.0);
+}
+
+TEST_CASE("power feedback: the frames it takes and the windows it opens are counted", "[loop][feedback]") {
+  PowerFeedback feedback{FeedbackSettings{}};
+  const Configuration a{0, 0}, b{1, 0};
+  std::int64_t t = 0;
+  feedback.add(a, t, 10.0, 10.0);
+  CHECK(feedback.frames_taken() == 1);
+  CHECK(feedback.windows_opened() == 1);
+  feedback.add(a, t += 100'000'000, std::nan(""), 10.0);  // not taken: no power
+  CHECK(feedback.frames_taken() == 1);
+  // A one-frame window replaced by another configuration's: a new window, though both hold one
+  // frame.
+  feedback.add(b, t += 100'000'000, 10.0, 10.0);
+  CHECK(feedback.frames_taken() == 2);
+  CHECK(feedback.windows_opened() == 2);
+  feedback.add(b, t -= 50'000'000, 10.0, 10.0);  // time went back: a new window too
+  CHECK(feedback.windows_opened() == 3);
+  std::optional<PowerFeedback::Window> closed;
+  for (int k = 0; k <= 10 && !closed; ++k) closed = feedback.add(b, t += 100'000'000, 10.0, 10.0);
+  REQUIRE(closed);
+  CHECK(feedback.windows_opened() == 3);
+  CHECK(feedback.frames_taken() == 3 + closed->frames - 1);
 }
 
 TEST_CASE("power feedback: a first window's surprise is kept for the configurations not measured, and fades",

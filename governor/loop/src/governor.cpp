@@ -213,6 +213,8 @@ bool Governor::selection_due(const FrameRecord& record) const {
 
 bool Governor::select(const FrameRecord& record) {
   Clock::time_point start = Clock::now();
+  // With the fragment scales this frame's predictions were made with, which predict_all keeps.
+  if (aim_ == Aim::power) weigh_at_windows(record);
   model_.refresh_fragment_scales();
   model_.predict_all(power_);
   times_.predict_all.add(microseconds_since(start));
@@ -313,7 +315,8 @@ void Governor::guard_unmeasured(double extra_w, bool discount_first) {
       guarded_[i] += discount * std::max(0.0, reference_w - power_[i]);
   }
   for (std::size_t i = 0; i < guarded_.size(); ++i)
-    if (measured_[i]) guarded_[i] = settings_.measured_at_windows ? measured_now_w(i) : power_[i];
+    if (measured_[i])
+      guarded_[i] = i < measured_now_.size() && std::isfinite(measured_now_[i]) ? measured_now_[i] : power_[i];
 }
 
 // The guard less the typical surprise, for select_at_expected_power (expected_selection.hpp),
@@ -424,14 +427,13 @@ double Governor::share_of_range_w() const {
   // 0 % admits exactly the configuration the selection takes for the cheapest, 100 % the best
   // as the selection sees it, measured or not.
   if (share <= 0.0) {
-    double cheapest_w = std::min(low, *std::min_element(power_.begin(), power_.end()));
-    if (!settings_.measured_at_windows) return cheapest_w;
-    // The measured at their windows' power, as guard_unmeasured weighs them.
-    cheapest_w = std::numeric_limits<double>::infinity();
-    for (const model::Configuration& c : feedback_.measured_configurations())
-      if (space_.contains(c)) cheapest_w = std::min(cheapest_w, measured_now_w(space_.index_of(c)));
-    for (std::size_t i = 0; i < power_.size(); ++i)
-      if (power_[i] < cheapest_w && !feedback_.measured(space_.decode(i))) cheapest_w = power_[i];
+    // Measured configurations as guard_unmeasured weighs them (at their windows' power where
+    // measured_at_windows found it).
+    double cheapest_w = low;
+    for (std::size_t i = 0; i < power_.size(); ++i) {
+      const bool at_windows = i < measured_now_.size() && std::isfinite(measured_now_[i]);
+      cheapest_w = std::min(cheapest_w, at_windows ? measured_now_[i] : power_[i]);
+    }
     return cheapest_w;
   }
   if (share >= 1.0) return std::max(high, power_[top]);
@@ -488,10 +490,10 @@ void Governor::feed_back(const FrameRecord& record, Decision& decision) {
   std::optional<PowerFeedback::Window> window;
   if (!settled) {
     feedback_.interrupt();
-    open_counts_.frames = 0;
   } else {
+    const std::uint64_t taken = feedback_.frames_taken(), opened = feedback_.windows_opened();
     window = feedback_.add(record.configuration, record.time_ns, record.power_w, decision.predicted_w);
-    count_window_frame(record, window);
+    count_window_frame(record, feedback_.frames_taken() != taken, feedback_.windows_opened() != opened, window);
   }
   if (window) {
     if (exploring_) {
@@ -513,30 +515,34 @@ void Governor::feed_back(const FrameRecord& record, Decision& decision) {
   if (std::isfinite(decision.predicted_w)) decision.predicted_w += feedback_.bias(record.configuration);
 }
 
-// The feedback's window took this frame when its open frames grew by one (or it closed with
-// it); one frame open is a new window; none, a window dropped or never opened.
-void Governor::count_window_frame(const FrameRecord& record, const std::optional<PowerFeedback::Window>& closed) {
-  if (!settings_.measured_at_windows) return;
-  const std::size_t open = feedback_.open_frames();
-  if (!closed && open == 0) {
+// Counts of frames with non-finite counts are not summed; their window's mean is then not kept.
+void Governor::count_window_frame(const FrameRecord& record, bool taken, bool new_window,
+                                  const std::optional<PowerFeedback::Window>& closed) {
+  if (!settings_.measured_at_windows || !taken) return;
+  if (new_window) {
+    open_counts_.sum.clear();
     open_counts_.frames = 0;
-    return;
   }
-  if (!closed && open == open_counts_.frames) return;  // the feedback did not take the frame
-  if (!closed && open != open_counts_.frames + 1) open_counts_.frames = 0;
-  if (open_counts_.frames == 0) open_counts_.sum.clear();
-  for (const model::PassFrame& pass : record.passes) {
-    auto it = std::find_if(open_counts_.sum.begin(), open_counts_.sum.end(),
-                           [&](const model::PassFrame& p) { return p.pass == pass.pass; });
-    if (it == open_counts_.sum.end()) it = open_counts_.sum.insert(it, model::PassFrame{pass.pass, {}});
-    it->counts.batches += pass.counts.batches;
-    it->counts.vertices += pass.counts.vertices;
-    it->counts.fragments += pass.counts.fragments;
+  const bool finite = std::all_of(record.passes.begin(), record.passes.end(), [](const model::PassFrame& p) {
+    return std::isfinite(p.counts.batches) && std::isfinite(p.counts.vertices) && std::isfinite(p.counts.fragments);
+  });
+  if (finite) {
+    for (const model::PassFrame& pass : record.passes) {
+      auto it = std::find_if(open_counts_.sum.begin(), open_counts_.sum.end(),
+                             [&](const model::PassFrame& p) { return p.pass == pass.pass; });
+      if (it == open_counts_.sum.end()) it = open_counts_.sum.insert(it, model::PassFrame{pass.pass, {}});
+      it->counts.batches += pass.counts.batches;
+      it->counts.vertices += pass.counts.vertices;
+      it->counts.fragments += pass.counts.fragments;
+    }
+    ++open_counts_.frames;
   }
-  ++open_counts_.frames;
   if (!closed) return;
-  // The window's means join the configuration's as its residual's memory weighs them.
+  const bool whole = open_counts_.frames == closed->frames;
   const auto n = static_cast<double>(open_counts_.frames);
+  open_counts_.frames = 0;
+  if (!whole) return;
+  // The window's means join the configuration's as its residual's memory weighs them.
   WindowCounts& counts = window_counts_[record.configuration];
   ++counts.windows;
   const double weight =
@@ -559,7 +565,6 @@ void Governor::count_window_frame(const FrameRecord& record, const std::optional
     blend(it->counts.fragments, sum.counts.fragments / n);
   }
   blend(counts.mean.power_w, closed->measured_w);
-  open_counts_.frames = 0;
 }
 
 // Beyond the paper: a residual is what a window measured less what the coefficients of its time
@@ -568,20 +573,30 @@ void Governor::count_window_frame(const FrameRecord& record, const std::optional
 // refit's extrapolation: on the demo's Subway at 60 %, the best, measured in the run's first
 // seconds and the top of the range, was corrected to 38.9 W, then 28.3 W after one refit, then
 // 41.0 W, while the configuration drawn measured 22-24 W throughout, and the budget fell 8.6 W
-// for 80 frames. Predicted now and at its windows' counts by the same coefficients, the
+// for 80 frames. Predicted now and at its windows' counts by the same coefficients and fragment
+// scales (those of this frame's predictions: select() calls this before refreshing them), the
 // difference is what they say the scene's counts changed since, and what was measured stays.
-// (Reading that change through the configuration being drawn instead, whose coefficients the
-// recent frames determine, missed by up to 4 W on the loop tests' scene, where passes the drawn
-// configuration skips or scales change apart from the others.)
+void Governor::weigh_at_windows(const FrameRecord& record) {
+  measured_now_.assign(space_.size(), std::numeric_limits<double>::quiet_NaN());
+  if (!settings_.measured_at_windows || window_counts_.empty()) return;
+  std::vector<std::pair<std::size_t, double>> now;
+  if (const model::ConfigurationPredictor* at_frame = model_.predictor_for(sample_, record.configuration)) {
+    for (const auto& [c, counts] : window_counts_)
+      if (space_.contains(c) && feedback_.measured(c)) now.emplace_back(space_.index_of(c), at_frame->predict(c));
+  }
+  for (const auto& [index, now_w] : now) {
+    const model::Configuration c = space_.decode(index);
+    const WindowCounts& counts = window_counts_.at(c);
+    const model::ConfigurationPredictor* at_windows = model_.predictor_for(counts.mean, c);
+    const double then_w = at_windows ? at_windows->predict(c) : std::numeric_limits<double>::quiet_NaN();
+    const double moved_w = counts.mean.power_w + (now_w - then_w);
+    if (std::isfinite(moved_w)) measured_now_[index] = moved_w;
+  }
+}
+
 double Governor::measured_now_w(std::size_t index) const {
-  const model::Configuration c = space_.decode(index);
-  const double now_w = model_power_[index];
-  const auto it = settings_.measured_at_windows ? window_counts_.find(c) : window_counts_.end();
-  if (it == window_counts_.end() || !feedback_.measured(c)) return now_w + feedback_.residual(c);
-  const model::ConfigurationPredictor* then = model_.predictor_for(it->second.mean, c);
-  const double then_w = then ? then->predict(c) : std::numeric_limits<double>::quiet_NaN();
-  if (!std::isfinite(then_w)) return now_w + feedback_.residual(c);
-  return it->second.mean.power_w + (now_w - then_w);
+  if (index < measured_now_.size() && std::isfinite(measured_now_[index])) return measured_now_[index];
+  return model_power_[index] + feedback_.residual(space_.decode(index));
 }
 
 // Beyond the paper: probes came more often than the last selection planned for (a burst: a

@@ -27,9 +27,13 @@ std::optional<PowerFeedback::Window> PowerFeedback::add(const model::Configurati
                                                         double measured_w, double predicted_w) {
   if (!settings_.enabled || !std::isfinite(measured_w) || !std::isfinite(predicted_w)) return std::nullopt;
   if (open_ && (open_->configuration != configuration || time_ns < open_->start_ns)) open_.reset();
-  if (!open_) open_ = Open{configuration, time_ns};
+  if (!open_) {
+    open_ = Open{configuration, time_ns};
+    ++windows_opened_;
+  }
   Open& w = *open_;
   ++w.frames;
+  ++frames_taken_;
   w.measured += measured_w;
   w.predicted += predicted_w;
   w.frame_residual_sq += (measured_w - predicted_w) * (measured_w - predicted_w);

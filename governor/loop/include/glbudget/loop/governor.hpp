@@ -84,8 +84,9 @@ struct GovernorSettings {
   // Beyond the paper: a configuration measured in the run is weighed by the selection, and taken
   // for an end of a share's range, at what its windows measured, moved by what the coefficients
   // of the moment predict between those windows' counts and this frame's
-  // (Governor::measured_now_w). false: at its prediction now corrected by the residuals the
-  // windows measured against the coefficients of their time.
+  // (Governor::weigh_at_windows). false: the selection weighs it at its prediction now plus the
+  // feedback's additive correction, and the range's ends take its own residual, both measured
+  // against the coefficients of the windows' time.
   bool measured_at_windows = false;
   model::FitSettings fit = {};
   model::HistorySettings history = {};
@@ -227,13 +228,17 @@ class Governor {
   // The prediction of `configuration` for the frame last given to the model, whose own is
   // model_w, with the levels' interaction as the last selection held it (level_interactions).
   double predicted_for_frame(const model::Configuration& configuration, double model_w) const;
-  // The frame just given to the feedback (closed: the window it closed) in the counts of its
-  // open window; a closed window's mean counts and power join its configuration's.
-  void count_window_frame(const FrameRecord& record, const std::optional<PowerFeedback::Window>& closed);
-  // A configuration's power now (by space index, after a selection's predictions): where its
-  // windows were measured (measured_at_windows), what they measured moved by the model's
-  // prediction now less its prediction at their counts; else its own prediction plus the
-  // residual measured against the coefficients of the windows' time.
+  // The frame just given to the feedback, if it took it (closed: the window it closed), in the
+  // counts of its window; a closed window's mean counts and power join its configuration's.
+  void count_window_frame(const FrameRecord& record, bool taken, bool new_window,
+                          const std::optional<PowerFeedback::Window>& closed);
+  // At a selection, after the model's predictions for `record` (measured_at_windows): each
+  // measured configuration's power now, what its windows measured moved by the model's
+  // prediction at this frame's counts less its prediction at theirs (measured_now_).
+  void weigh_at_windows(const FrameRecord& record);
+  // A configuration's power now (by space index, after a selection's predictions): as
+  // weigh_at_windows found it where it did; else its own prediction plus the residual measured
+  // against the coefficients of the windows' time.
   double measured_now_w(std::size_t index) const;
   void hold_interactions();
   void set_calibrated_prior();
@@ -297,12 +302,13 @@ class Governor {
   };
   OpenCounts open_counts_;
   std::map<model::Configuration, WindowCounts> window_counts_;
-  std::uint64_t fitted_frame_ = 0;   // the frame of the model's first fit
-  std::vector<double> power_;        // reused by selections: corrected predictions
-  std::vector<double> model_power_;  // and the model's own
-  std::vector<double> guarded_;      // and as the selection weighs them (guard_unmeasured)
-  std::vector<bool> measured_;       // and whether each was measured (guard_unmeasured)
-  std::vector<double> summed_;       // and as their levels' changes summed (hold_interactions)
+  std::vector<double> measured_now_;  // by space index; NaN where weigh_at_windows found none
+  std::uint64_t fitted_frame_ = 0;    // the frame of the model's first fit
+  std::vector<double> power_;         // reused by selections: corrected predictions
+  std::vector<double> model_power_;   // and the model's own
+  std::vector<double> guarded_;       // and as the selection weighs them (guard_unmeasured)
+  std::vector<bool> measured_;        // and whether each was measured (guard_unmeasured)
+  std::vector<double> summed_;        // and as their levels' changes summed (hold_interactions)
   std::vector<double> error_;
   StepTimes times_;
   std::vector<std::string> notes_;

@@ -96,8 +96,10 @@ class PowerFeedback {
   // does the window open at it. A window open at another configuration, or a change that is
   // not finite, drops the open window and moves nothing.
   void rebase(const model::Configuration& configuration, double change_w);
-  // Frames in the window now open (0: none is open; 1: the last frame opened it).
-  std::size_t open_frames() const { return open_ ? open_->frames : 0; }
+  // Frames taken into windows so far, and windows opened so far: what add() did with a frame
+  // (taken or not; into the window open before it or a new one).
+  std::uint64_t frames_taken() const { return frames_taken_; }
+  std::uint64_t windows_opened() const { return windows_opened_; }
 
   // The correction of a configuration's prediction (0 before any window): the additive fit's,
   // moved towards the configuration's own residual where it has one (own_residuals).
@@ -151,6 +153,7 @@ class PowerFeedback {
   FeedbackSettings settings_;
   double z_ = 0.0;
   std::optional<Open> open_;
+  std::uint64_t frames_taken_ = 0, windows_opened_ = 0;
   void fit();
   // How far a configuration measured over `windows` windows is moved to its own residual.
   double own_weight(std::size_t windows) const;
