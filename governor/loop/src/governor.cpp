@@ -23,6 +23,11 @@ bool is_best(const model::ConfigurationSpace& space, const model::Configuration&
          std::all_of(configuration.begin(), configuration.end(), [](int level) { return level == 0; });
 }
 
+// The entry of a pass in a frame's (or a window's summed) counts; end() when it drew none.
+std::vector<model::PassFrame>::iterator find_pass(std::vector<model::PassFrame>& passes, model::PassIndex pass) {
+  return std::find_if(passes.begin(), passes.end(), [pass](const model::PassFrame& p) { return p.pass == pass; });
+}
+
 double microseconds_since(Clock::time_point start) {
   return std::chrono::duration<double, std::micro>(Clock::now() - start).count();
 }
@@ -214,7 +219,7 @@ bool Governor::selection_due(const FrameRecord& record) const {
 bool Governor::select(const FrameRecord& record) {
   Clock::time_point start = Clock::now();
   // With the fragment scales this frame's predictions were made with, which predict_all keeps.
-  if (aim_ == Aim::power) weigh_at_windows(record);
+  if (aim_ == Aim::power) weigh_at_windows();
   model_.refresh_fragment_scales();
   model_.predict_all(power_);
   times_.predict_all.add(microseconds_since(start));
@@ -308,15 +313,13 @@ void Governor::guard_unmeasured(double extra_w, bool discount_first) {
   }
   // Under 1, so that the configurations keep their order and one cheaper than the measured fits.
   const double discount = std::clamp(feedback.first_saving_discount, 0.0, 0.9);
-  if (!(extra_w > 0.0) && !std::isfinite(reference_w) && !settings_.measured_at_windows) return;
   for (std::size_t i = 0; i < guarded_.size(); ++i) {
     if (extra_w > 0.0) guarded_[i] += extra_w;
     if (std::isfinite(reference_w) && std::isfinite(power_[i]))
       guarded_[i] += discount * std::max(0.0, reference_w - power_[i]);
   }
   for (std::size_t i = 0; i < guarded_.size(); ++i)
-    if (measured_[i])
-      guarded_[i] = i < measured_now_.size() && std::isfinite(measured_now_[i]) ? measured_now_[i] : power_[i];
+    if (measured_[i]) guarded_[i] = measured_weighed_w(i);
 }
 
 // The guard less the typical surprise, for select_at_expected_power (expected_selection.hpp),
@@ -430,10 +433,7 @@ double Governor::share_of_range_w() const {
     // Measured configurations as guard_unmeasured weighs them (at their windows' power where
     // measured_at_windows found it).
     double cheapest_w = low;
-    for (std::size_t i = 0; i < power_.size(); ++i) {
-      const bool at_windows = i < measured_now_.size() && std::isfinite(measured_now_[i]);
-      cheapest_w = std::min(cheapest_w, at_windows ? measured_now_[i] : power_[i]);
-    }
+    for (std::size_t i = 0; i < power_.size(); ++i) cheapest_w = std::min(cheapest_w, measured_weighed_w(i));
     return cheapest_w;
   }
   if (share >= 1.0) return std::max(high, power_[top]);
@@ -528,8 +528,7 @@ void Governor::count_window_frame(const FrameRecord& record, bool taken, bool ne
   });
   if (finite) {
     for (const model::PassFrame& pass : record.passes) {
-      auto it = std::find_if(open_counts_.sum.begin(), open_counts_.sum.end(),
-                             [&](const model::PassFrame& p) { return p.pass == pass.pass; });
+      auto it = find_pass(open_counts_.sum, pass.pass);
       if (it == open_counts_.sum.end()) it = open_counts_.sum.insert(it, model::PassFrame{pass.pass, {}});
       it->counts.batches += pass.counts.batches;
       it->counts.vertices += pass.counts.vertices;
@@ -550,15 +549,13 @@ void Governor::count_window_frame(const FrameRecord& record, bool taken, bool ne
   const auto blend = [weight](double& mean, double value) { mean += weight * (value - mean); };
   std::vector<model::PassFrame>& mean = counts.mean.passes;
   for (model::PassFrame& pass : mean) {  // passes this window did not draw drew nothing in it
-    const auto it = std::find_if(open_counts_.sum.begin(), open_counts_.sum.end(),
-                                 [&](const model::PassFrame& p) { return p.pass == pass.pass; });
-    if (it != open_counts_.sum.end()) continue;
+    if (find_pass(open_counts_.sum, pass.pass) != open_counts_.sum.end()) continue;
     blend(pass.counts.batches, 0.0);
     blend(pass.counts.vertices, 0.0);
     blend(pass.counts.fragments, 0.0);
   }
   for (const model::PassFrame& sum : open_counts_.sum) {
-    auto it = std::find_if(mean.begin(), mean.end(), [&](const model::PassFrame& p) { return p.pass == sum.pass; });
+    auto it = find_pass(mean, sum.pass);
     if (it == mean.end()) it = mean.insert(mean.end(), model::PassFrame{sum.pass, {}});
     blend(it->counts.batches, sum.counts.batches / n);
     blend(it->counts.vertices, sum.counts.vertices / n);
@@ -576,22 +573,22 @@ void Governor::count_window_frame(const FrameRecord& record, bool taken, bool ne
 // for 80 frames. Predicted now and at its windows' counts by the same coefficients and fragment
 // scales (those of this frame's predictions: select() calls this before refreshing them), the
 // difference is what they say the scene's counts changed since, and what was measured stays.
-void Governor::weigh_at_windows(const FrameRecord& record) {
+void Governor::weigh_at_windows() {
   measured_now_.assign(space_.size(), std::numeric_limits<double>::quiet_NaN());
-  if (!settings_.measured_at_windows || window_counts_.empty()) return;
-  std::vector<std::pair<std::size_t, double>> now;
-  if (const model::ConfigurationPredictor* at_frame = model_.predictor_for(sample_, record.configuration)) {
-    for (const auto& [c, counts] : window_counts_)
-      if (space_.contains(c) && feedback_.measured(c)) now.emplace_back(space_.index_of(c), at_frame->predict(c));
-  }
-  for (const auto& [index, now_w] : now) {
-    const model::Configuration c = space_.decode(index);
-    const WindowCounts& counts = window_counts_.at(c);
+  if (!settings_.measured_at_windows) return;
+  for (const auto& [c, counts] : window_counts_) {
+    if (!space_.contains(c) || !feedback_.measured(c)) continue;
+    // The model holds this frame (see() gave it), predicted with the scales still in force.
+    const double now_w = model_.predict(c);
     const model::ConfigurationPredictor* at_windows = model_.predictor_for(counts.mean, c);
     const double then_w = at_windows ? at_windows->predict(c) : std::numeric_limits<double>::quiet_NaN();
     const double moved_w = counts.mean.power_w + (now_w - then_w);
-    if (std::isfinite(moved_w)) measured_now_[index] = moved_w;
+    if (std::isfinite(moved_w)) measured_now_[space_.index_of(c)] = moved_w;
   }
+}
+
+double Governor::measured_weighed_w(std::size_t index) const {
+  return index < measured_now_.size() && std::isfinite(measured_now_[index]) ? measured_now_[index] : power_[index];
 }
 
 double Governor::measured_now_w(std::size_t index) const {

@@ -232,10 +232,13 @@ class Governor {
   // counts of its window; a closed window's mean counts and power join its configuration's.
   void count_window_frame(const FrameRecord& record, bool taken, bool new_window,
                           const std::optional<PowerFeedback::Window>& closed);
-  // At a selection, after the model's predictions for `record` (measured_at_windows): each
+  // At a selection, with the model holding the selection's frame (measured_at_windows): each
   // measured configuration's power now, what its windows measured moved by the model's
   // prediction at this frame's counts less its prediction at theirs (measured_now_).
-  void weigh_at_windows(const FrameRecord& record);
+  void weigh_at_windows();
+  // A measured configuration as the selection weighs it (by space index, after a selection's
+  // predictions): as weigh_at_windows found it where it did, else its corrected prediction.
+  double measured_weighed_w(std::size_t index) const;
   // A configuration's power now (by space index, after a selection's predictions): as
   // weigh_at_windows found it where it did; else its own prediction plus the residual measured
   // against the coefficients of the windows' time.
