@@ -11,8 +11,8 @@ Stages, each skipped when the time left cannot hold it (the summary says which r
      pace (of --sizes, the largest whose best configuration draws at 30 fps or more, paced at about
      60 % of its unpaced rate, so configurations differ in GPU load);
   4. record: tests/data/logs/record_demo_logs.py with --sensor nvml --in-process, every scene;
-  5. govern: Hall under no budget, then GLBUDGET_POWER 40/50/60 % (nvml, the recording's
-     variant table and profile);
+  5. govern: Hall (--govern-scenes) under no budget, then GLBUDGET_POWER 40/50/60 % (nvml, the
+     recording's variant table and profile, or --govern-from's);
   6. repeat: the recording again with the same variant tables (NVML's repeatability);
   7. gpu_ssim_bench.
 A thread samples energy, power, temperature and clocks every 100 ms into gpu_trace.csv, the
@@ -255,31 +255,39 @@ class Bench:
             "%s %.1f" % (c, sum(v.values()) / len(v)) for c, v in by_config.items())
 
     # 5 ------------------------------------------------------------------------------------
-    def govern(self, scene="hall", seconds=20):
+    def govern(self):
+        """Each of --govern-scenes under no budget, then each of --budgets, one process a run.
+
+        The variant table and profile come from this run's recording, or from --govern-from
+        (a recording made before, e.g. tests/data/logs/h100), so a short loan can skip recording."""
         self.stage("govern")
-        rec = os.path.join(self.out, "rec1")
-        costs = os.path.join(rec, "demo_%s.variants.json" % scene)
-        profile = os.path.join(rec, "demo_%s.profile.json" % self.a.sensor.split(":")[0])
-        if not (os.path.exists(costs) and os.path.exists(profile)):
-            self.summary["skipped"].append("govern (no recording of %s)" % scene)
-            return False
-        frames = seconds * self.fps
-        common = {"GLBUDGET_SENSOR": self.a.sensor, "GLBUDGET_FPS": str(self.fps),
-                  "GLBUDGET_CONFIG": os.path.join(self.root, "testapps/demo/glbudget.toml"),
-                  "GLBUDGET_COSTS": costs, "GLBUDGET_PROFILE": profile, "GLBUDGET_TRANSITION_S": "1"}
+        rec = self.a.govern_from or os.path.join(self.out, "rec1")
+        seconds = self.a.govern_seconds
         results = {}
-        for budget in ["none", "40%", "50%", "60%"]:
-            if self.left() < seconds + 15:
-                self.summary["skipped"].append("govern %s" % budget)
+        for scene in self.a.govern_scenes.split(","):
+            costs = os.path.join(rec, "demo_%s.variants.json" % scene)
+            profile = os.path.join(rec, "demo_%s.profile.json" % self.a.sensor.split(":")[0])
+            if not (os.path.exists(costs) and os.path.exists(profile)):
+                self.summary["skipped"].append("govern (no recording of %s in %s)" % (scene, rec))
                 continue
-            log = os.path.join(self.out, "gov", "%s_%s.csv" % (scene, budget.rstrip("%")))
-            extra = dict(common, GLBUDGET_LOG=log)
-            if budget != "none":
-                extra["GLBUDGET_POWER"] = budget
-            rc, wall, out, err = self.run(self.demo_args(scene, self.size[0], self.size[1], frames), extra,
-                                          timeout=seconds * 3, name="gov_%s_%s" % (scene, budget.rstrip("%")))
-            results[budget] = dict(self.governed_figures(log), rc=rc, wall_s=wall)
-            self.say("%s %s: %s; stderr: %s" % (scene, budget, json.dumps(results[budget]), err.strip()[-300:]))
+            frames = int(seconds * self.fps)
+            common = {"GLBUDGET_SENSOR": self.a.sensor, "GLBUDGET_FPS": str(self.fps),
+                      "GLBUDGET_CONFIG": os.path.join(self.root, "testapps/demo/glbudget.toml"),
+                      "GLBUDGET_COSTS": costs, "GLBUDGET_PROFILE": profile, "GLBUDGET_TRANSITION_S": "1"}
+            common.update(kv.split("=", 1) for kv in self.a.govern_set)
+            for budget in ["none"] + self.a.budgets.split(","):
+                if self.left() < seconds + 15:
+                    self.summary["skipped"].append("govern %s %s" % (scene, budget))
+                    continue
+                tag = "%s_%s" % (scene, budget.rstrip("%"))
+                log = os.path.join(self.out, "gov", tag + ".csv")
+                extra = dict(common, GLBUDGET_LOG=log)
+                if budget != "none":
+                    extra["GLBUDGET_POWER"] = budget
+                rc, wall, out, err = self.run(self.demo_args(scene, self.size[0], self.size[1], frames), extra,
+                                              timeout=seconds * 3, name="gov_" + tag)
+                results[tag] = dict(self.governed_figures(log), rc=rc, wall_s=wall)
+                self.say("%s %s: %s; stderr: %s" % (scene, budget, json.dumps(results[tag]), err.strip()[-300:]))
         self.summary["stages"]["govern"] = results
         return True
 
@@ -291,7 +299,7 @@ class Bench:
         frames = {}
         for r in csv.DictReader(open(log)):
             f = frames.setdefault(r["frame"], {"t": int(r["time_ns"]) * 1e-9})
-            for key in ("energy_j", "budget_w", "configuration", "power_w"):
+            for key in ("energy_j", "budget_w", "configuration", "power_w", "probe"):
                 if r.get(key):
                     f[key] = r[key]
         rows = sorted(frames.values(), key=lambda f: f["t"])
@@ -313,7 +321,8 @@ class Bench:
                 start = i
         return {"frames": len(rows), "second_half_w": energy / span if span > 0 else None,
                 "budget_w": float(rows[-1]["budget_w"]) if rows[-1].get("budget_w") else None,
-                "windows": windows, "windows_kept": kept, "last_configuration": rows[-1].get("configuration")}
+                "windows": windows, "windows_kept": kept, "last_configuration": rows[-1].get("configuration"),
+                "probe_frames": sum(1 for f in rows if f.get("probe") not in (None, "", "0"))}
 
     # 7 ------------------------------------------------------------------------------------
     def ssim(self):
@@ -357,6 +366,12 @@ def main():
                          "process's first second")
     ap.add_argument("--tables", help="variant tables measured before (skips the instrumented runs)")
     ap.add_argument("--stages", default="smoke,speed,record,govern,repeat,ssim")
+    ap.add_argument("--govern-scenes", default="hall", help="scenes governed, comma-separated (default hall)")
+    ap.add_argument("--govern-seconds", type=float, default=20, help="seconds each governed run (default 20)")
+    ap.add_argument("--budgets", default="40%,50%,60%", help="GLBUDGET_POWER values after the run without one")
+    ap.add_argument("--govern-from", help="variant tables and profile recorded before (default: this run's rec1)")
+    ap.add_argument("--govern-set", action="append", default=[], metavar="KEY=VALUE",
+                    help="a GLBUDGET_ variable for every governed run (repeatable)")
     a = ap.parse_args()
     a.size_list = [tuple(int(v) for v in size.split("x")) for size in a.sizes.split(",")]
     for sub in ["logs", "gov"]:
