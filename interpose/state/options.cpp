@@ -47,6 +47,7 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_FIRST_SAVING_DISCOUNT",
     "GLBUDGET_EXPLORE_HELD",
     "GLBUDGET_MEASURED_AT_WINDOWS",
+    "GLBUDGET_METER_WINDOWS",
     "GLBUDGET_WARM_BLITS",
     "GLBUDGET_DUMP_PROBES",
     "GLBUDGET_PROBE_SCALE",
@@ -225,10 +226,14 @@ Options parse_options(char** env, std::string* warnings) {
       parse_switch(name, value, o.explore_held, warnings);
     } else if (name == "GLBUDGET_MEASURED_AT_WINDOWS") {
       parse_switch(name, value, o.measured_at_windows, warnings);
+    } else if (name == "GLBUDGET_METER_WINDOWS") {
+      parse_switch(name, value, o.meter_windows, warnings);
     } else if (name == "GLBUDGET_LEVEL_INTERACTIONS") {
       using L = loop::LevelInteractions;
-      parse_choice<L>(name, value, {{"calibrated", L::calibrated}, {"additive", L::additive}, {"model", L::model}},
-                      o.level_interactions, warnings);
+      parse_choice<L>(
+          name, value,
+          {{"calibrated", L::calibrated}, {"additive", L::additive}, {"model", L::model}, {"scaled", L::scaled}},
+          o.level_interactions, warnings);
     } else if (name == "GLBUDGET_ERROR_FEEDBACK") {
       parse_switch(name, value, o.error_feedback, warnings);
     } else if (name == "GLBUDGET_PROBE_STRETCH") {

@@ -56,7 +56,10 @@ struct Options {
   // an end of a share's range, at its windows' measured power moved by the model's change between
   // their counts and the frame's (loop/governor.hpp, measured_at_windows)
   bool measured_at_windows = false;
-  // GLBUDGET_LEVEL_INTERACTIONS=calibrated|additive|model: where `glbudget calibrate --app`
+  // GLBUDGET_METER_WINDOWS=1: a window of the settled configuration read as a meter reads it,
+  // probes included, over the budget selects again at once (loop/governor.hpp, meter_windows)
+  bool meter_windows = false;
+  // GLBUDGET_LEVEL_INTERACTIONS=calibrated|additive|model|scaled: where `glbudget calibrate --app`
   // measured each level alone, how a combination of levels is predicted (loop/governor.hpp,
   // level_interactions; model/additive_levels.hpp)
   loop::LevelInteractions level_interactions = loop::LevelInteractions::calibrated;

@@ -15,6 +15,7 @@
 #include "glbudget/model/variant_table.hpp"
 #include "glbudget/loop/from_manifest.hpp"
 #include "glbudget/loop/governor.hpp"
+#include "glbudget/loop/meter_window.hpp"
 #include "glbudget/model/additive_levels.hpp"
 #include "glbudget/manifest/manifest.hpp"
 #include "glbudget/model/power_curve.hpp"
@@ -975,6 +976,77 @@ TEST_CASE("a burst of probes beyond what the last selection planned for selects 
   for (int j = 0; j < 60; ++j) CHECK(app.step(std::nullopt, j % 10 == 0, 1.5).decision.event != Event::select);
 }
 
+TEST_CASE("meter window: each frame's power over its own interval, frames without power left out", "[loop][extremes]") {
+  MeterWindow meter(1.0);
+  const std::int64_t ms = 1'000'000;
+  CHECK_FALSE(meter.add(0, 50.0, false));  // the first frame only marks the time
+  // Nine frames of 100 ms at 10 W, then one of 100 ms at 110 W: 20 W over the second.
+  for (int k = 1; k <= 9; ++k) CHECK_FALSE(meter.add(k * 100 * ms, 10.0, false));
+  std::optional<MeterWindow::Reading> w = meter.add(1000 * ms, 110.0, false);
+  REQUIRE(w);
+  CHECK(w->watts == Approx(20.0));
+  CHECK(w->probes == 0);
+  // A probe frame that lasts three slots counts three: 300 ms at 40 W and 700 ms at 10 W.
+  CHECK_FALSE(meter.add(1300 * ms, 40.0, true));
+  for (int k = 1; k < 7; ++k) CHECK_FALSE(meter.add((1300 + 100 * k) * ms, 10.0, false));
+  w = meter.add(2000 * ms, 10.0, false);
+  REQUIRE(w);
+  CHECK(w->watts == Approx(19.0));
+  CHECK(w->probes == 1);
+  // Frames without power: their intervals are not counted; half a window without is no reading.
+  for (int k = 1; k <= 4; ++k) CHECK_FALSE(meter.add((2000 + 100 * k) * ms, kNaN, false));
+  for (int k = 5; k < 10; ++k) CHECK_FALSE(meter.add((2000 + 100 * k) * ms, 30.0, false));
+  w = meter.add(3000 * ms, 30.0, false);
+  REQUIRE(w);
+  CHECK(w->watts == Approx(30.0));
+  for (int k = 1; k <= 6; ++k) CHECK_FALSE(meter.add((3000 + 100 * k) * ms, kNaN, false));
+  for (int k = 7; k <= 10; ++k) CHECK_FALSE(meter.add((3000 + 100 * k) * ms, 30.0, false));
+  // A frame handed over out of order is skipped, the window kept: 500 ms at 8 W, 500 ms at 12 W.
+  for (int k = 1; k <= 5; ++k) CHECK_FALSE(meter.add((4000 + 100 * k) * ms, 8.0, false));
+  CHECK_FALSE(meter.add(4450 * ms, 1000.0, false));
+  for (int k = 6; k < 10; ++k) CHECK_FALSE(meter.add((4000 + 100 * k) * ms, 12.0, false));
+  w = meter.add(5000 * ms, 12.0, false);
+  REQUIRE(w);
+  CHECK(w->watts == Approx(10.0));
+  // Interrupted, or a clock from before the window (a new clock): the next frame starts afresh.
+  meter.add(5100 * ms, 5.0, true);
+  meter.interrupt();
+  CHECK_FALSE(meter.add(9000 * ms, 500.0, false));
+  CHECK_FALSE(meter.add(8000 * ms, 500.0, false));
+  for (int k = 1; k < 10; ++k) CHECK_FALSE(meter.add((8000 + 100 * k) * ms, 7.0, false));
+  w = meter.add(9000 * ms, 7.0, false);
+  REQUIRE(w);
+  CHECK(w->watts == Approx(7.0));
+  CHECK(w->probes == 0);
+}
+
+TEST_CASE("a meter's window over the budget selects again at once (meter_windows), and one under it does not",
+          "[loop]") {
+  // The feedback off, so that the meter is the only measured check; a still camera, 10 frames a
+  // second. Mid-way between two selections the frames measure 2 W over the budget (or 1 W under).
+  auto frames_to_reselect = [](bool meter, double over_w) {
+    GovernorSettings settings = power_budget("50%");
+    settings.feedback.enabled = false;
+    settings.meter_windows = meter;
+    App app(settings, Configuration(6, 0), 7, 1 << 20);
+    app.set_frame_ns(100'000'000);
+    int k = 0;
+    for (; k < 5000 && (k < 1000 || k != static_cast<int>(app.governor().last_selection().frame) + 60); ++k) app.step();
+    REQUIRE(k < 5000);  // settled 60 frames after a selection
+    const double budget = app.governor().last_selection().budget_w;
+    for (int j = 1; j <= 40; ++j) {
+      if (app.step(budget + over_w).decision.event == Event::select) return j;
+    }
+    return -1;
+  };
+  // The meter's window open when the frames rose may close under the budget; the next closes over it.
+  const int meter_on = frames_to_reselect(true, 2.0);
+  CHECK(meter_on >= 1);
+  CHECK(meter_on <= 21);
+  CHECK(frames_to_reselect(false, 2.0) == -1);
+  CHECK(frames_to_reselect(true, -1.0) == -1);
+}
+
 TEST_CASE("power missing for hold_after_missing_power frames holds the configuration", "[loop]") {
   App app(power_budget("40%"));
   Step previous = app.run(15 * kFps).back();
@@ -1633,6 +1705,65 @@ TEST_CASE("with each level's calibrated power, a combination is its levels' chan
   // The cheapest between the sum and the model's own.
   CHECK(calibrated.cheapest_w >= std::min(additive.cheapest_w, own.cheapest_w) - 0.5);
   CHECK(calibrated.cheapest_w <= std::max(additive.cheapest_w, own.cheapest_w) + 0.5);
+}
+
+TEST_CASE("scaled: the levels' changes summed, scaled so that the cheapest is predicted where it was measured",
+          "[loop][feedback]") {
+  // Levels whose savings overlap beyond the model's interaction: calibration measured the
+  // cheapest with half the saving its levels' changes sum to (the demo's Hall: 17.7 W where they
+  // sum to 26). `calibrated` keeps at most the model's own interaction and predicts the cheapest
+  // far under its measurement, and every combination with it; `scaled` predicts the best plus the
+  // summed changes times the share that puts the cheapest where it was measured.
+  const model::testing::HiddenModel hidden = model::testing::six_pass_hidden_model();
+  const Configuration best(6, 0), cheapest = hidden.space.cheapest();
+  model::testing::SceneGenerator scene0(hidden, 0.0, 7);
+  const Truth truth(hidden, scene0.counts(0));
+  double summed_cheapest = truth.power(best);
+  std::vector<std::pair<Configuration, double>> singles;
+  for (std::size_t i = 0; i < 6; ++i)
+    for (int l = 1; l < static_cast<int>(hidden.space.passes()[i].levels.size()); ++l) {
+      Configuration c = best;
+      c[i] = l;
+      singles.emplace_back(c, truth.power(c));
+      if (l + 1 == static_cast<int>(hidden.space.passes()[i].levels.size()))
+        summed_cheapest += truth.power(c) - truth.power(best);
+    }
+  const double measured_cheapest = truth.power(best) - 0.5 * (truth.power(best) - summed_cheapest);
+  REQUIRE(measured_cheapest > truth.power(cheapest) + 1.0);  // beyond what the model's curve gives
+  struct Result {
+    double cheapest_w = 0.0, best_w = 0.0, largest_gap_w = 0.0;
+  };
+  auto run = [&](GovernorSettings::Interactions interactions) {
+    GovernorSettings settings = power_budget("50%");
+    settings.level_interactions = interactions;
+    settings.calibrated_range = model::VariantTable::MeasuredRange{truth.power(best), measured_cheapest};
+    settings.calibrated_powers = singles;
+    App app(settings);
+    // Up to the first selection: the cheapest not yet measured by the run.
+    for (int k = 0; k < 20 * kFps && app.governor().selections() == 0; ++k) app.step();
+    REQUIRE(app.governor().selections() > 0);
+    const Governor::SelectionTable table = app.governor().last_selection();
+    const auto& power = *table.power_w;
+    const model::ConfigurationSpace& space = app.governor().space();
+    Result r;
+    for (std::size_t index = 0; index < space.size(); ++index) {
+      const double sum = model::additive_over_levels(space.decode(index),
+                                                     [&](const Configuration& c) { return power[space.index_of(c)]; });
+      r.largest_gap_w = std::max(r.largest_gap_w, std::abs(power[index] - sum));
+    }
+    r.cheapest_w = power[space.index_of(cheapest)];
+    r.best_w = power[space.index_of(best)];
+    return r;
+  };
+  const Result calibrated = run(GovernorSettings::Interactions::calibrated);
+  const Result scaled = run(GovernorSettings::Interactions::scaled);
+  INFO("measured cheapest " << measured_cheapest << " W (changes summed " << summed_cheapest << " W); predicted "
+                            << calibrated.cheapest_w << " W calibrated, " << scaled.cheapest_w << " W scaled");
+  CHECK(std::abs(scaled.cheapest_w - measured_cheapest) < 0.5);
+  CHECK(calibrated.cheapest_w < measured_cheapest - 1.0);
+  // One share for every configuration: the table is its own levels' changes summed.
+  CHECK(scaled.largest_gap_w < 1e-9);
+  CHECK(scaled.cheapest_w < scaled.best_w);
 }
 
 TEST_CASE("power feedback: windows, residuals, the margin and the additive correction", "[loop][feedback]") {

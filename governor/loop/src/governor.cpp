@@ -87,7 +87,8 @@ Governor::Governor(model::PlatformProfile profile, model::ConfigurationSpace spa
       model_(profile, space_, settings.fit, settings.history),
       p_min_w_(profile.p_min_w),
       feedback_(settings.feedback),
-      error_feedback_(settings.error_feedback) {
+      error_feedback_(settings.error_feedback),
+      meter_(settings.feedback.window_s) {
   if (!errors_.fits(space_)) {
     notes_.push_back("the error table does not match the configuration space (" + std::to_string(errors_.pass_count()) +
                      " passes for " + std::to_string(space_.pass_count()) + "); using the stand-in errors");
@@ -515,6 +516,26 @@ void Governor::feed_back(const FrameRecord& record, Decision& decision) {
   if (std::isfinite(decision.predicted_w)) decision.predicted_w += feedback_.bias(record.configuration);
 }
 
+void Governor::meter(const FrameRecord& frame) {
+  if (!settings_.meter_windows) return;
+  const bool settled = aim_ == Aim::power && std::isfinite(budget_w_) && selections_ > 0 && !holding_ &&
+                       !transitioning_ && !exploring_ && frame.configuration == target_;
+  if (!settled) {
+    meter_.interrupt();
+    return;
+  }
+  const std::optional<MeterWindow::Reading> window = meter_.add(frame.time_ns, frame.power_w, frame.probe);
+  if (!window || !(window->watts > budget_w_)) return;
+  // A window holding a probe is over the budget by design where the last selection kept only
+  // the probes' mean under it (probes rare enough that few windows hold one; ProbeOverhead's
+  // window_margin_w): selecting again would find the same. Where it kept a probe's whole excess,
+  // or the window holds none, the configuration draws more than the selection counted on.
+  constexpr double kPlannedShare = 0.9;
+  const bool probe_planned_for =
+      probe_margin_w_ >= kPlannedShare * probe_overhead_.whole_excess_margin_w(settings_.feedback.window_s);
+  if (window->probes == 0 || probe_planned_for) reselect_now_ = true;
+}
+
 // Counts of frames with non-finite counts are not summed; their window's mean is then not kept.
 void Governor::count_window_frame(const FrameRecord& record, bool taken, bool new_window,
                                   const std::optional<PowerFeedback::Window>& closed) {
@@ -693,6 +714,7 @@ Decision Governor::on_frame(const FrameRecord& frame) {
     return decision;
   }
 
+  meter(frame);
   if (!holding_) {
     feed_back(record, decision);
     const bool over = !record.probe && !transitioning_ && aim_ == Aim::power && std::isfinite(budget_w_) &&
@@ -723,10 +745,16 @@ Decision Governor::on_frame(const FrameRecord& frame) {
 }
 
 double Governor::predicted_for_frame(const model::Configuration& configuration, double model_w) const {
+  if (!calibrated_levels_ || !space_.contains(configuration)) return model_w;
+  const bool scaled = settings_.level_interactions == GovernorSettings::Interactions::scaled;
   // All of the model's interaction kept: its own prediction, without summing the levels'.
-  if (!calibrated_levels_ || interaction_share_ == 1.0 || !space_.contains(configuration)) return model_w;
+  if (!scaled && interaction_share_ == 1.0) return model_w;
   const double summed =
       model::additive_over_levels(configuration, [&](const model::Configuration& c) { return model_.predict(c); });
+  if (scaled) {
+    const double best_w = model_.predict(model::Configuration(space_.pass_count(), 0));
+    return best_w + savings_scale_ * (summed - best_w);
+  }
   return summed + interaction_share_ * (model_w - summed);
 }
 
@@ -740,6 +768,17 @@ void Governor::hold_interactions() {
   summed_.assign(power_.begin(), power_.end());
   model::make_additive_over_levels(space_, summed_);
   const model::Configuration cheapest = space_.cheapest();
+  if (settings_.level_interactions == GovernorSettings::Interactions::scaled) {
+    const double best_w = power_[space_.index_of(model::Configuration(space_.pass_count(), 0))];
+    if (!feedback_.measured(cheapest)) {
+      const double low = calibrated_cheapest_w(best_w);
+      const double summed_saving_w = best_w - summed_[space_.index_of(cheapest)];
+      if (std::isfinite(low) && summed_saving_w > 0.0)
+        savings_scale_ = std::clamp((best_w - low) / summed_saving_w, 0.0, 1.0);
+    }
+    for (std::size_t i = 0; i < power_.size(); ++i) power_[i] = best_w + savings_scale_ * (summed_[i] - best_w);
+    return;
+  }
   if (settings_.level_interactions == GovernorSettings::Interactions::calibrated && !feedback_.measured(cheapest)) {
     const double low = calibrated_cheapest_w(power_[space_.index_of(model::Configuration(space_.pass_count(), 0))]);
     const std::size_t c = space_.index_of(cheapest);

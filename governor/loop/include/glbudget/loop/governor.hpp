@@ -18,6 +18,7 @@
 #include "glbudget/loop/error_feedback.hpp"
 #include "glbudget/loop/error_table.hpp"
 #include "glbudget/loop/level_interactions.hpp"
+#include "glbudget/loop/meter_window.hpp"
 #include "glbudget/loop/power_feedback.hpp"
 #include "glbudget/loop/probe_overhead.hpp"
 #include "glbudget/loop/step_times.hpp"
@@ -88,6 +89,11 @@ struct GovernorSettings {
   // feedback's additive correction, and the range's ends take its own residual, both measured
   // against the coefficients of the windows' time.
   bool measured_at_windows = false;
+  // Beyond the paper: the settled configuration's frames are also read as a power meter reads
+  // them, in windows of the feedback's length holding every frame, probes and the frames that
+  // finish them included (MeterWindow); one over the budget selects again at once. false: a
+  // window selects again when its frames without probes plus the probes' mean are over.
+  bool meter_windows = false;
   model::FitSettings fit = {};
   model::HistorySettings history = {};
 };
@@ -207,6 +213,8 @@ class Governor {
   model::Selection select_at_expected_power(const model::Selection& guarded, double budget_w, double extra_w);
   void hold(const FrameRecord& record);
   void feed_back(const FrameRecord& record, Decision& decision);
+  // The frame as it was measured, probes included, into the meter's window (meter_windows).
+  void meter(const FrameRecord& frame);
   double initial_budget_w() const;
   void want_probe_period(double budget_w, double margin_without_probes_w);
   bool probes_outgrew_margin() const;
@@ -256,6 +264,8 @@ class Governor {
   // Of the model's interaction kept (additive_levels.hpp): 0 for `additive`; for `calibrated`
   // the last selection's, held once the run has measured the cheapest itself.
   double interaction_share_ = 1.0;
+  // Of the levels' changes summed kept under `scaled`, held as interaction_share_ is.
+  double savings_scale_ = 1.0;
   Aim aim_ = Aim::observe;
   bool governing_ = false;
 
@@ -281,6 +291,7 @@ class Governor {
   PowerFeedback feedback_;
   ErrorFeedback error_feedback_;
   ProbeOverhead probe_overhead_;
+  MeterWindow meter_;
   std::uint64_t probe_period_wanted_ = 0;
   bool probe_bursts_spaced_ = false;
   FrameRecord after_probe_record_;  // reused: the frame after a probe, its power left out
