@@ -1740,11 +1740,15 @@ TEST_CASE("scaled: the levels' changes summed, scaled so that the cheapest is pr
     settings.calibrated_powers = singles;
     App app(settings);
     // Up to the first selection: the cheapest not yet measured by the run.
-    for (int k = 0; k < 20 * kFps && app.governor().selections() == 0; ++k) app.step();
+    Step last;
+    for (int k = 0; k < 20 * kFps && app.governor().selections() == 0; ++k) last = app.step();
     REQUIRE(app.governor().selections() > 0);
     const Governor::SelectionTable table = app.governor().last_selection();
     const auto& power = *table.power_w;
     const model::ConfigurationSpace& space = app.governor().space();
+    // The frame's own prediction, corrected, is the table's at the selection's frame.
+    REQUIRE(std::isfinite(last.decision.predicted_w));
+    CHECK(last.decision.predicted_w == Approx(power[space.index_of(last.record.configuration)]).margin(1e-6));
     Result r;
     for (std::size_t index = 0; index < space.size(); ++index) {
       const double sum = model::additive_over_levels(space.decode(index),

@@ -129,7 +129,37 @@ Governor::Governor(model::PlatformProfile profile, model::ConfigurationSpace spa
                        settings_.feedback.enabled && settings_.calibrated_range &&
                        std::any_of(settings_.calibrated_powers.begin(), settings_.calibrated_powers.end(),
                                    [](const auto& c) { return model::only_pass_changed(c.first) >= 0; });
-  if (settings_.level_interactions == GovernorSettings::Interactions::additive) interaction_share_ = 0.0;
+  if (settings_.level_interactions == GovernorSettings::Interactions::additive ||
+      settings_.level_interactions == GovernorSettings::Interactions::scaled)
+    interaction_share_ = 0.0;
+  if (settings_.level_interactions == GovernorSettings::Interactions::scaled)
+    savings_scale_ = calibrated_savings_scale();
+}
+
+// Of each calibrated level's change, the share that puts the cheapest where calibration measured
+// it when the changes are summed (LevelInteractions::scaled): (best - cheapest) over the summed
+// changes of each pass's last level, never above 1. 1 where a pass's last level was not measured.
+double Governor::calibrated_savings_scale() const {
+  const auto& range = settings_.calibrated_range;
+  if (!range) return 1.0;
+  const model::Configuration cheapest = space_.cheapest();
+  double summed_saving_w = 0.0;
+  for (std::size_t pass = 0; pass < space_.pass_count(); ++pass) {
+    if (cheapest[pass] == 0) continue;
+    model::Configuration single(space_.pass_count(), 0);
+    single[pass] = cheapest[pass];
+    const auto found =
+        std::find_if(settings_.calibrated_powers.begin(), settings_.calibrated_powers.end(), [&](const auto& c) {
+          model::Configuration calibrated = c.first;
+          calibrated.resize(space_.pass_count(), 0);
+          return calibrated == single;
+        });
+    if (found == settings_.calibrated_powers.end()) return 1.0;
+    summed_saving_w += range->best_w - found->second;
+  }
+  const double saving_w = range->best_w - range->cheapest_w;
+  if (!(summed_saving_w > 0.0) || !std::isfinite(saving_w)) return 1.0;
+  return std::clamp(saving_w / summed_saving_w, 0.0, 1.0);
 }
 
 double Governor::initial_budget_w() const {
@@ -466,7 +496,7 @@ void Governor::set_calibrated_prior() {
     const double predicted = model_power_[space_.index_of(c)] - model_power_[best_index];
     if (!std::isfinite(predicted)) continue;
     if (prior[pass].size() <= level) prior[pass].resize(level + 1, 0.0);
-    prior[pass][level] = scale * (watts - range->best_w) - predicted;
+    prior[pass][level] = scale * savings_scale_ * (watts - range->best_w) - predicted;
   }
   feedback_.set_prior(std::move(prior));
 }
@@ -745,16 +775,10 @@ Decision Governor::on_frame(const FrameRecord& frame) {
 }
 
 double Governor::predicted_for_frame(const model::Configuration& configuration, double model_w) const {
-  if (!calibrated_levels_ || !space_.contains(configuration)) return model_w;
-  const bool scaled = settings_.level_interactions == GovernorSettings::Interactions::scaled;
   // All of the model's interaction kept: its own prediction, without summing the levels'.
-  if (!scaled && interaction_share_ == 1.0) return model_w;
+  if (!calibrated_levels_ || interaction_share_ == 1.0 || !space_.contains(configuration)) return model_w;
   const double summed =
       model::additive_over_levels(configuration, [&](const model::Configuration& c) { return model_.predict(c); });
-  if (scaled) {
-    const double best_w = model_.predict(model::Configuration(space_.pass_count(), 0));
-    return best_w + savings_scale_ * (summed - best_w);
-  }
   return summed + interaction_share_ * (model_w - summed);
 }
 
@@ -768,17 +792,6 @@ void Governor::hold_interactions() {
   summed_.assign(power_.begin(), power_.end());
   model::make_additive_over_levels(space_, summed_);
   const model::Configuration cheapest = space_.cheapest();
-  if (settings_.level_interactions == GovernorSettings::Interactions::scaled) {
-    const double best_w = power_[space_.index_of(model::Configuration(space_.pass_count(), 0))];
-    if (!feedback_.measured(cheapest)) {
-      const double low = calibrated_cheapest_w(best_w);
-      const double summed_saving_w = best_w - summed_[space_.index_of(cheapest)];
-      if (std::isfinite(low) && summed_saving_w > 0.0)
-        savings_scale_ = std::clamp((best_w - low) / summed_saving_w, 0.0, 1.0);
-    }
-    for (std::size_t i = 0; i < power_.size(); ++i) power_[i] = best_w + savings_scale_ * (summed_[i] - best_w);
-    return;
-  }
   if (settings_.level_interactions == GovernorSettings::Interactions::calibrated && !feedback_.measured(cheapest)) {
     const double low = calibrated_cheapest_w(power_[space_.index_of(model::Configuration(space_.pass_count(), 0))]);
     const std::size_t c = space_.index_of(cheapest);

@@ -253,6 +253,7 @@ class Governor {
   double measured_now_w(std::size_t index) const;
   void hold_interactions();
   void set_calibrated_prior();
+  double calibrated_savings_scale() const;
 
   model::ConfigurationSpace space_;
   ErrorTable errors_;
@@ -264,7 +265,8 @@ class Governor {
   // Of the model's interaction kept (additive_levels.hpp): 0 for `additive`; for `calibrated`
   // the last selection's, held once the run has measured the cheapest itself.
   double interaction_share_ = 1.0;
-  // Of the levels' changes summed kept under `scaled`, held as interaction_share_ is.
+  // Under `scaled`, the share of each calibrated level's change its prior takes
+  // (calibrated_savings_scale); 1 otherwise.
   double savings_scale_ = 1.0;
   Aim aim_ = Aim::observe;
   bool governing_ = false;
