@@ -224,6 +224,18 @@ void check_selections(const App& app, const Governor& governor, const std::vecto
   CHECK(checked >= 5);
 }
 
+// How far a selection's table strays from its own levels' changes summed (additive_levels.hpp):
+// 0 where every configuration is the best plus its levels' changes alone.
+double largest_gap_from_levels_summed(const model::ConfigurationSpace& space, const std::vector<double>& power) {
+  double gap = 0.0;
+  for (std::size_t index = 0; index < space.size(); ++index) {
+    const double sum = model::additive_over_levels(space.decode(index),
+                                                   [&](const Configuration& c) { return power[space.index_of(c)]; });
+    gap = std::max(gap, std::abs(power[index] - sum));
+  }
+  return gap;
+}
+
 }  // namespace
 
 TEST_CASE("power budgets: within the budget after convergence, at the lowest feasible error", "[loop]") {
@@ -1680,11 +1692,7 @@ TEST_CASE("with each level's calibrated power, a combination is its levels' chan
     const auto& power = *table.power_w;
     const model::ConfigurationSpace& space = app.governor().space();
     Result r;
-    for (std::size_t index = 0; index < space.size(); ++index) {
-      const double sum = model::additive_over_levels(space.decode(index),
-                                                     [&](const Configuration& c) { return power[space.index_of(c)]; });
-      r.largest_gap_w = std::max(r.largest_gap_w, std::abs(power[index] - sum));
-    }
+    r.largest_gap_w = largest_gap_from_levels_summed(space, power);
     r.cheapest_w = power[space.index_of(cheapest)];
     r.share = app.governor().interaction_share();
     return r;
@@ -1750,11 +1758,7 @@ TEST_CASE("scaled: the levels' changes summed, scaled so that the cheapest is pr
     REQUIRE(std::isfinite(last.decision.predicted_w));
     CHECK(last.decision.predicted_w == Approx(power[space.index_of(last.record.configuration)]).margin(1e-6));
     Result r;
-    for (std::size_t index = 0; index < space.size(); ++index) {
-      const double sum = model::additive_over_levels(space.decode(index),
-                                                     [&](const Configuration& c) { return power[space.index_of(c)]; });
-      r.largest_gap_w = std::max(r.largest_gap_w, std::abs(power[index] - sum));
-    }
+    r.largest_gap_w = largest_gap_from_levels_summed(space, power);
     r.cheapest_w = power[space.index_of(cheapest)];
     r.best_w = power[space.index_of(best)];
     return r;

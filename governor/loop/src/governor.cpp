@@ -144,21 +144,19 @@ double Governor::calibrated_savings_scale() const {
   if (!range) return 1.0;
   const model::Configuration cheapest = space_.cheapest();
   double summed_saving_w = 0.0;
-  for (std::size_t pass = 0; pass < space_.pass_count(); ++pass) {
-    if (cheapest[pass] == 0) continue;
-    model::Configuration single(space_.pass_count(), 0);
-    single[pass] = cheapest[pass];
-    const auto found =
-        std::find_if(settings_.calibrated_powers.begin(), settings_.calibrated_powers.end(), [&](const auto& c) {
-          model::Configuration calibrated = c.first;
-          calibrated.resize(space_.pass_count(), 0);
-          return calibrated == single;
-        });
-    if (found == settings_.calibrated_powers.end()) return 1.0;
-    summed_saving_w += range->best_w - found->second;
+  std::size_t passes_found = 0;
+  for (const auto& [calibrated, watts] : settings_.calibrated_powers) {
+    model::Configuration c = calibrated;
+    c.resize(space_.pass_count(), 0);
+    const int changed = model::only_pass_changed(c);
+    if (changed < 0 || c[static_cast<std::size_t>(changed)] != cheapest[static_cast<std::size_t>(changed)]) continue;
+    summed_saving_w += range->best_w - watts;
+    ++passes_found;
   }
+  const auto passes_cut =
+      static_cast<std::size_t>(std::count_if(cheapest.begin(), cheapest.end(), [](int l) { return l > 0; }));
   const double saving_w = range->best_w - range->cheapest_w;
-  if (!(summed_saving_w > 0.0) || !std::isfinite(saving_w)) return 1.0;
+  if (passes_found != passes_cut || !(summed_saving_w > 0.0) || !std::isfinite(saving_w)) return 1.0;
   return std::clamp(saving_w / summed_saving_w, 0.0, 1.0);
 }
 
@@ -517,7 +515,7 @@ void Governor::hold(const FrameRecord& record) {
 // the budget asks for a selection at once. The frame's prediction is given corrected.
 void Governor::feed_back(const FrameRecord& record, Decision& decision) {
   if (record.probe || !space_.contains(record.configuration)) return;
-  const bool settled = aim_ == Aim::power && !transitioning_ && !holding_ && record.configuration == target_;
+  const bool settled = settled_at_target(record.configuration);
   std::optional<PowerFeedback::Window> window;
   if (!settled) {
     feedback_.interrupt();
@@ -548,8 +546,8 @@ void Governor::feed_back(const FrameRecord& record, Decision& decision) {
 
 void Governor::meter(const FrameRecord& frame) {
   if (!settings_.meter_windows) return;
-  const bool settled = aim_ == Aim::power && std::isfinite(budget_w_) && selections_ > 0 && !holding_ &&
-                       !transitioning_ && !exploring_ && frame.configuration == target_;
+  const bool settled =
+      settled_at_target(frame.configuration) && std::isfinite(budget_w_) && selections_ > 0 && !exploring_;
   if (!settled) {
     meter_.interrupt();
     return;
@@ -747,8 +745,8 @@ Decision Governor::on_frame(const FrameRecord& frame) {
   meter(frame);
   if (!holding_) {
     feed_back(record, decision);
-    const bool over = !record.probe && !transitioning_ && aim_ == Aim::power && std::isfinite(budget_w_) &&
-                      record.configuration == target_ && decision.predicted_w > budget_w_;
+    const bool over = !record.probe && settled_at_target(record.configuration) && std::isfinite(budget_w_) &&
+                      decision.predicted_w > budget_w_;
     if (!record.probe) over_budget_frames_ = over ? over_budget_frames_ + 1 : 0;
     if (probes_outgrew_margin()) reselect_now_ = true;
     if (selection_due(record)) {

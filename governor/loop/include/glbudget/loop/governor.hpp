@@ -213,6 +213,11 @@ class Governor {
   model::Selection select_at_expected_power(const model::Selection& guarded, double budget_w, double extra_w);
   void hold(const FrameRecord& record);
   void feed_back(const FrameRecord& record, Decision& decision);
+  // Under a power budget, drawing the target with no transition or hold in the way: what the
+  // frame measures is the target's own.
+  bool settled_at_target(const model::Configuration& drawn) const {
+    return aim_ == Aim::power && !transitioning_ && !holding_ && drawn == target_;
+  }
   // The frame as it was measured, probes included, into the meter's window (meter_windows).
   void meter(const FrameRecord& frame);
   double initial_budget_w() const;
