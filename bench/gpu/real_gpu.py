@@ -29,6 +29,9 @@ import tarfile
 import threading
 import time
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import governed_runs  # noqa: E402  (the windows counted as scripts/evaluate counts them)
+
 SCENES = ["hall", "sponza", "valley", "subway"]
 BEST, CHEAPEST = "0,0,0,0,0,0", "2,2,2,2,2,2"
 
@@ -286,43 +289,36 @@ class Bench:
                     extra["GLBUDGET_POWER"] = budget
                 rc, wall, out, err = self.run(self.demo_args(scene, self.size[0], self.size[1], frames), extra,
                                               timeout=seconds * 3, name="gov_" + tag)
-                results[tag] = dict(self.governed_figures(log), rc=rc, wall_s=wall)
+                none_log = os.path.join(self.out, "gov", scene + "_none.csv")
+                results[tag] = dict(self.governed_figures(log, none_log), rc=rc, wall_s=wall)
                 self.say("%s %s: %s; stderr: %s" % (scene, budget, json.dumps(results[tag]), err.strip()[-300:]))
         self.summary["stages"]["govern"] = results
         return True
 
-    @staticmethod
-    def governed_figures(log):
-        """Mean power of the second half, and the share of 1-s windows at or under the budget."""
+    def governed_figures(self, log, none_log):
+        """The run's frames, probes and last budget, and for a budgeted run its 1-s windows and
+        mean power as bench/gpu/governed_runs.py counts them (scripts/evaluate's way: a meter's
+        windows from a second after the first selection, against the budget in force)."""
         if not os.path.exists(log):
             return {}
-        frames = {}
-        for r in csv.DictReader(open(log)):
-            f = frames.setdefault(r["frame"], {"t": int(r["time_ns"]) * 1e-9})
-            for key in ("energy_j", "budget_w", "configuration", "power_w", "probe"):
-                if r.get(key):
-                    f[key] = r[key]
-        rows = sorted(frames.values(), key=lambda f: f["t"])
-        powered = [f for f in rows if "energy_j" in f]
-        if len(powered) < 4:
-            return {"frames": len(rows)}
-        half = powered[len(powered) // 2:]
-        span = half[-1]["t"] - half[0]["t"]
-        energy = sum(float(f["energy_j"]) for f in half[1:])
-        windows, kept, start = 0, 0, 0
-        for i, f in enumerate(powered):
-            if f["t"] - powered[start]["t"] >= 1.0:
-                w = powered[start + 1:i + 1]
-                watts = sum(float(x["energy_j"]) for x in w) / (f["t"] - powered[start]["t"])
-                budget = f.get("budget_w")
-                if budget:
-                    windows += 1
-                    kept += watts <= float(budget)
-                start = i
-        return {"frames": len(rows), "second_half_w": energy / span if span > 0 else None,
-                "budget_w": float(rows[-1]["budget_w"]) if rows[-1].get("budget_w") else None,
-                "windows": windows, "windows_kept": kept, "last_configuration": rows[-1].get("configuration"),
-                "probe_frames": sum(1 for f in rows if f.get("probe") not in (None, "", "0"))}
+        rows = list(csv.DictReader(open(log)))
+        if not rows:
+            return {"frames": 0}
+        last = max(rows, key=lambda r: int(r["frame"]))
+        out = {"frames": len({r["frame"] for r in rows}),
+               "budget_w": float(last["budget_w"]) if last.get("budget_w") else None,
+               "last_configuration": last.get("configuration"),
+               "probe_frames": len({r["frame"] for r in rows if r.get("probe") not in (None, "", "0")})}
+        if out["budget_w"] is None:
+            return out
+        try:
+            f = governed_runs.figures(log, none_log, self.fps, 1.0)
+        except (ValueError, KeyError, ZeroDivisionError) as e:
+            out["figures_error"] = repr(e)
+            return out
+        out.update(windows=f["windows"], windows_kept=f["kept"], mean_w=f["power"], unbudgeted_w=f["none"],
+                   selections=f["selections"])
+        return out
 
     # 7 ------------------------------------------------------------------------------------
     def ssim(self):
