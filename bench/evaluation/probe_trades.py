@@ -44,12 +44,12 @@ MIDDLE = "1,0,0,1,0,0"  # probe_overhead.py's forced configuration: two probe st
 
 
 KNOBS = {"scale": "GLBUDGET_PROBE_SCALE", "period": "GLBUDGET_PROBE_PERIOD", "order": "GLBUDGET_PROBE_ORDER",
-         "max_age": "GLBUDGET_PROBE_MAX_AGE_S"}
+         "max_age": "GLBUDGET_PROBE_MAX_AGE_S", "sweep": "GLBUDGET_PROBE_SWEEP"}
 
 
 def setting_env(setting):
-    """GLBUDGET_* of a setting: 'default', 'scale=S', 'period=P', 'order=turn|weighted' or
-    'max_age=S'."""
+    """GLBUDGET_* of a setting: 'default', 'scale=S', 'period=P', 'order=turn|weighted',
+    'max_age=S' or 'sweep=0|1'."""
     if setting == "default":
         return {}
     knob, _, value = setting.partition("=")

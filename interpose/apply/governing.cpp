@@ -488,6 +488,7 @@ class GovernorThread {
     }
     const loop::Decision d = governor_.on_frame(record);
     set_probe_period_wanted(governor_.probe_period_wanted(), governor_.probe_bursts_spaced());
+    set_probe_selection_due(governor_.next_selection_frame(), governor_.settings().select_frames);
     // Observing only for the probes, the governor has nothing to tell.
     if (governor_.governing())
       for (; notes_said_ < governor_.notes().size(); ++notes_said_) say(governor_.notes()[notes_said_]);

@@ -61,7 +61,8 @@ const ProbeSettings& probe_settings() {
 namespace {
 std::atomic<uint64_t> g_period_wanted{0}, g_period_in_force{0};
 std::atomic<bool> g_bursts_spaced{false};
-std::atomic<float> g_pass_error[kMaxPasses];  // set_probe_pass_error
+std::atomic<uint64_t> g_selection_due{0}, g_select_frames{0};  // set_probe_selection_due
+std::atomic<float> g_pass_error[kMaxPasses];                   // set_probe_pass_error
 }  // namespace
 
 void set_probe_pass_error(size_t pass, double error) {
@@ -74,6 +75,11 @@ void set_probe_period_wanted(uint64_t frames, bool bursts_too) {
   g_bursts_spaced.store(bursts_too, std::memory_order_relaxed);
 }
 uint64_t probe_period_in_force() { return g_period_in_force.load(std::memory_order_relaxed); }
+
+void set_probe_selection_due(uint64_t frame, uint64_t select_frames) {
+  g_selection_due.store(frame, std::memory_order_relaxed);
+  g_select_frames.store(select_frames, std::memory_order_relaxed);
+}
 
 namespace {
 
@@ -148,7 +154,13 @@ const ProbeGl& pgl() {
 constexpr int kMaxColorAttachments = 8;
 constexpr int kMaxUnits = 32;      // texture units looked at for redirection
 constexpr size_t kMaxPending = 4;  // probe read-backs in flight
-constexpr int kMaxStreams = 2;
+// s0 and the s_i^lmax of one probe frame: one pass a frame, or every pass in the scene at once
+// (GLBUDGET_PROBE_SWEEP): s0 and seven passes, or eight where s0 is shown.
+constexpr int kMaxStreams = 8;
+// GLBUDGET_PROBE_SWEEP: frames a sweep is drawn ahead of the selection due, so that its
+// read-back and comparison reach the governor before it decides that frame (probe captures are
+// measured in frame order, apply/governing.cpp).
+constexpr uint64_t kSweepLead = 5;
 
 GLint get(GLenum pname) {
   GLint v = 0;
@@ -297,7 +309,7 @@ struct ProbeFrames::Impl {
   // Capture targets: 0 the app's image, then one per stream, window-sized textures (the GPU
   // SSIM samples them).
   GLuint capture_fbo[kMaxStreams + 1] = {}, capture_texture[kMaxStreams + 1] = {};
-  int capture_width = 0, capture_height = 0;
+  int capture_width = 0, capture_height = 0, capture_count = 0;
   bool captured[kMaxStreams + 1] = {};
   std::vector<Readback> pending;
   // The context's GPU SSIM (apply/probe_ssim.hpp), made at the first probe frame; null: the
@@ -341,6 +353,15 @@ struct ProbeFrames::Impl {
     }
     if (s.fbo) g.DeleteFramebuffers(1, &s.fbo);
     s = Shadow{};
+  }
+
+  void release_stream(Stream& st) {
+    for (auto& [app, shadow] : st.shadows) release_shadow(shadow);
+    st.shadows.clear();
+    for (auto& [app, l] : st.layered)
+      if (l.texture) agl().DeleteTextures(1, &l.texture);
+    st.layered.clear();
+    st.textures.clear();
   }
 
   // The app's attachments of its framebuffer `app` (bound for drawing now), or of the window.
@@ -1055,17 +1076,23 @@ struct ProbeFrames::Impl {
 
   // --- The swap ---------------------------------------------------------------------------
 
-  void ensure_captures(int width, int height) {
+  // The first `count` capture targets at this size, made as a probe frame first needs them:
+  // three window-sized images where probes take one pass a frame, up to nine for sweeps.
+  void ensure_captures(int width, int height, int count) {
     const ApplyGl& g = agl();
-    if (capture_width == width && capture_height == height && capture_fbo[0]) return;
-    for (int i = 0; i <= kMaxStreams; ++i) {
-      if (capture_fbo[i]) g.DeleteFramebuffers(1, &capture_fbo[i]);
-      if (capture_texture[i]) g.DeleteTextures(1, &capture_texture[i]);
+    if (capture_width != width || capture_height != height) {
+      for (int i = 0; i < capture_count; ++i) {
+        g.DeleteFramebuffers(1, &capture_fbo[i]);
+        g.DeleteTextures(1, &capture_texture[i]);
+        capture_fbo[i] = capture_texture[i] = 0;
+      }
+      capture_count = 0;
     }
+    if (capture_count >= count) return;
     const GLint active = get(GL_ACTIVE_TEXTURE);
     agl().ActiveTexture(GL_TEXTURE0);
     const GLint texture = get(GL_TEXTURE_BINDING_2D);
-    for (int i = 0; i <= kMaxStreams; ++i) {
+    for (int i = capture_count; i < count; ++i) {
       g.GenFramebuffers(1, &capture_fbo[i]);
       g.GenTextures(1, &capture_texture[i]);
       g.BindTexture(GL_TEXTURE_2D, capture_texture[i]);
@@ -1077,6 +1104,7 @@ struct ProbeFrames::Impl {
     agl().ActiveTexture(static_cast<GLenum>(active));
     capture_width = width;
     capture_height = height;
+    capture_count = count;
   }
 
   // A single-sampled image for a multisampled window shadow's resolve.
@@ -1114,6 +1142,7 @@ struct ProbeFrames::Impl {
 
   void before_present() {
     if (!frame) return;
+    std::fill(std::begin(captured), std::end(captured), false);
     const OwnGlWork own(c);
     TargetScaler& t = *targets();
     const int w = t.window_width(), h = t.window_height();
@@ -1121,7 +1150,7 @@ struct ProbeFrames::Impl {
     SavedFramebuffers saved;
     const ApplyGl& g = agl();
     g.Disable(GL_SCISSOR_TEST);
-    ensure_captures(w, h);
+    ensure_captures(w, h, stream_count + 1);
     for (int s = 0; s < stream_count; ++s) {
       captured[s + 1] = false;
       const Shadow* window = filled(streams[s], 0);
@@ -1171,7 +1200,8 @@ struct ProbeFrames::Impl {
     const OwnGlWork own(c);
     const ApplyGl& g = agl();
     const int w = capture_width, h = capture_height;
-    if (w <= 0 || h <= 0) return end_frame();
+    // before_present made a capture target for each stream, unless the window had no size.
+    if (w <= 0 || h <= 0 || capture_count < stream_count + 1) return end_frame();
     {
       SavedFramebuffers saved;
       g.Disable(GL_SCISSOR_TEST);
@@ -1371,8 +1401,9 @@ struct ProbeFrames::Impl {
 
   // The streams of a probe frame: s0, unless the frame is drawn in it, and s_i^lmax for a pass
   // that has levels and drew in the last probe frame: the next in turn (GLBUDGET_PROBE_ORDER=
-  // weighted: until each has been probed, then the one whose error × age is largest).
-  void plan(uint64_t next) {
+  // weighted: until each has been probed, then the one whose error × age is largest), or with
+  // `sweep` every such pass, those probed longest ago first where they are more than the streams.
+  void plan(uint64_t next, bool sweep) {
     const manifest::Manifest& m = active_manifest();
     const int passes = std::min<int>(static_cast<int>(m.passes.size()), kMaxPasses);
     stream_count = 0;
@@ -1391,7 +1422,22 @@ struct ProbeFrames::Impl {
     };
     pair_probed.resize(order.size());
     size_t pick = order.size();
-    if (options().probe_order_weighted && settled()) {
+    if (sweep) {
+      sweep_soon = false;
+      std::vector<size_t> taken;
+      for (size_t k = 0; k < order.size(); ++k)
+        if (probeable(order[k].first)) taken.push_back(k);
+      std::stable_sort(taken.begin(), taken.end(), [&](size_t a, size_t b) { return pair_probed[a] < pair_probed[b]; });
+      for (size_t k : taken) {
+        if (stream_count == kMaxStreams) break;
+        const auto [i, level] = order[k];
+        pair_probed[k] = next;
+        Levels probed = best;
+        probed.level[i] = static_cast<int8_t>(level);
+        if (i < 64 && level + 1 == static_cast<int>(m.passes[i].levels.size())) passes_probed |= uint64_t{1} << i;
+        if (!(probed == c.config)) streams[stream_count++].config = probed;
+      }
+    } else if (options().probe_order_weighted && settled()) {
       candidates.resize(order.size());
       for (size_t k = 0; k < order.size(); ++k) {
         const size_t i = order[k].first;
@@ -1413,6 +1459,9 @@ struct ProbeFrames::Impl {
       if (i < 64 && level + 1 == static_cast<int>(m.passes[i].levels.size())) passes_probed |= uint64_t{1} << i;
       if (!(probed == c.config)) streams[stream_count++].config = probed;
     }
+    // Slots a sweep used and this probe frame does not: their shadows go (plan runs between
+    // frames, so nothing draws from them).
+    for (int s = stream_count; s < kMaxStreams; ++s) release_stream(streams[s]);
     if (stream_count == 0) return;
     const bool follow = options().probe_follow;
     for (int s = 0; s < stream_count; ++s) {
@@ -1455,21 +1504,83 @@ struct ProbeFrames::Impl {
   // with a 3-frame span, put two into some windows (the demo's Hall at 50 %: 0.92 of its
   // windows kept). Not where the governor spaces bursts too: there every window holding a
   // probe is over the budget whatever is shown, and more probes would only put more windows over.
-  uint64_t age_bound_frames(const ProbeSettings& settings) const {
+  // With `whole` (GLBUDGET_PROBE_SWEEP, every pass in one probe frame): the bound's frames
+  // unshared.
+  uint64_t age_bound_frames(const ProbeSettings& settings, bool whole = false) const {
     const double age_s = options().probe_max_age_s;
     if (!settings.stretchable || !(age_s > 0.0) || !(frame_s > 0.0) || g_bursts_spaced.load(std::memory_order_relaxed))
       return 0;
+    const int in_scene = passes_in_scene();
+    if (in_scene == 0) return 0;
+    const double frames = age_s / frame_s / (whole ? 1 : in_scene);
+    if (!(frames < 1e9)) return 0;
+    return std::max(window_gap(settings), static_cast<uint64_t>(frames));
+  }
+  // The passes with levels that drew in the last probe frame (all before the first).
+  int passes_in_scene() const {
     const manifest::Manifest& m = active_manifest();
     int in_scene = 0;
     for (size_t i = 0; i < m.passes.size() && i < static_cast<size_t>(kMaxPasses); ++i)
       if (m.passes[i].levels.size() > 1 && pass_in_scene(m.passes[i], i, passes_drawn)) ++in_scene;
-    if (in_scene == 0) return 0;
-    const double frames = age_s / frame_s / in_scene;
-    if (!(frames < 1e9)) return 0;
-    const uint64_t floor =
-        std::max(settings.period, loop::one_probe_per_window_gap(loop::FeedbackSettings{}.window_s / frame_s));
-    return std::max(floor, static_cast<uint64_t>(frames));
+    return in_scene;
   }
+  // The fewest frames between probes: the first period, and one probe per governor window.
+  uint64_t window_gap(const ProbeSettings& settings) const {
+    return std::max(settings.period,
+                    frame_s > 0.0 ? loop::one_probe_per_window_gap(loop::FeedbackSettings{}.window_s / frame_s) : 0);
+  }
+  // GLBUDGET_PROBE_SWEEP, once every pass in the scene is probed: a probe frame measures them
+  // all, s0 drawn once for all of them, so that the governor's selection weighs errors of one
+  // frame rather than passes probed in turn up to the age bound before it (on the demo's Valley at
+  // 10 fps, four passes probed every 25 frames left base shading's error 84 frames old at a
+  // selection, and the estimates ranked at 0.944 where that frame's own errors rank at 0.988).
+  // A sweep comes kSweepLead frames ahead of the governor's selection due, where the last is
+  // half the longest gap ago (a selection every 60 frames under a 100-frame bound sweeps
+  // before each; every 200 frames at 60 fps, where the longest gap is 360, before each too),
+  // and at the longest gap anyway: the whole age bound, or where that is longer or there is
+  // none, the settled period times the passes in the scene (each pass as often as probed in
+  // turn). After a pass's error moved, half the longest gap after the last, unless a selection
+  // is due within that. Never two in one window. With GLBUDGET_PROBE_PERIOD given, a sweep
+  // every period.
+  uint64_t longest_sweep_gap(const ProbeSettings& settings, uint64_t settled_period) const {
+    if (!settings.stretchable) return settings.period;
+    const uint64_t in_turn = settled_period * static_cast<uint64_t>(std::max(1, passes_in_scene()));
+    const uint64_t whole = age_bound_frames(settings, true);
+    return std::max(window_gap(settings), whole ? std::min(whole, in_turn) : in_turn);
+  }
+  // The shortest gap before a sweep that is not at the longest: ahead of a selection, or after
+  // a pass's error moved (where no selection is due within it).
+  uint64_t early_sweep_gap(const ProbeSettings& settings, uint64_t settled_period) const {
+    return std::max(window_gap(settings), longest_sweep_gap(settings, settled_period) / 2);
+  }
+  bool sweep_soon = false;  // a pass's error moved since the last sweep
+  bool sweep_due(const ProbeSettings& settings, uint64_t settled_period, uint64_t next) const {
+    const uint64_t since = next - last_tried;
+    const uint64_t longest = longest_sweep_gap(settings, settled_period);
+    if (!settings.stretchable) return next % longest == 0 && since >= longest;
+    if (since >= longest) return true;
+    if (g_bursts_spaced.load(std::memory_order_relaxed)) return false;  // the governor wants them rare
+    const uint64_t early = early_sweep_gap(settings, settled_period);
+    if (since < early) return false;
+    const uint64_t due = g_selection_due.load(std::memory_order_relaxed);
+    const uint64_t to_due = due > next ? due - next : UINT64_MAX;
+    // A pass that moved waits for a selection due within the early gap: its sweep ahead of it
+    // measures the same and keeps the sweeps where the selections are.
+    return to_due <= kSweepLead || (sweep_soon && to_due > early);
+  }
+  // The frames between sweeps on average, for the governor's probe overhead.
+  uint64_t sweep_gap(const ProbeSettings& settings, uint64_t settled_period) const {
+    const uint64_t longest = longest_sweep_gap(settings, settled_period);
+    if (!settings.stretchable || g_bursts_spaced.load(std::memory_order_relaxed)) return longest;
+    const uint64_t early = early_sweep_gap(settings, settled_period);
+    if (sweep_soon) return early;  // the scene moves: as often as that allows
+    const uint64_t selections = g_select_frames.load(std::memory_order_relaxed);
+    if (!selections || !g_selection_due.load(std::memory_order_relaxed)) return longest;
+    // Before every k-th selection, k the fewest whose frames reach the early gap.
+    const uint64_t every = (early + selections - 1) / selections * selections;
+    return std::min(longest, every);
+  }
+
   // This context's seconds between swaps, smoothed over about ten frames.
   void time_swap() {
     const auto now = std::chrono::steady_clock::now();
@@ -1529,12 +1640,14 @@ void ProbeFrames::abandon_frame() {
 void ProbeFrames::after_swap(uint64_t next) {
   Impl& p = *impl_;
   if (!p.probe_possible()) return;
-  if (options().probe_max_age_s > 0.0) p.time_swap();  // only the age bound reads the frame time
+  // Only the age bound and sweeps read the frame time.
+  if (options().probe_max_age_s > 0.0 || options().probe_sweep) p.time_swap();
   p.collect(false);
   const ProbeSettings& settings = probe_settings();
   const uint64_t wanted = settings.stretchable ? g_period_wanted.load(std::memory_order_relaxed) : 0;
   const uint64_t settled_period = std::max(settings.period * settings.settled_factor, wanted);
   const uint64_t bound = settings.period ? p.age_bound_frames(settings) : 0;
+  const bool sweeping = options().probe_sweep && !options().probe_every_level && p.settled() && settings.period;
   if (const uint64_t drift = probe_drift_count(); drift != p.drift_seen) {
     p.drift_seen = drift;
     // The scene moved: every pass's error again, at the first period. Not where the age bound
@@ -1542,7 +1655,11 @@ void ProbeFrames::after_swap(uint64_t next) {
     // at 10 fps drew 51-54 probes in 600 frames where the bound alone gives about 22, so most
     // windows held one and the governor's margin for them showed cheaper configurations
     // (docs/evaluation/probes/probe-max-age.md).
-    if (!(bound && bound < settled_period)) p.passes_probed = 0;
+    // Sweeping, one sweep measures every pass again, as soon as an early sweep may come.
+    if (sweeping)
+      p.sweep_soon = true;
+    else if (!(bound && bound < settled_period))
+      p.passes_probed = 0;
   }
   uint64_t period = settings.period;
   if (p.settled())
@@ -1550,20 +1667,24 @@ void ProbeFrames::after_swap(uint64_t next) {
   else if (g_bursts_spaced.load(std::memory_order_relaxed))
     period = std::max(period, wanted);
   // The period the governor's probe overhead counts is the shorter of the two.
-  const uint64_t in_force = bound ? std::min(period, bound) : period;
+  const uint64_t in_force = sweeping ? p.sweep_gap(settings, settled_period) : bound ? std::min(period, bound) : period;
   if (in_force != g_period_in_force.load(std::memory_order_relaxed))
     g_period_in_force.store(in_force, std::memory_order_relaxed);
   // Not the first frames: the app may still be setting up what it draws. A period just made
   // longer also waits a whole period after the last probe tried; the age bound, counted from
   // the last probe tried, holds whatever frame number that falls on.
   if (period == 0 || next < 3) return;
-  const bool due = next % period == 0 && next - p.last_tried >= period;
-  const bool overdue = bound && p.last_tried && next - p.last_tried >= bound;
-  if (!(due || overdue)) return;
+  if (sweeping) {
+    if (!p.sweep_due(settings, settled_period, next)) return;
+  } else {
+    const bool due = next % period == 0 && next - p.last_tried >= period;
+    const bool overdue = bound && p.last_tried && next - p.last_tried >= bound;
+    if (!(due || overdue)) return;
+  }
   // Earlier probes not yet measured: this one would only wait behind them (governing.hpp).
   if (p.pending.size() >= kMaxPending || governor_probes_backlogged()) return;
   p.last_tried = next;
-  p.plan(next);
+  p.plan(next, sweeping);
 }
 
 void ProbeFrames::collect(bool wait) {

@@ -15,7 +15,9 @@
 // Streams: the best configuration s0 (unless the frame is drawn in it) and one configuration
 // with every pass best but one at its cheapest level (s_i^lmax), the pass chosen in turn (or,
 // with GLBUDGET_PROBE_ORDER=weighted, in turn until each has been probed, then by its last
-// error × the frames since: loop/probe_order.hpp). At
+// error × the frames since: loop/probe_order.hpp); with GLBUDGET_PROBE_SWEEP, once each pass in
+// the scene has been probed, every one of them in one probe frame, timed just ahead of the
+// governor's selections (ProbeFrames::Impl::sweep_due). At
 // the swap each stream's window image and the app's own are captured at window size and read
 // back behind a fence (never a stall); the governor thread turns them into errors
 // (apply/governing.hpp).
@@ -166,6 +168,9 @@ const ProbeSettings& probe_settings();
 // (0: none planned yet).
 void set_probe_period_wanted(uint64_t frames, bool bursts_too);
 uint64_t probe_period_in_force();
+// Governor thread: the frame its next selection is due at, and the frames between selections
+// (GLBUDGET_PROBE_SWEEP: settled probe frames measure every pass just ahead of it; 0: none due).
+void set_probe_selection_due(uint64_t frame, uint64_t select_frames);
 // Governor thread: manifest pass `pass`'s latest error at its cheapest level (0 where it is not
 // in the scene), by which settled probes choose the pass they take (loop/probe_order.hpp).
 void set_probe_pass_error(size_t pass, double error);

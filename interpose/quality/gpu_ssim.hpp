@@ -20,8 +20,10 @@ using GlProcLoader = void* (*)(const char* name);
 
 class GpuSsim {
  public:
-  // Tickets whose results are kept: a ticket is forgotten this many submits later.
-  static constexpr int kTicketsKept = 16;
+  // Tickets whose results are kept: a ticket is forgotten this many submits later. The probes
+  // keep up to four frames in flight, each with up to eight comparisons (a sweep's seven
+  // passes and the shown image against s0: apply/probes.cpp).
+  static constexpr int kTicketsKept = 64;
 
   // For the context current now. Null, and why in *why_not, if it lacks compute shaders
   // (OpenGL < 4.3 without ARB_compute_shader, OpenGL ES < 3.1), an entry point is missing, or

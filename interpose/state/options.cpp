@@ -55,6 +55,7 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_PROBE_LEVELS",
     "GLBUDGET_PROBE_ORDER",
     "GLBUDGET_PROBE_FOLLOW",
+    "GLBUDGET_PROBE_SWEEP",
     "GLBUDGET_SHIM",
     "GLBUDGET_COSTS",
     // A test switch, to be documented in README's options table: GL extensions the shim
@@ -218,6 +219,8 @@ Options parse_options(char** env, std::string* warnings) {
       parse_choice<bool>(name, value, {{"weighted", true}, {"turn", false}}, o.probe_order_weighted, warnings);
     } else if (name == "GLBUDGET_PROBE_FOLLOW") {
       parse_switch(name, value, o.probe_follow, warnings);
+    } else if (name == "GLBUDGET_PROBE_SWEEP") {
+      parse_switch(name, value, o.probe_sweep, warnings);
     } else if (name == "GLBUDGET_FEEDBACK") {
       parse_switch(name, value, o.feedback, warnings);
     } else if (name == "GLBUDGET_FEEDBACK_OWN") {

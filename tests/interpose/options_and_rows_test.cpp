@@ -237,6 +237,17 @@ TEST_CASE("GLBUDGET_PROBE_FOLLOW: on unless 0 or off; anything else said once, o
   CHECK(w == "glbudget: GLBUDGET_PROBE_FOLLOW='lead' is not 0/1/on/off; on\n");
 }
 
+TEST_CASE("GLBUDGET_PROBE_SWEEP: off unless 1 or on; anything else said once, off", "[unit]") {
+  std::string w;
+  CHECK_FALSE(parse_env({}, &w).probe_sweep);
+  CHECK(parse_env({"GLBUDGET_PROBE_SWEEP=1"}, &w).probe_sweep);
+  CHECK(parse_env({"GLBUDGET_PROBE_SWEEP=on"}, &w).probe_sweep);
+  CHECK_FALSE(parse_env({"GLBUDGET_PROBE_SWEEP=0"}, &w).probe_sweep);
+  CHECK(w.empty());
+  CHECK_FALSE(parse_env({"GLBUDGET_PROBE_SWEEP=all"}, &w).probe_sweep);
+  CHECK(w == "glbudget: GLBUDGET_PROBE_SWEEP='all' is not 0/1/on/off; off\n");
+}
+
 TEST_CASE("GLBUDGET_PROBE_MAX_AGE_S and GLBUDGET_TRANSITION_S: seconds up to an hour; others said, the default",
           "[unit]") {
   std::string w;

@@ -73,7 +73,8 @@ constexpr int kWidth = 160, kHeight = 90, kFrames = 7;
 // pass was half of each frame's time, and every level still halves it (the manifest's scales).
 constexpr const char* kShadowSize = "512";
 
-std::vector<std::string> demo(const std::string& scene, const std::string& dir, const std::string& config = "") {
+std::vector<std::string> demo(const std::string& scene, const std::string& dir, const std::string& config = "",
+                              int frames = kFrames) {
   std::vector<std::string> args = {DEMO_PATH,
                                    "--scene",
                                    scene,
@@ -86,7 +87,7 @@ std::vector<std::string> demo(const std::string& scene, const std::string& dir, 
                                    "--height",
                                    std::to_string(kHeight),
                                    "--frames",
-                                   std::to_string(kFrames),
+                                   std::to_string(frames),
                                    "--dump",
                                    dir};
   if (!config.empty()) args.insert(args.end(), {"--config", config});
@@ -115,7 +116,7 @@ struct ProbeRun {
 
 // The demo at its best under the shim, forced to `config`, probing every `period` frames.
 ProbeRun run_forced(const std::string& scene, const std::string& config, int period, bool dump_probes,
-                    const std::map<std::string, std::string>& more_env = {}) {
+                    const std::map<std::string, std::string>& more_env = {}, int frames = kFrames) {
   ProbeRun run;
   run.dir = temp_path("probes_" + scene + "_" + std::to_string(period));
   fs::create_directories(run.dir + "/app");
@@ -127,7 +128,7 @@ ProbeRun run_forced(const std::string& scene, const std::string& config, int per
                                             {"GLBUDGET_PROBE_PERIOD", std::to_string(period)}};
   if (dump_probes) env["GLBUDGET_DUMP_PROBES"] = run.dir + "/probes";
   for (const auto& [name, value] : more_env) env[name] = value;  // the caller's win
-  const ProcessResult r = run_process(demo(scene, run.dir + "/app"), env);
+  const ProcessResult r = run_process(demo(scene, run.dir + "/app", "", frames), env);
   run.err = r.err;
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
@@ -268,6 +269,84 @@ TEST_CASE("a stream that follows the app or s0 until its first different call dr
       }
       fs::remove_all(followed.dir);
       fs::remove_all(whole.dir);
+    }
+  }
+}
+
+TEST_CASE(
+    "a sweep probes every pass in the scene in one frame, each stream the demo's own image of its configuration") {
+  // GLBUDGET_PROBE_SWEEP with a probe every frame from frame 3: one pass a frame until each pass
+  // in the scene has been probed, then every one of them in each probe frame, beside s0 (unless
+  // it is shown), every stream following the app or s0 until its first different call. Shown:
+  // s0 itself (the first s_i is stream 0, the others follow the app) and the scale and shadows
+  // changed (s0 draws whole, each s_i follows it).
+  constexpr int kSweepFrames = 12;
+  for (const std::string scene : {"hall", "valley"}) {
+    for (const std::string shown : {"0,0,0,0,0,0", "1,0,0,1,0,0"}) {
+      if (kSanitizedRun && shown != "1,0,0,1,0,0") continue;
+      INFO(scene << " shown " << shown);
+      const ProbeRun run = run_forced(scene, shown, 1, true, {{"GLBUDGET_PROBE_SWEEP", "1"}}, kSweepFrames);
+      // The passes each probe frame measured at their cheapest (s0 and the shown image aside).
+      std::map<int, std::set<std::string>> probed;
+      for (const auto& entry : fs::directory_iterator(run.dir + "/probes")) {
+        const std::string name = entry.path().filename().string();
+        const size_t f = name.find("_f"), under = name.find('_', f + 2);
+        const int frame = std::stoi(name.substr(f + 2, under - f - 2));
+        const std::string levels = name.substr(name.rfind('_') + 1, name.size() - name.rfind('_') - 5);
+        if (name.find("_shown_") == std::string::npos && levels != "0:0:0:0:0:0") probed[frame].insert(levels);
+      }
+      std::set<std::string> first_sweep;  // one pass a frame until each in the scene is probed
+      int sweeps = 0;
+      for (const auto& [frame, levels] : probed) {
+        INFO("frame " << frame);
+        if (levels.size() == 1 && sweeps == 0) {
+          first_sweep.insert(*levels.begin());
+          continue;
+        }
+        // Every pass the first sweep found in the scene, the shown configuration's own aside
+        // (its error is the shown image's).
+        std::set<std::string> expected = first_sweep;
+        std::string shown_levels = shown;
+        std::replace(shown_levels.begin(), shown_levels.end(), ',', ':');
+        expected.erase(shown_levels);
+        CHECK(levels == expected);
+        ++sweeps;
+      }
+      CHECK(first_sweep.size() >= 4);  // Valley's four passes in the scene, Hall's six
+      CHECK(sweeps >= 2);
+      // Each stream's image is the demo's own image of that configuration.
+      const std::string own = run.dir + "/own";
+      fs::create_directories(own);
+      std::set<std::string> rendered;
+      for (const auto& entry : fs::directory_iterator(run.dir + "/probes")) {
+        const std::string name = entry.path().filename().string();
+        if (name.find("_shown_") != std::string::npos) continue;
+        const size_t f = name.find("_f"), under = name.find('_', f + 2);
+        const int frame = std::stoi(name.substr(f + 2, under - f - 2));
+        if (probed[frame].size() < 2) continue;  // the sweeps' images
+        const std::string levels = name.substr(name.rfind('_') + 1, name.size() - name.rfind('_') - 5);
+        INFO(name);
+        if (!rendered.count(levels)) {
+          std::string comma = levels;
+          std::replace(comma.begin(), comma.end(), ':', ',');
+          REQUIRE(run_process(demo(scene, own, comma, kSweepFrames), {}).exit_code == 0);
+          rendered.insert(levels);
+        }
+        const Difference d =
+            compare(read_image(entry.path().string()), read_image(own_image(own, scene, levels, frame)));
+        CHECK(d.max <= 1);  // llvmpipe's rounding in the antialiasing pass, as above
+        CHECK(d.channels <= static_cast<size_t>(kWidth * kHeight * 3) / 1000);
+      }
+      // Each sweep's row logs every stream's error.
+      for (const auto& row : run.rows) {
+        if (row.at("probe") != "1" || row.at("pass").empty()) continue;
+        const int frame = std::stoi(row.at("frame"));
+        if (probed[frame].size() < 2) continue;
+        const std::string& streams = row.at("probe_streams");
+        INFO("frame " << frame << ": " << streams);
+        CHECK(static_cast<size_t>(std::count(streams.begin(), streams.end(), '=')) == probed[frame].size());
+      }
+      fs::remove_all(run.dir);
     }
   }
 }
@@ -627,6 +706,56 @@ TEST_CASE("under the age bound a pass whose error moved does not bring the first
     last[pass] = error;
   }
   CHECK(drifted >= 1);
+}
+
+TEST_CASE("sweeps measure every pass in the scene in one probe frame, just ahead of the governor's selections") {
+  if (kSanitizedRun) return;  // the governor's bookkeeping, as above
+  // Valley paced at 10 fps, a selection every 60 frames: after the first sweep (its four passes
+  // in the scene one a probe frame, every 10 frames) each probe frame measures all four, five
+  // frames ahead of each selection due (half the 100-frame bound, 10 s unshared, has passed by
+  // then), and never more than the bound apart.
+  const std::string log = temp_path("valley_sweep.csv");
+  const ProcessResult r = governed_demo(
+      "valley", 260, log, {{"GLBUDGET_FPS", "10"}, {"GLBUDGET_PROBE_SWEEP", "1"}, {"GLBUDGET_SELECT_FRAMES", "60"}});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  std::set<long> selections;
+  for (const auto& row : read_csv_rows_by_name(log))
+    if (row.at("decision") == "select") selections.insert(std::stol(row.at("frame")));
+  const ProbedPasses run = probed_passes(log);
+  unlink(log.c_str());
+  std::string at;
+  for (long s : selections) at += std::to_string(s) + " ";
+  INFO(run.text << "selections: " << at);
+  REQUIRE(run.streams.size() >= 6);
+  const long swept = std::next(run.streams.begin(), 3)->first;
+  CHECK(swept == 40);
+  std::set<long> sweeps;
+  for (auto it = run.streams.upper_bound(swept); it != run.streams.end(); ++it) {
+    // One stream per pass in the scene (less the shown configuration's, if it is one of them).
+    const long entries = std::count(it->second.begin(), it->second.end(), '=');
+    CHECK(entries >= 3);
+    sweeps.insert(it->first);
+  }
+  REQUIRE(sweeps.size() >= 2);
+  long previous = swept;
+  for (long s : sweeps) {
+    CHECK(s - previous <= 140);  // the bound's 100 frames, the frame time's estimate off by a third
+    previous = s;
+  }
+  // Each selection due by the period (60 after the one before), once sweeps have begun, has a
+  // sweep in the frames just before it (kSweepLead, 5, ahead), but for at most one: where the
+  // 100-frame bound came due 15-55 frames before a selection, no sweep comes ahead of that one
+  // (never two within half the bound); from the next on, 60 frames apart, each has its own.
+  int ahead = 0, missed = 0;
+  for (auto it = std::next(selections.begin()); it != selections.end(); ++it) {
+    if (*it - *std::prev(it) != 60 || *std::prev(it) < swept) continue;
+    const auto after = sweeps.lower_bound(*it);
+    REQUIRE(after != sweeps.begin());
+    (*it - *std::prev(after) <= 15 ? ahead : missed) += 1;
+  }
+  CHECK(ahead >= 2);
+  CHECK(missed <= 1);
 }
 
 TEST_CASE("bad probe settings are said once and the app runs on") {

@@ -168,6 +168,12 @@ class Governor {
   // period too: no configuration is predicted to fit a probe's whole excess in a window under
   // the budget, so that each window holding a probe would be over it.
   bool probe_bursts_spaced() const { return probe_bursts_spaced_; }
+  // The frame the next selection is due at by select_frames (one may come sooner: a window
+  // over the budget, a scene that got heavier), for probes that measure just ahead of it;
+  // 0 before the first selection, whose frame waits on a measured window.
+  std::uint64_t next_selection_frame() const {
+    return selections_ > 0 ? last_selection_frame_ + settings_.select_frames : 0;
+  }
   // The last selection: every configuration's predicted power (corrected) and estimated
   // error, by ConfigurationSpace index, the power as the selection weighed it (unmeasured
   // configurations raised by the guard, the best lowered by the probes it does not draw), and
