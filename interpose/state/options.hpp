@@ -62,11 +62,11 @@ struct Options {
   bool measured_at_windows = false;
   // GLBUDGET_METER_WINDOWS=1: a window of the settled configuration read as a meter reads it,
   // probes included, over the budget selects again at once (loop/governor.hpp, meter_windows)
-  bool meter_windows = false;
+  bool meter_windows = true;
   // GLBUDGET_LEVEL_INTERACTIONS=calibrated|additive|model|scaled: where `glbudget calibrate --app`
   // measured each level alone, how a combination of levels is predicted (loop/governor.hpp,
   // level_interactions; model/additive_levels.hpp)
-  loop::LevelInteractions level_interactions = loop::LevelInteractions::calibrated;
+  loop::LevelInteractions level_interactions = loop::LevelInteractions::scaled;
   // GLBUDGET_ERROR_FEEDBACK=0: under an error budget, the estimates are not corrected by the
   // error probes measured of the configuration shown
   bool error_feedback = true;

@@ -216,14 +216,15 @@ TEST_CASE("GLBUDGET_MEASURED_AT_WINDOWS: off unless 1 or on; anything else said 
   CHECK(w == "glbudget: GLBUDGET_MEASURED_AT_WINDOWS='often' is not 0/1/on/off; off\n");
 }
 
-TEST_CASE("GLBUDGET_METER_WINDOWS: off unless 1 or on; anything else said once, off", "[unit]") {
+TEST_CASE("GLBUDGET_METER_WINDOWS: on unless 0 or off; anything else said once, on", "[unit]") {
   std::string w;
-  CHECK_FALSE(parse_env({}, &w).meter_windows);
+  CHECK(parse_env({}, &w).meter_windows);
   CHECK(parse_env({"GLBUDGET_METER_WINDOWS=on"}, &w).meter_windows);
   CHECK_FALSE(parse_env({"GLBUDGET_METER_WINDOWS=0"}, &w).meter_windows);
+  CHECK_FALSE(parse_env({"GLBUDGET_METER_WINDOWS=off"}, &w).meter_windows);
   CHECK(w.empty());
-  CHECK_FALSE(parse_env({"GLBUDGET_METER_WINDOWS=always"}, &w).meter_windows);
-  CHECK(w == "glbudget: GLBUDGET_METER_WINDOWS='always' is not 0/1/on/off; off\n");
+  CHECK(parse_env({"GLBUDGET_METER_WINDOWS=always"}, &w).meter_windows);
+  CHECK(w == "glbudget: GLBUDGET_METER_WINDOWS='always' is not 0/1/on/off; on\n");
 }
 
 TEST_CASE("GLBUDGET_PROBE_FOLLOW: on unless 0 or off; anything else said once, on", "[unit]") {
@@ -321,7 +322,8 @@ TEST_CASE("GLBUDGET_PROBE_SSIM and GLBUDGET_LEVEL_INTERACTIONS: one of their nam
   CHECK(parse_env({}, &w).probe_ssim == S::kAuto);
   CHECK(parse_env({"GLBUDGET_PROBE_SSIM=gpu"}, &w).probe_ssim == S::kGpu);
   CHECK(parse_env({"GLBUDGET_PROBE_SSIM=cpu"}, &w).probe_ssim == S::kCpu);
-  CHECK(parse_env({}, &w).level_interactions == L::calibrated);
+  CHECK(parse_env({}, &w).level_interactions == L::scaled);
+  CHECK(parse_env({"GLBUDGET_LEVEL_INTERACTIONS=calibrated"}, &w).level_interactions == L::calibrated);
   CHECK(parse_env({"GLBUDGET_LEVEL_INTERACTIONS=additive"}, &w).level_interactions == L::additive);
   CHECK(parse_env({"GLBUDGET_LEVEL_INTERACTIONS=model"}, &w).level_interactions == L::model);
   CHECK(parse_env({"GLBUDGET_LEVEL_INTERACTIONS=scaled"}, &w).level_interactions == L::scaled);
@@ -329,7 +331,6 @@ TEST_CASE("GLBUDGET_PROBE_SSIM and GLBUDGET_LEVEL_INTERACTIONS: one of their nam
   CHECK(parse_env({"GLBUDGET_PROBE_SSIM=fpga"}, &w).probe_ssim == S::kAuto);
   CHECK(w == "glbudget: GLBUDGET_PROBE_SSIM='fpga' is not auto, gpu or cpu; auto\n");
   w.clear();
-  CHECK(parse_env({"GLBUDGET_LEVEL_INTERACTIONS=Model"}, &w).level_interactions == L::calibrated);
-  CHECK(w ==
-        "glbudget: GLBUDGET_LEVEL_INTERACTIONS='Model' is not calibrated, additive, model or scaled; calibrated\n");
+  CHECK(parse_env({"GLBUDGET_LEVEL_INTERACTIONS=Model"}, &w).level_interactions == L::scaled);
+  CHECK(w == "glbudget: GLBUDGET_LEVEL_INTERACTIONS='Model' is not calibrated, additive, model or scaled; scaled\n");
 }

@@ -63,7 +63,7 @@ struct GovernorSettings {
   // hold each single-level prediction to them; model/additive_levels.hpp;
   // level_interactions.hpp).
   using Interactions = LevelInteractions;
-  Interactions level_interactions = Interactions::calibrated;
+  Interactions level_interactions = Interactions::scaled;
   // Beyond the paper: where more windows hold a quality probe than the budget may leave over,
   // each must fit a probe's whole excess (probe_overhead.hpp), and at low frame rates that
   // margin costs the shown image quality. When a selection with the mean margin of probes
@@ -93,7 +93,7 @@ struct GovernorSettings {
   // them, in windows of the feedback's length holding every frame, probes and the frames that
   // finish them included (MeterWindow); one over the budget selects again at once. false: a
   // window selects again when its frames without probes plus the probes' mean are over.
-  bool meter_windows = false;
+  bool meter_windows = true;
   model::FitSettings fit = {};
   model::HistorySettings history = {};
 };
