@@ -1534,22 +1534,22 @@ struct ProbeFrames::Impl {
   // frame rather than passes probed in turn up to the age bound before it (on the demo's Valley at
   // 10 fps, four passes probed every 25 frames left base shading's error 84 frames old at a
   // selection, and the estimates ranked at 0.944 where that frame's own errors rank at 0.988).
-  // A sweep comes kSweepLead frames ahead of the governor's selection due, where the last is
-  // half the longest gap ago (a selection every 60 frames under a 100-frame bound sweeps
-  // before each; every 200 frames at 60 fps, where the longest gap is 360, before each too),
-  // and at the longest gap anyway: the whole age bound, or where that is longer or there is
-  // none, the settled period times the passes in the scene (each pass as often as probed in
-  // turn). After a pass's error moved, half the longest gap after the last, unless a selection
-  // is due within that. Never two in one window. With GLBUDGET_PROBE_PERIOD given, a sweep
-  // every period.
+  // A sweep comes kSweepLead frames ahead of each selection due by the governor's period
+  // (a selection decides by the estimates of that moment, and a pass probed in turn up to the
+  // bound before it is what Valley's ranking lacked), and at the longest gap anyway: the whole
+  // age bound, or where that is longer or there is none, the settled period times the passes in
+  // the scene (each pass as often as probed in turn). After a pass's error moved, half the
+  // longest gap after the last, unless a selection is due within that. Never two in one
+  // window; none ahead of selections where the governor spaces probes (g_bursts_spaced: a
+  // window holding one is over the budget whatever is shown). With GLBUDGET_PROBE_PERIOD
+  // given, a sweep every period.
   uint64_t longest_sweep_gap(const ProbeSettings& settings, uint64_t settled_period) const {
     if (!settings.stretchable) return settings.period;
     const uint64_t in_turn = settled_period * static_cast<uint64_t>(std::max(1, passes_in_scene()));
     const uint64_t whole = age_bound_frames(settings, true);
     return std::max(window_gap(settings), whole ? std::min(whole, in_turn) : in_turn);
   }
-  // The shortest gap before a sweep that is not at the longest: ahead of a selection, or after
-  // a pass's error moved (where no selection is due within it).
+  // The shortest gap before a sweep after a pass's error moved.
   uint64_t early_sweep_gap(const ProbeSettings& settings, uint64_t settled_period) const {
     return std::max(window_gap(settings), longest_sweep_gap(settings, settled_period) / 2);
   }
@@ -1560,13 +1560,14 @@ struct ProbeFrames::Impl {
     if (!settings.stretchable) return next % longest == 0 && since >= longest;
     if (since >= longest) return true;
     if (g_bursts_spaced.load(std::memory_order_relaxed)) return false;  // the governor wants them rare
-    const uint64_t early = early_sweep_gap(settings, settled_period);
-    if (since < early) return false;
+    if (since < window_gap(settings)) return false;
     const uint64_t due = g_selection_due.load(std::memory_order_relaxed);
     const uint64_t to_due = due > next ? due - next : UINT64_MAX;
-    // A pass that moved waits for a selection due within the early gap: its sweep ahead of it
+    if (to_due <= kSweepLead) return true;
+    // A pass that moved waits for a selection due within the early gap: the sweep ahead of it
     // measures the same and keeps the sweeps where the selections are.
-    return to_due <= kSweepLead || (sweep_soon && to_due > early);
+    const uint64_t early = early_sweep_gap(settings, settled_period);
+    return sweep_soon && since >= early && to_due > early;
   }
   // The frames between sweeps on average, for the governor's probe overhead.
   uint64_t sweep_gap(const ProbeSettings& settings, uint64_t settled_period) const {
@@ -1576,9 +1577,7 @@ struct ProbeFrames::Impl {
     if (sweep_soon) return early;  // the scene moves: as often as that allows
     const uint64_t selections = g_select_frames.load(std::memory_order_relaxed);
     if (!selections || !g_selection_due.load(std::memory_order_relaxed)) return longest;
-    // Before every k-th selection, k the fewest whose frames reach the early gap.
-    const uint64_t every = (early + selections - 1) / selections * selections;
-    return std::min(longest, every);
+    return std::min(longest, std::max(selections, window_gap(settings)));  // ahead of each selection
   }
 
   // This context's seconds between swaps, smoothed over about ten frames.

@@ -712,11 +712,15 @@ TEST_CASE("sweeps measure every pass in the scene in one probe frame, just ahead
   if (kSanitizedRun) return;  // the governor's bookkeeping, as above
   // Valley paced at 10 fps, a selection every 60 frames: after the first sweep (its four passes
   // in the scene one a probe frame, every 10 frames) each probe frame measures all four, five
-  // frames ahead of each selection due (half the 100-frame bound, 10 s unshared, has passed by
-  // then), and never more than the bound apart.
+  // frames ahead of each selection due, and never more than the bound (10 s unshared, 100
+  // frames) apart.
   const std::string log = temp_path("valley_sweep.csv");
-  const ProcessResult r = governed_demo(
-      "valley", 260, log, {{"GLBUDGET_FPS", "10"}, {"GLBUDGET_PROBE_SWEEP", "1"}, {"GLBUDGET_SELECT_FRAMES", "60"}});
+  // The meter's windows off: a window over the budget would select again off the period.
+  const ProcessResult r = governed_demo("valley", 260, log,
+                                        {{"GLBUDGET_FPS", "10"},
+                                         {"GLBUDGET_PROBE_SWEEP", "1"},
+                                         {"GLBUDGET_SELECT_FRAMES", "60"},
+                                         {"GLBUDGET_METER_WINDOWS", "0"}});
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   std::set<long> selections;
@@ -744,9 +748,8 @@ TEST_CASE("sweeps measure every pass in the scene in one probe frame, just ahead
     previous = s;
   }
   // Each selection due by the period (60 after the one before), once sweeps have begun, has a
-  // sweep in the frames just before it (kSweepLead, 5, ahead), but for at most one: where the
-  // 100-frame bound came due 15-55 frames before a selection, no sweep comes ahead of that one
-  // (never two within half the bound); from the next on, 60 frames apart, each has its own.
+  // sweep in the frames just before it (kSweepLead, 5, ahead), but for at most one: a sweep at
+  // the 100-frame bound within a window before it leaves no room for another.
   int ahead = 0, missed = 0;
   for (auto it = std::next(selections.begin()); it != selections.end(); ++it) {
     if (*it - *std::prev(it) != 60 || *std::prev(it) < swept) continue;
