@@ -161,6 +161,10 @@ constexpr int kMaxStreams = 8;
 // read-back and comparison reach the governor before it decides that frame (probe captures are
 // measured in frame order, apply/governing.cpp).
 constexpr uint64_t kSweepLead = 5;
+// What a sweep of the demo's four to six passes cost against a probe of one pass, each a probe
+// frame every 60 frames unpaced (docs/evaluation/probes/probe-sweeps.md): 1.2-1.7 times; so the
+// settled period, where it sets the longest gap between sweeps, is doubled.
+constexpr int kSweepCostInProbes = 2;
 
 GLint get(GLenum pname) {
   GLint v = 0;
@@ -1537,17 +1541,19 @@ struct ProbeFrames::Impl {
   // A sweep comes kSweepLead frames ahead of each selection due by the governor's period
   // (a selection decides by the estimates of that moment, and a pass probed in turn up to the
   // bound before it is what Valley's ranking lacked), and at the longest gap anyway: the whole
-  // age bound, or where that is longer or there is none, the settled period times the passes in
-  // the scene (each pass as often as probed in turn). After a pass's error moved, half the
+  // age bound, or where that is longer or there is none, the settled period times
+  // kSweepCostInProbes (a sweep costs about as much as that many probes of one pass each, so
+  // that sweeps cost no more than the probes in turn did). After a pass's error moved, half the
   // longest gap after the last, unless a selection is due within that. Never two in one
-  // window; none ahead of selections where the governor spaces probes (g_bursts_spaced: a
-  // window holding one is over the budget whatever is shown). With GLBUDGET_PROBE_PERIOD
-  // given, a sweep every period.
+  // window. Where the governor spaces probes (g_bursts_spaced: a window holding one is over the
+  // budget whatever is shown), a sweep a longest gap, drawn ahead of the selection due in the
+  // last selection period of it. With GLBUDGET_PROBE_PERIOD given, a sweep every period.
   uint64_t longest_sweep_gap(const ProbeSettings& settings, uint64_t settled_period) const {
     if (!settings.stretchable) return settings.period;
-    const uint64_t in_turn = settled_period * static_cast<uint64_t>(std::max(1, passes_in_scene()));
+    const uint64_t as_costly =
+        settled_period * static_cast<uint64_t>(std::clamp(passes_in_scene(), 1, kSweepCostInProbes));
     const uint64_t whole = age_bound_frames(settings, true);
-    return std::max(window_gap(settings), whole ? std::min(whole, in_turn) : in_turn);
+    return std::max(window_gap(settings), whole ? std::min(whole, as_costly) : as_costly);
   }
   // The shortest gap before a sweep after a pass's error moved.
   uint64_t early_sweep_gap(const ProbeSettings& settings, uint64_t settled_period) const {
@@ -1559,10 +1565,15 @@ struct ProbeFrames::Impl {
     const uint64_t longest = longest_sweep_gap(settings, settled_period);
     if (!settings.stretchable) return next % longest == 0 && since >= longest;
     if (since >= longest) return true;
-    if (g_bursts_spaced.load(std::memory_order_relaxed)) return false;  // the governor wants them rare
     if (since < window_gap(settings)) return false;
     const uint64_t due = g_selection_due.load(std::memory_order_relaxed);
     const uint64_t to_due = due > next ? due - next : UINT64_MAX;
+    if (g_bursts_spaced.load(std::memory_order_relaxed)) {
+      // The governor wants them rare: one a longest gap still, but ahead of the selection due
+      // within the last selection period of that gap rather than at the gap itself.
+      const uint64_t selections = g_select_frames.load(std::memory_order_relaxed);
+      return to_due <= kSweepLead && since + selections >= longest;
+    }
     if (to_due <= kSweepLead) return true;
     // A pass that moved waits for a selection due within the early gap: the sweep ahead of it
     // measures the same and keeps the sweeps where the selections are.
