@@ -1425,6 +1425,15 @@ struct ProbeFrames::Impl {
       return i < static_cast<size_t>(kMaxPasses) && pass_in_scene(m.passes[i], i, passes_drawn);
     };
     pair_probed.resize(order.size());
+    // The stream of pair k (none where the frame is drawn in it: the shown image is its probe).
+    const auto probe_pair = [&](size_t k) {
+      const auto [i, level] = order[k];
+      pair_probed[k] = next;
+      Levels probed = best;
+      probed.level[i] = static_cast<int8_t>(level);
+      if (i < 64 && level + 1 == static_cast<int>(m.passes[i].levels.size())) passes_probed |= uint64_t{1} << i;
+      if (!(probed == c.config)) streams[stream_count++].config = probed;
+    };
     size_t pick = order.size();
     if (sweep) {
       sweep_soon = false;
@@ -1432,15 +1441,8 @@ struct ProbeFrames::Impl {
       for (size_t k = 0; k < order.size(); ++k)
         if (probeable(order[k].first)) taken.push_back(k);
       std::stable_sort(taken.begin(), taken.end(), [&](size_t a, size_t b) { return pair_probed[a] < pair_probed[b]; });
-      for (size_t k : taken) {
-        if (stream_count == kMaxStreams) break;
-        const auto [i, level] = order[k];
-        pair_probed[k] = next;
-        Levels probed = best;
-        probed.level[i] = static_cast<int8_t>(level);
-        if (i < 64 && level + 1 == static_cast<int>(m.passes[i].levels.size())) passes_probed |= uint64_t{1} << i;
-        if (!(probed == c.config)) streams[stream_count++].config = probed;
-      }
+      for (size_t k : taken)
+        if (stream_count < kMaxStreams) probe_pair(k);
     } else if (options().probe_order_weighted && settled()) {
       candidates.resize(order.size());
       for (size_t k = 0; k < order.size(); ++k) {
@@ -1455,14 +1457,7 @@ struct ProbeFrames::Impl {
         if (probeable(order[k].first)) pick = k;
       }
     }
-    if (pick < order.size()) {
-      const auto [i, level] = order[pick];
-      pair_probed[pick] = next;
-      Levels probed = best;
-      probed.level[i] = static_cast<int8_t>(level);
-      if (i < 64 && level + 1 == static_cast<int>(m.passes[i].levels.size())) passes_probed |= uint64_t{1} << i;
-      if (!(probed == c.config)) streams[stream_count++].config = probed;
-    }
+    if (pick < order.size()) probe_pair(pick);
     // Slots a sweep used and this probe frame does not: their shadows go (plan runs between
     // frames, so nothing draws from them).
     for (int s = stream_count; s < kMaxStreams; ++s) release_stream(streams[s]);
