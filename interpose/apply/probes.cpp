@@ -1458,9 +1458,10 @@ struct ProbeFrames::Impl {
       }
     }
     if (pick < order.size()) probe_pair(pick);
-    // Slots a sweep used and this probe frame does not: their shadows go (plan runs between
-    // frames, so nothing draws from them).
-    for (int s = stream_count; s < kMaxStreams; ++s) release_stream(streams[s]);
+    // Slots only a sweep uses, unused by this probe frame: their shadows go (plan runs between
+    // frames, so nothing draws from them). The two a probe of one pass uses are kept, as before
+    // sweeps, across frames shown at s0 (one stream) and elsewhere (two).
+    for (int s = std::max(stream_count, 2); s < kMaxStreams; ++s) release_stream(streams[s]);
     if (stream_count == 0) return;
     const bool follow = options().probe_follow;
     for (int s = 0; s < stream_count; ++s) {
