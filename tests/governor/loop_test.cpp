@@ -676,6 +676,44 @@ TEST_CASE("probe overhead is energy: a probe frame that overruns its slot counts
   CHECK(untimed.excess_w() == Approx(20.5));
 }
 
+TEST_CASE(
+    "probe overhead: a sweep is measured however many slots it fills, and probes of one pass stand in for it "
+    "until it is",
+    "[loop][extremes]") {
+  // 10 frames a second at 20 W. Probes of one pass every 20 frames: 1.5 slots at 30 W (15 W x
+  // slots over their neighbours). Then the shim sweeps six passes (seven streams): each sweep
+  // lasts 5.5 slots, 0.55 s, at 30 W (55 W x slots), every 60 frames.
+  constexpr std::int64_t kSlotNs = 100'000'000;
+  ProbeOverhead o;
+  std::int64_t t = 0;
+  auto feed = [&](int frames, int period, std::int64_t probe_slots_x2) {
+    for (int k = 0; k < frames; ++k) {
+      const bool probe = k % period == period / 2;
+      t += probe ? probe_slots_x2 * kSlotNs / 2 : kSlotNs;
+      o.add(probe, probe ? 30.0 : 20.0, t);
+    }
+  };
+  feed(400, 20, 3);
+  REQUIRE(o.probes_measured() == 20);
+  // (The probe frames' 0.15 s count in the recent frame rate: a slot is a little longer.)
+  const double single = o.largest_recent_excess_w();
+  CHECK(single == Approx(15.0).epsilon(0.03));
+  // Sweeps from now on, none measured yet: the probes of one pass, times 7 / 2, stand in.
+  o.set_sweep_streams(7);
+  CHECK(o.largest_recent_excess_w() == Approx(3.5 * single));
+  CHECK(o.whole_excess_margin_w(1.0) == Approx(5.25).epsilon(0.05));
+  o.set_sweep_streams(7);  // said again every frame: scaled once
+  CHECK(o.largest_recent_excess_w() == Approx(3.5 * single));
+  // A sweep of 5.5 slots is no pause: it is measured, and it replaces the stand-in whole.
+  feed(60, 60, 11);
+  REQUIRE(o.probes_measured() == 1);
+  CHECK(o.largest_recent_excess_w() == Approx(55.0).epsilon(0.01));
+  CHECK(o.excess_w() == Approx(55.0).epsilon(0.01));
+  // Past 16 slots a probe frame is a pause (a shader built on the spot): not counted.
+  feed(60, 60, 40);
+  CHECK(o.probes_measured() == 1);
+}
+
 TEST_CASE("probe overhead: a probe shown at the best draws one stream fewer than one shown elsewhere",
           "[loop][extremes]") {
   // 10 frames a second at 20 W. A probe shown at the best configuration draws no stream of

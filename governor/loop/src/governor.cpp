@@ -283,7 +283,18 @@ bool Governor::select(const FrameRecord& record) {
     probe_margin_w_ = whole_range ? std::numeric_limits<double>::infinity() : probe_window_margin_w();
     margin_w_ = whole_range ? 0.0 : margin_without_probes_w + probe_margin_w_;
     guard_unmeasured(whole_range ? 0.0 : feedback_.unmeasured_margin_w(), !whole_range);
+    const bool probes_were_rare = probe_period_wanted_ > 0, bursts_were_rare = probe_bursts_spaced_;
     if (!whole_range) want_probe_period(budget_w, margin_without_probes_w);
+    // Probes held rare until now and not from this selection on: the share the probes were
+    // planned at found their mean, but they come at the shim's own period from now, and each
+    // window holding one must fit its whole excess (the demo's Sponza at 50 % with sweeps: a
+    // selection kept 0.02 W for the probes as it let them resume, the sweep after it put its
+    // window 1-2 W over the budget). The next selection reads the period they came at.
+    if (!whole_range &&
+        ((probes_were_rare && probe_period_wanted_ == 0) || (bursts_were_rare && !probe_bursts_spaced_))) {
+      probe_margin_w_ = std::max(probe_margin_w_, probe_overhead_.whole_excess_margin_w(settings_.feedback.window_s));
+      margin_w_ = margin_without_probes_w + probe_margin_w_;
+    }
     // The best's own probes draw one stream fewer: it keeps only what they cost. After the
     // probe period is weighed, whose two margins would each need their own lowering.
     if (!whole_range && best < guarded_.size()) {
@@ -701,6 +712,7 @@ void Governor::want_probe_period(double budget_w, double margin_without_probes_w
 Decision Governor::on_frame(const FrameRecord& frame) {
   if (!started_) start(frame);
   probe_overhead_.set_period_in_force(frame.probe_period);
+  probe_overhead_.set_sweep_streams(frame.probe_sweep_streams);
   probe_overhead_.add(frame.probe, frame.power_w, frame.time_ns, is_best(space_, frame.configuration));
   // The frame after a probe reads the probe's images back and compares them, and the one after
   // that still finishes some of its work: part of their power is the probe's (counted by

@@ -10,15 +10,39 @@ constexpr double kExcessWeight = 1.0 / 4.0;
 constexpr double kShareDecay = 1.0 - 1.0 / 200.0;
 constexpr double kIntervalWeight = 1.0 / 32.0;
 constexpr double kLongestInterval_s = 0.5;
+// A probe frame is its own length: drawn again in up to eight streams, it lasted 5-5.6 frames of
+// the app's pace on the demo's Sponza at 10 frames a second (0.49-0.56 s, a sweep of six passes),
+// and counted as a pause, no sweep there was ever measured and the windows were held to the
+// probes of one pass before. It is a pause only past this many frames at the recent rate (a
+// shader built on the spot, a breakpoint).
+constexpr double kLongestProbeFrames = 16.0;
 // Of the windows a budget may leave over it (1 - keep_share), the share left to the probes'
 // windows: the other half is the sensor's scatter's, which the feedback's margin is for.
 constexpr double kProbeShareOfOver = 0.5;
 }  // namespace
 
 void ProbeOverhead::Record::add(double excess) {
+  if (stand_in) *this = Record{};
   excess_w = measured == 0 ? excess : excess_w + kExcessWeight * (excess - excess_w);
   recent[measured % recent.size()] = excess;
   ++measured;
+}
+
+void ProbeOverhead::Record::scale(double factor) {
+  if (measured == 0) return;
+  excess_w *= factor;
+  for (double& e : recent) e *= factor;
+  stand_in = true;
+}
+
+void ProbeOverhead::set_sweep_streams(int streams) {
+  streams = std::max(0, streams);
+  if (streams > 0 && sweep_streams_ == 0) {
+    const double factor = std::max(1.0, streams / 2.0);
+    away_.scale(factor);
+    at_best_.scale(factor);
+  }
+  sweep_streams_ = streams;
 }
 
 double ProbeOverhead::Record::largest() const {
@@ -60,7 +84,7 @@ void ProbeOverhead::add(bool probe, double power_w, std::int64_t time_ns, bool s
     // frames count one each.
     if (interval_s_ > 0.0) {
       length_frames = interval / interval_s_;
-      paused = interval >= kLongestInterval_s;
+      paused = interval >= kLongestInterval_s && !(probe && length_frames < kLongestProbeFrames);
     }
     // A pause (loading, a breakpoint) is no frame rate: it would hold the windows' frames low
     // for seconds after it.

@@ -105,6 +105,9 @@ struct FrameRecord {
   model::Configuration configuration;                         // what drew the frame
   bool probe = false;                                         // a quality-probe frame: its power is not the frame's
   double probe_period = 0.0;                                  // frames between probes the shim plans now; 0: not known
+  // The streams a settled probe frame draws where it measures every pass at once
+  // (GLBUDGET_PROBE_SWEEP: the best and one a pass); 0: probes of one pass each.
+  int probe_sweep_streams = 0;
   // Counts per pass, by its index in the space (PassIndex); passes past the space add a fixed load.
   std::vector<model::PassFrame> passes;
 };

@@ -68,6 +68,13 @@ class ProbeOverhead {
   // The frames between probes the shim plans now (0: not known; the gaps measured then
   // tell). Probes may come rarer than planned, never more often.
   void set_period_in_force(double frames) { period_in_force_ = frames > 0.0 ? frames : 0.0; }
+  // The streams the shim's probes draw from now on where each measures every pass at once
+  // (GLBUDGET_PROBE_SWEEP), 0 where they probe one pass. Until a sweep is measured, the probes
+  // of one pass measured before stand for it, their excess times streams / 2 (a probe of one
+  // pass shown elsewhere draws two: the best and the pass's cheapest): the first sweep's window
+  // would otherwise be held to a probe of one pass (the demo's Hall and Sponza at 10 frames a
+  // second: a sweep drew 6.5-6.9 J over its neighbours, the probes of one pass before it 3 J).
+  void set_sweep_streams(int streams);
   // The frame last added is a probe's or one of the two after it: its power is not its
   // configuration's own.
   bool in_span() const { return last_in_span_; }
@@ -110,7 +117,9 @@ class ProbeOverhead {
     double excess_w = 0.0;              // exponentially (about 4 probes)
     std::array<double, 4> recent = {};  // the last probes' excess, by measured modulo 4
     std::size_t measured = 0;
+    bool stand_in = false;  // scaled from probes of one pass until a sweep is measured
     void add(double excess);
+    void scale(double factor);
     double largest() const;  // of the recent ones (may be negative; requires measured > 0)
   };
   void close_span();
@@ -130,6 +139,7 @@ class ProbeOverhead {
   bool last_in_span_ = false;
   Record away_, at_best_;
   double best_stream_w_ = 0.0;
+  int sweep_streams_ = 0;
   double probes_ = 0.0, frames_ = 0.0;  // decaying counts (about 200 frames), until a gap is seen
   // Frames between probes, exponentially (about 4 gaps), and since the last probe: sparse
   // probes (one every 600 frames) are not a share the decaying counts can hold.
