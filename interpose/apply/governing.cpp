@@ -465,6 +465,7 @@ class GovernorThread {
     record.power_w = first.energy.valid ? first.energy.mean_power_w : std::nan("");
     record.probe = first.probe;
     record.probe_period = static_cast<double>(probe_period_in_force());
+    record.probe_sweep_streams = probe_sweep_streams();
     // The shim's levels ("0:2:1"), then the "app" pass's only level.
     for (size_t at = 0; at < first.configuration.size();) {
       size_t end = first.configuration.find(':', at);
@@ -488,7 +489,8 @@ class GovernorThread {
     }
     const loop::Decision d = governor_.on_frame(record);
     set_probe_period_wanted(governor_.probe_period_wanted(), governor_.probe_bursts_spaced());
-    set_probe_selection_due(governor_.next_selection_frame(), governor_.settings().select_frames);
+    set_probe_selection_due(governor_.next_selection_frame(), governor_.settings().select_frames,
+                            governor_.transitioning());
     // Observing only for the probes, the governor has nothing to tell.
     if (governor_.governing())
       for (; notes_said_ < governor_.notes().size(); ++notes_said_) say(governor_.notes()[notes_said_]);

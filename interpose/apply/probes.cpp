@@ -62,7 +62,9 @@ namespace {
 std::atomic<uint64_t> g_period_wanted{0}, g_period_in_force{0};
 std::atomic<bool> g_bursts_spaced{false};
 std::atomic<uint64_t> g_selection_due{0}, g_select_frames{0};  // set_probe_selection_due
-std::atomic<float> g_pass_error[kMaxPasses];                   // set_probe_pass_error
+std::atomic<bool> g_transitioning{false};
+std::atomic<int> g_sweep_streams{0};
+std::atomic<float> g_pass_error[kMaxPasses];  // set_probe_pass_error
 }  // namespace
 
 void set_probe_pass_error(size_t pass, double error) {
@@ -75,10 +77,12 @@ void set_probe_period_wanted(uint64_t frames, bool bursts_too) {
   g_bursts_spaced.store(bursts_too, std::memory_order_relaxed);
 }
 uint64_t probe_period_in_force() { return g_period_in_force.load(std::memory_order_relaxed); }
+int probe_sweep_streams() { return g_sweep_streams.load(std::memory_order_relaxed); }
 
-void set_probe_selection_due(uint64_t frame, uint64_t select_frames) {
+void set_probe_selection_due(uint64_t frame, uint64_t select_frames, bool transitioning) {
   g_selection_due.store(frame, std::memory_order_relaxed);
   g_select_frames.store(select_frames, std::memory_order_relaxed);
+  g_transitioning.store(transitioning, std::memory_order_relaxed);
 }
 
 namespace {
@@ -1560,10 +1564,16 @@ struct ProbeFrames::Impl {
     const uint64_t since = next - last_tried;
     const uint64_t longest = longest_sweep_gap(settings, settled_period);
     if (!settings.stretchable) return next % longest == 0 && since >= longest;
-    if (since >= longest) return true;
     if (since < window_gap(settings)) return false;
     const uint64_t due = g_selection_due.load(std::memory_order_relaxed);
     const uint64_t to_due = due > next ? due - next : UINT64_MAX;
+    // At the longest gap anyway, but not while the governor moves to what it just selected:
+    // the configuration still shown was chosen with no room for a sweep where the governor
+    // had spaced probes, and a sweep there put its window over the budget (the demo's Hall at
+    // 40 %: sweeps at the longest gap two frames into a transition, each window over by 2-3 W).
+    // Twice the longest gap at most.
+    if (since >= longest)
+      return to_due <= kSweepLead || !g_transitioning.load(std::memory_order_relaxed) || since >= 2 * longest;
     if (g_bursts_spaced.load(std::memory_order_relaxed)) {
       // The governor wants them rare: one a longest gap still, but ahead of the selection due
       // within the last selection period of that gap rather than at the gap itself.
@@ -1579,11 +1589,19 @@ struct ProbeFrames::Impl {
   // The frames between sweeps on average, for the governor's probe overhead.
   uint64_t sweep_gap(const ProbeSettings& settings, uint64_t settled_period) const {
     const uint64_t longest = longest_sweep_gap(settings, settled_period);
-    if (!settings.stretchable || g_bursts_spaced.load(std::memory_order_relaxed)) return longest;
+    if (!settings.stretchable) return longest;
+    const uint64_t selections = g_select_frames.load(std::memory_order_relaxed);
+    const bool selection_known = selections && g_selection_due.load(std::memory_order_relaxed);
+    if (g_bursts_spaced.load(std::memory_order_relaxed)) {
+      // sweep_due's spaced case: the selection due a gap of at least longest - selections after
+      // the last sweep, a whole number of selection periods (at least one), never past longest.
+      if (!selection_known) return longest;
+      const uint64_t periods = std::max<uint64_t>(1, (longest + selections - 1) / selections - 1);
+      return std::clamp(periods * selections, window_gap(settings), longest);
+    }
     const uint64_t early = early_sweep_gap(settings, settled_period);
     if (sweep_soon) return early;  // the scene moves: as often as that allows
-    const uint64_t selections = g_select_frames.load(std::memory_order_relaxed);
-    if (!selections || !g_selection_due.load(std::memory_order_relaxed)) return longest;
+    if (!selection_known) return longest;
     return std::min(longest, std::max(selections, window_gap(settings)));  // ahead of each selection
   }
 
@@ -1654,6 +1672,7 @@ void ProbeFrames::after_swap(uint64_t next) {
   const uint64_t settled_period = std::max(settings.period * settings.settled_factor, wanted);
   const uint64_t bound = settings.period ? p.age_bound_frames(settings) : 0;
   const bool sweeping = options().probe_sweep && !options().probe_every_level && p.settled() && settings.period;
+  g_sweep_streams.store(sweeping ? p.passes_in_scene() + 1 : 0, std::memory_order_relaxed);
   if (const uint64_t drift = probe_drift_count(); drift != p.drift_seen) {
     p.drift_seen = drift;
     // The scene moved: every pass's error again, at the first period. Not where the age bound

@@ -168,9 +168,15 @@ const ProbeSettings& probe_settings();
 // (0: none planned yet).
 void set_probe_period_wanted(uint64_t frames, bool bursts_too);
 uint64_t probe_period_in_force();
+// Render thread: the streams a settled probe frame draws where it measures every pass at once
+// (GLBUDGET_PROBE_SWEEP: the best and one a pass in the scene), for the governor's probe
+// overhead; 0 where probes take one pass each.
+int probe_sweep_streams();
 // Governor thread: the frame its next selection is due at, and the frames between selections
-// (GLBUDGET_PROBE_SWEEP: settled probe frames measure every pass just ahead of it; 0: none due).
-void set_probe_selection_due(uint64_t frame, uint64_t select_frames);
+// (GLBUDGET_PROBE_SWEEP: settled probe frames measure every pass just ahead of it; 0: none due),
+// and whether it is moving to the configuration it selected (a sweep at the longest gap waits
+// for the configuration selected with room for it).
+void set_probe_selection_due(uint64_t frame, uint64_t select_frames, bool transitioning = false);
 // Governor thread: manifest pass `pass`'s latest error at its cheapest level (0 where it is not
 // in the scene), by which settled probes choose the pass they take (loop/probe_order.hpp).
 void set_probe_pass_error(size_t pass, double error);
