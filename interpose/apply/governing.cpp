@@ -465,7 +465,8 @@ class GovernorThread {
     record.power_w = first.energy.valid ? first.energy.mean_power_w : std::nan("");
     record.probe = first.probe;
     record.probe_period = static_cast<double>(probe_period_in_force());
-    record.probe_sweep_streams = probe_sweep_streams();
+    record.sweeping_streams = probe_sweep_streams();
+    record.probe_sweep_streams = first.probe_sweep_streams;
     // The shim's levels ("0:2:1"), then the "app" pass's only level.
     for (size_t at = 0; at < first.configuration.size();) {
       size_t end = first.configuration.find(':', at);

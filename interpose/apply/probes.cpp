@@ -1480,6 +1480,7 @@ struct ProbeFrames::Impl {
     }
     call = 0;
     frame = next;
+    recent_sweep_streams[recent_at % 16] = sweep ? stream_count : 0;
     recent[recent_at++ % 16] = next;
     passes_now = 0;
     saved_config_for_frame = c.config;
@@ -1571,9 +1572,10 @@ struct ProbeFrames::Impl {
     // the configuration still shown was chosen with no room for a sweep where the governor
     // had spaced probes, and a sweep there put its window over the budget (the demo's Hall at
     // 40 %: sweeps at the longest gap two frames into a transition, each window over by 2-3 W).
-    // Twice the longest gap at most.
+    // A window's frames past the longest gap at most (which may be the age bound).
     if (since >= longest)
-      return to_due <= kSweepLead || !g_transitioning.load(std::memory_order_relaxed) || since >= 2 * longest;
+      return to_due <= kSweepLead || !g_transitioning.load(std::memory_order_relaxed) ||
+             since >= longest + window_gap(settings);
     if (g_bursts_spaced.load(std::memory_order_relaxed)) {
       // The governor wants them rare: one a longest gap still, but ahead of the selection due
       // within the last selection period of that gap rather than at the gap itself.
@@ -1619,6 +1621,7 @@ struct ProbeFrames::Impl {
 
   ProbeFrames* owner = nullptr;
   uint64_t recent[16] = {};
+  int recent_sweep_streams[16] = {};  // of each recent probe frame: its streams where a sweep, else 0
   size_t recent_at = 0;
 };
 
@@ -1722,6 +1725,12 @@ bool ProbeFrames::was_probe_frame(uint64_t frame) const {
   for (uint64_t f : impl_->recent)
     if (f == frame && f) return true;
   return false;
+}
+
+int ProbeFrames::sweep_streams_of(uint64_t frame) const {
+  for (size_t k = 0; k < 16; ++k)
+    if (impl_->recent[k] == frame && frame) return impl_->recent_sweep_streams[k];
+  return 0;
 }
 
 void ProbeFrames::prepare() {

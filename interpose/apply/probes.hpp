@@ -97,6 +97,8 @@ class ProbeFrames {
   bool is_probe_frame(uint64_t frame) const;
   // One of the last probe frames (their rows are logged some frames later).
   bool was_probe_frame(uint64_t frame) const;
+  // Of one of them: the streams it drew where it measured every pass at once, else 0.
+  int sweep_streams_of(uint64_t frame) const;
   // This object while its context draws a probe frame, else null (for t_probe).
   ProbeFrames* drawing() { return is_probe_frame(frame_now()) ? this : nullptr; }
 

@@ -33,6 +33,7 @@ thread_local const ContextState* t_emitting = nullptr;
 void emit_row(const FrameRow& in) {
   FrameRow row = in;
   row.probe = t_emitting && t_emitting->probes && t_emitting->probes->was_probe_frame(row.frame);
+  if (row.probe) row.probe_sweep_streams = t_emitting->probes->sweep_streams_of(row.frame);
   if (governing())
     governor_push(row);
   else

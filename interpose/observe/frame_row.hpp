@@ -37,6 +37,7 @@ struct FrameRow {
   // and power are not the frame's own. probe_error: 1 - SSIM of what was shown against the
   // best configuration, measured on this frame (NaN: not measured).
   bool probe = false;
+  int probe_sweep_streams = 0;  // a probe frame that measured every pass at once: its streams
   double probe_error = __builtin_nan("");
   // What the probe streams measured: "levels=error" ("0:0:2=0.031250"), the error of a
   // stream's image against the best configuration's; ';' between streams (all but s0's).

@@ -281,6 +281,7 @@ bool Governor::select(const FrameRecord& record) {
     const std::size_t best = space_.index_of(model::Configuration(space_.pass_count(), 0));
     if (best < power_.size()) probe_overhead_.set_best_stream_w(power_[best] - p_min_w_);
     probe_margin_w_ = whole_range ? std::numeric_limits<double>::infinity() : probe_window_margin_w();
+    best_probe_margin_w_ = probe_window_margin_w(true);
     margin_w_ = whole_range ? 0.0 : margin_without_probes_w + probe_margin_w_;
     guard_unmeasured(whole_range ? 0.0 : feedback_.unmeasured_margin_w(), !whole_range);
     const bool probes_were_rare = probe_period_wanted_ > 0, bursts_were_rare = probe_bursts_spaced_;
@@ -292,13 +293,15 @@ bool Governor::select(const FrameRecord& record) {
     // window 1-2 W over the budget). The next selection reads the period they came at.
     if (!whole_range &&
         ((probes_were_rare && probe_period_wanted_ == 0) || (bursts_were_rare && !probe_bursts_spaced_))) {
-      probe_margin_w_ = std::max(probe_margin_w_, probe_overhead_.whole_excess_margin_w(settings_.feedback.window_s));
+      const double window_s = settings_.feedback.window_s;
+      probe_margin_w_ = std::max(probe_margin_w_, probe_overhead_.whole_excess_margin_w(window_s));
+      best_probe_margin_w_ = std::max(best_probe_margin_w_, probe_overhead_.whole_excess_margin_w(window_s, true));
       margin_w_ = margin_without_probes_w + probe_margin_w_;
     }
     // The best's own probes draw one stream fewer: it keeps only what they cost. After the
     // probe period is weighed, whose two margins would each need their own lowering.
     if (!whole_range && best < guarded_.size()) {
-      guarded_[best] -= std::max(0.0, probe_margin_w_ - probe_window_margin_w(true));
+      guarded_[best] -= std::max(0.0, probe_margin_w_ - best_probe_margin_w_);
     }
   }
   if (aim_ != Aim::power) guarded_.assign(power_.begin(), power_.end());  // weighed as predicted
@@ -400,8 +403,7 @@ bool Governor::explore_held(const model::Selection& selection, double budget_w) 
   if (feedback_.measured(space_.cheapest()) || selection.index >= power_.size()) return false;
   // The probes as the pick's windows hold them: the margin the selection kept for them (a
   // probe's whole excess where most windows hold one), the best's own at the best.
-  const double probes_w =
-      is_best(space_, space_.decode(selection.index)) ? probe_window_margin_w(true) : probe_margin_w_;
+  const double probes_w = is_best(space_, space_.decode(selection.index)) ? best_probe_margin_w_ : probe_margin_w_;
   const HeldSelection held{selection.index, guarded_, power_, &measured_, budget_w, margin_w_, probes_w};
   return explore_where_held(held, range_ends().low_w, feedback_.margin_w());
 }
@@ -712,8 +714,9 @@ void Governor::want_probe_period(double budget_w, double margin_without_probes_w
 Decision Governor::on_frame(const FrameRecord& frame) {
   if (!started_) start(frame);
   probe_overhead_.set_period_in_force(frame.probe_period);
-  probe_overhead_.set_sweep_streams(frame.probe_sweep_streams);
-  probe_overhead_.add(frame.probe, frame.power_w, frame.time_ns, is_best(space_, frame.configuration));
+  probe_overhead_.set_sweep_streams(frame.sweeping_streams);
+  probe_overhead_.add(frame.probe, frame.power_w, frame.time_ns, is_best(space_, frame.configuration),
+                      frame.probe_sweep_streams);
   // The frame after a probe reads the probe's images back and compares them, and the one after
   // that still finishes some of its work: part of their power is the probe's (counted by
   // probe_overhead_), so neither the model nor the feedback takes it for their configuration's;

@@ -16,31 +16,34 @@ constexpr double kLongestInterval_s = 0.5;
 // probes of one pass before. It is a pause only past this many frames at the recent rate (a
 // shader built on the spot, a breakpoint).
 constexpr double kLongestProbeFrames = 16.0;
+constexpr double kLongestProbeFrame_s = 2.0;  // and past 2 s whatever the pace (an app at 2-3 frames a second)
 // Of the windows a budget may leave over it (1 - keep_share), the share left to the probes'
 // windows: the other half is the sensor's scatter's, which the feedback's margin is for.
 constexpr double kProbeShareOfOver = 0.5;
 }  // namespace
 
 void ProbeOverhead::Record::add(double excess) {
-  if (stand_in) *this = Record{};
   excess_w = measured == 0 ? excess : excess_w + kExcessWeight * (excess - excess_w);
   recent[measured % recent.size()] = excess;
   ++measured;
 }
 
 void ProbeOverhead::Record::scale(double factor) {
-  if (measured == 0) return;
   excess_w *= factor;
   for (double& e : recent) e *= factor;
-  stand_in = true;
 }
 
 void ProbeOverhead::set_sweep_streams(int streams) {
   streams = std::max(0, streams);
-  if (streams > 0 && sweep_streams_ == 0) {
-    const double factor = std::max(1.0, streams / 2.0);
-    away_.scale(factor);
-    at_best_.scale(factor);
+  for (Record* r : {&away_, &at_best_}) {
+    if (streams > 0 && r->holds == Record::Holds::one_pass && r->measured > 0) {
+      r->stand_in_factor = std::max(1.0, streams / 2.0);
+      r->scale(r->stand_in_factor);
+      r->holds = Record::Holds::stand_in;
+    } else if (streams == 0 && r->holds == Record::Holds::stand_in) {
+      r->scale(1.0 / r->stand_in_factor);
+      r->holds = Record::Holds::one_pass;
+    }
   }
   sweep_streams_ = streams;
 }
@@ -53,12 +56,31 @@ double ProbeOverhead::Record::largest() const {
 }
 
 void ProbeOverhead::close_span() {
-  if (span_measured_) (span_at_best_ ? at_best_ : away_).add(span_excess_w_);
+  if (span_measured_) {
+    Record& r = span_at_best_ ? at_best_ : away_;
+    Record& other = span_at_best_ ? away_ : at_best_;
+    if (span_sweep_) {
+      // The first sweep measured replaces the probes of one pass; the other record's stand-in
+      // goes too, the sweep standing in for it (source()).
+      if (r.holds != Record::Holds::sweeps) r = Record{.holds = Record::Holds::sweeps};
+      r.add(span_excess_w_);
+      if (other.holds == Record::Holds::stand_in) other = Record{};
+    } else if (r.holds == Record::Holds::one_pass) {
+      r.add(span_excess_w_);
+    } else if (sweep_streams_ > 0) {
+      r.add(span_excess_w_ *
+            (r.holds == Record::Holds::stand_in ? r.stand_in_factor : std::max(1.0, sweep_streams_ / 2.0)));
+    } else {
+      r = Record{};  // probes of one pass again
+      r.add(span_excess_w_);
+    }
+  }
   span_left_ = 0;
   span_excess_w_ = 0.0;
   span_measured_ = false;
   span_paused_ = false;
   span_at_best_ = false;
+  span_sweep_ = false;
 }
 
 std::pair<const ProbeOverhead::Record*, double> ProbeOverhead::source(bool shown_best) const {
@@ -73,7 +95,7 @@ double ProbeOverhead::excess_w(bool shown_best) const {
   return record ? record->excess_w + stream_w : 0.0;
 }
 
-void ProbeOverhead::add(bool probe, double power_w, std::int64_t time_ns, bool shown_best) {
+void ProbeOverhead::add(bool probe, double power_w, std::int64_t time_ns, bool shown_best, int sweep_streams) {
   // The frame's length in frames at the recent rate: its power counts for as long as it lasted
   // (1 where either is not known).
   double length_frames = 1.0;
@@ -84,7 +106,8 @@ void ProbeOverhead::add(bool probe, double power_w, std::int64_t time_ns, bool s
     // frames count one each.
     if (interval_s_ > 0.0) {
       length_frames = interval / interval_s_;
-      paused = interval >= kLongestInterval_s && !(probe && length_frames < kLongestProbeFrames);
+      paused = interval >= kLongestInterval_s &&
+               !(probe && length_frames < kLongestProbeFrames && interval < kLongestProbeFrame_s);
     }
     // A pause (loading, a breakpoint) is no frame rate: it would hold the windows' frames low
     // for seconds after it.
@@ -106,6 +129,7 @@ void ProbeOverhead::add(bool probe, double power_w, std::int64_t time_ns, bool s
     close_span();
     span_left_ = kProbeSpanFrames;
     span_at_best_ = shown_best;
+    span_sweep_ = sweep_streams > 0;
   }
   const bool finite = std::isfinite(power_w);
   last_in_span_ = span_left_ > 0;

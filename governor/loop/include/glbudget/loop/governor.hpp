@@ -105,8 +105,10 @@ struct FrameRecord {
   model::Configuration configuration;                         // what drew the frame
   bool probe = false;                                         // a quality-probe frame: its power is not the frame's
   double probe_period = 0.0;                                  // frames between probes the shim plans now; 0: not known
-  // The streams a settled probe frame draws where it measures every pass at once
+  // The streams a settled probe frame draws where the shim now measures every pass at once
   // (GLBUDGET_PROBE_SWEEP: the best and one a pass); 0: probes of one pass each.
+  int sweeping_streams = 0;
+  // On a probe frame: the streams it drew where it measured every pass at once (0: one pass).
   int probe_sweep_streams = 0;
   // Counts per pass, by its index in the space (PassIndex); passes past the space add a fixed load.
   std::vector<model::PassFrame> passes;
@@ -301,7 +303,8 @@ class Governor {
   // What the last selection kept under the budget for the quality probes (infinite: nothing
   // to keep, before a selection or at 100 % of the range).
   double probe_margin_w_ = std::numeric_limits<double>::infinity();
-  double overshoot_w_ = 0.0;  // windows' excess over the budget, less what later windows paid back
+  double best_probe_margin_w_ = 0.0;  // the same for the best's own probes (one stream fewer)
+  double overshoot_w_ = 0.0;          // windows' excess over the budget, less what later windows paid back
   std::size_t chosen_index_ = 0;
   bool within_budget_ = true;
   PowerFeedback feedback_;

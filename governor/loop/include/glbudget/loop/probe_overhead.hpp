@@ -55,8 +55,9 @@ class ProbeOverhead {
  public:
   // Every frame, in order; power NaN when not measured; time_ns (when the frame ended, any
   // origin) gives the frame rate, negative when not known; shown_best: the frame drew the
-  // best configuration (read on probe frames).
-  void add(bool probe, double power_w, std::int64_t time_ns = -1, bool shown_best = false);
+  // best configuration; sweep_streams: the streams of a probe frame that measured every pass
+  // at once (0: a probe of one pass) (both read on probe frames).
+  void add(bool probe, double power_w, std::int64_t time_ns = -1, bool shown_best = false, int sweep_streams = 0);
   // What a probe shown elsewhere draws beyond one shown at the best, until one is measured:
   // the best configuration's stream, about one frame of its power above idle (watts times
   // frames; less where the stream follows the app's frame up to its first lowered pass, more
@@ -74,6 +75,8 @@ class ProbeOverhead {
   // pass shown elsewhere draws two: the best and the pass's cheapest): the first sweep's window
   // would otherwise be held to a probe of one pass (the demo's Hall and Sponza at 10 frames a
   // second: a sweep drew 6.5-6.9 J over its neighbours, the probes of one pass before it 3 J).
+  // A probe of one pass measured while the shim sweeps (the last before the first sweep) counts
+  // so scaled too; sweeps measured are never scaled; back at 0, a stand-in is unscaled.
   void set_sweep_streams(int streams);
   // The frame last added is a probe's or one of the two after it: its power is not its
   // configuration's own.
@@ -117,7 +120,10 @@ class ProbeOverhead {
     double excess_w = 0.0;              // exponentially (about 4 probes)
     std::array<double, 4> recent = {};  // the last probes' excess, by measured modulo 4
     std::size_t measured = 0;
-    bool stand_in = false;  // scaled from probes of one pass until a sweep is measured
+    // What it holds: probes of one pass, those scaled to stand in for sweeps (by
+    // stand_in_factor), or sweeps.
+    enum class Holds { one_pass, stand_in, sweeps } holds = Holds::one_pass;
+    double stand_in_factor = 1.0;
     void add(double excess);
     void scale(double factor);
     double largest() const;  // of the recent ones (may be negative; requires measured > 0)
@@ -136,6 +142,7 @@ class ProbeOverhead {
   bool span_measured_ = false;
   bool span_paused_ = false;   // a frame of the span lasted kLongestInterval_s or more
   bool span_at_best_ = false;  // the probe was shown at the best configuration
+  bool span_sweep_ = false;    // the probe measured every pass at once
   bool last_in_span_ = false;
   Record away_, at_best_;
   double best_stream_w_ = 0.0;
