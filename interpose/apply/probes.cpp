@@ -1623,6 +1623,12 @@ struct ProbeFrames::Impl {
   uint64_t recent[16] = {};
   int recent_sweep_streams[16] = {};  // of each recent probe frame: its streams where a sweep, else 0
   size_t recent_at = 0;
+  // The slot of `frame` among the recent probe frames; -1 where it is not one.
+  int recent_slot(uint64_t frame) const {
+    for (int k = 0; k < 16; ++k)
+      if (frame && recent[k] == frame) return k;
+    return -1;
+  }
 };
 
 ProbeFrames::ProbeFrames(ContextState& c) : impl_(std::make_unique<Impl>(c)) { impl_->owner = this; }
@@ -1721,16 +1727,11 @@ void ProbeFrames::collect(bool wait) {
 
 bool ProbeFrames::is_probe_frame(uint64_t frame) const { return frame && frame == impl_->frame; }
 uint64_t ProbeFrames::frame_now() const { return impl_->frame; }
-bool ProbeFrames::was_probe_frame(uint64_t frame) const {
-  for (uint64_t f : impl_->recent)
-    if (f == frame && f) return true;
-  return false;
-}
+bool ProbeFrames::was_probe_frame(uint64_t frame) const { return impl_->recent_slot(frame) >= 0; }
 
 int ProbeFrames::sweep_streams_of(uint64_t frame) const {
-  for (size_t k = 0; k < 16; ++k)
-    if (impl_->recent[k] == frame && frame) return impl_->recent_sweep_streams[k];
-  return 0;
+  const int k = impl_->recent_slot(frame);
+  return k >= 0 ? impl_->recent_sweep_streams[k] : 0;
 }
 
 void ProbeFrames::prepare() {

@@ -17,6 +17,9 @@ constexpr double kLongestInterval_s = 0.5;
 // shader built on the spot, a breakpoint).
 constexpr double kLongestProbeFrames = 16.0;
 constexpr double kLongestProbeFrame_s = 2.0;  // and past 2 s whatever the pace (an app at 2-3 frames a second)
+// A sweep's excess as a probe of one pass's stands in for it until one is measured: a probe of
+// one pass shown elsewhere draws two streams (the best and the pass's cheapest).
+double sweep_stand_in_factor(int sweep_streams) { return std::max(1.0, sweep_streams / 2.0); }
 // Of the windows a budget may leave over it (1 - keep_share), the share left to the probes'
 // windows: the other half is the sensor's scatter's, which the feedback's margin is for.
 constexpr double kProbeShareOfOver = 0.5;
@@ -37,7 +40,7 @@ void ProbeOverhead::set_sweep_streams(int streams) {
   streams = std::max(0, streams);
   for (Record* r : {&away_, &at_best_}) {
     if (streams > 0 && r->holds == Record::Holds::one_pass && r->measured > 0) {
-      r->stand_in_factor = std::max(1.0, streams / 2.0);
+      r->stand_in_factor = sweep_stand_in_factor(streams);
       r->scale(r->stand_in_factor);
       r->holds = Record::Holds::stand_in;
     } else if (streams == 0 && r->holds == Record::Holds::stand_in) {
@@ -69,7 +72,7 @@ void ProbeOverhead::close_span() {
       r.add(span_excess_w_);
     } else if (sweep_streams_ > 0) {
       r.add(span_excess_w_ *
-            (r.holds == Record::Holds::stand_in ? r.stand_in_factor : std::max(1.0, sweep_streams_ / 2.0)));
+            (r.holds == Record::Holds::stand_in ? r.stand_in_factor : sweep_stand_in_factor(sweep_streams_)));
     } else {
       r = Record{};  // probes of one pass again
       r.add(span_excess_w_);
