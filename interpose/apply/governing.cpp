@@ -632,6 +632,7 @@ bool governor_start() {
     settings.explore_when_held = o.explore_held;
     settings.measured_at_windows = o.measured_at_windows;
     settings.meter_windows = o.meter_windows;
+    settings.hold_range_ends = o.hold_range_ends;
     settings.level_interactions = o.level_interactions;
     settings.error_feedback.enabled = o.error_feedback;
     settings.feedback.keep_share = o.keep_share;
