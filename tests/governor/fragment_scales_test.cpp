@@ -56,6 +56,40 @@ TEST_CASE("fragment scales start as declared and take the measured ratio of a le
   CHECK(anchored.at(1, 0, 2) == Approx(0.64 * 482.16 / 770.0));
 }
 
+TEST_CASE("a level the history no longer holds keeps the scale measured while it did", "[model][scales]") {
+  // The demo's Valley: the shadow map at its smallest draws 0.147 of the fragments at its
+  // largest, not the declared 0.25 here; the app then stays at the smallest level.
+  const ConfigurationSpace space = fragment_scales_space();
+  std::vector<ConfiguredSample> both;
+  for (int t = 0; t < 10; ++t) both.push_back(frame({0, 0, 0}, 1000.0, 4000.0));
+  for (int t = 0; t < 10; ++t) both.push_back(frame({0, 0, 1}, 1000.0, 588.0));
+  const FragmentScales known = measure_fragment_scales(both, space, 5);
+  REQUIRE(known.at(2, 2, 1) == Approx(0.147));
+
+  std::vector<ConfiguredSample> small(both.begin() + 10, both.end());
+  // Forgetting: the smallest level anchors at its declared area, 1.7 times what it draws.
+  CHECK(measure_fragment_scales(small, space, 5).at(2, 2, 1) == 0.25);
+  // Remembering: it keeps what was measured, and so does every level the history lacks.
+  const FragmentScales kept = measure_fragment_scales(small, space, 5, &known);
+  CHECK(kept.at(2, 2, 1) == Approx(0.147));
+  CHECK(kept.at(2, 2, 0) == 1.0);
+  CHECK(kept.at(1, 0, 2) == 0.36);  // never measured: declared
+
+  // A level measured afresh against an anchor known from before is scaled by the anchor's known
+  // scale: the render scale at 60 % against 80 %, which was measured at 0.77 of full scale.
+  std::vector<ConfiguredSample> render;
+  for (int t = 0; t < 10; ++t) render.push_back(frame({0, 0, 0}, 1000.0, 4000.0));
+  for (int t = 0; t < 10; ++t) render.push_back(frame({1, 0, 0}, 770.0, 4000.0));
+  const FragmentScales at_80 = measure_fragment_scales(render, space, 5, &kept);
+  REQUIRE(at_80.at(1, 0, 1) == Approx(0.77));
+  std::vector<ConfiguredSample> lower(render.begin() + 10, render.end());
+  for (int t = 0; t < 10; ++t) lower.push_back(frame({2, 0, 0}, 370.0, 4000.0));
+  const FragmentScales at_60 = measure_fragment_scales(lower, space, 5, &at_80);
+  CHECK(at_60.at(1, 0, 1) == Approx(0.77));
+  CHECK(at_60.at(1, 0, 2) == Approx(0.77 * 370.0 / 770.0));
+  CHECK(at_60.at(2, 2, 1) == Approx(0.147));  // the shadow map's, carried through both
+}
+
 TEST_CASE("fragment scales ignore frames that cannot tell and passes scaled twice", "[model][scales][extremes]") {
   std::vector<PassVariants> passes;
   passes.push_back({"resolution", {{0, 0, 0, 1.0}, {0, 0, 0, 0.25}}, {"scene"}});

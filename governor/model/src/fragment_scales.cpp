@@ -38,8 +38,8 @@ bool FragmentScales::measured(std::size_t pass, std::size_t scaler, int level) c
 }
 
 FragmentScales measure_fragment_scales(std::span<const ConfiguredSample> history, const ConfigurationSpace& space,
-                                       std::size_t min_frames) {
-  FragmentScales scales(space);
+                                       std::size_t min_frames, const FragmentScales* known) {
+  FragmentScales scales = known ? *known : FragmentScales(space);
   for (std::size_t j = 0; j < space.pass_count(); ++j) {
     const std::vector<std::size_t>& scalers = space.scalers_of(j);
     // With two scalers a level's frames mix the other's levels: keep the declared scales.
@@ -59,7 +59,8 @@ FragmentScales measure_fragment_scales(std::span<const ConfiguredSample> history
         ++frames[l];
       }
     }
-    // The anchor: of the measured levels, the one declared largest keeps its declared scale.
+    // The anchor: of the measured levels, the one declared largest keeps its scale (declared,
+    // or as known).
     std::size_t anchor = levels.size();
     for (std::size_t l = 0; l < levels.size(); ++l) {
       if (frames[l] < min_frames || !(levels[l].fragment_scale > 0.0)) continue;
@@ -67,10 +68,11 @@ FragmentScales measure_fragment_scales(std::span<const ConfiguredSample> history
     }
     if (anchor == levels.size()) continue;
     const double anchor_mean = sum[anchor] / static_cast<double>(frames[anchor]);
+    const double anchor_scale = scales.at(j, p, static_cast<int>(anchor));
     for (std::size_t l = 0; l < levels.size(); ++l) {
       if (l == anchor || frames[l] < min_frames) continue;
       const double mean = sum[l] / static_cast<double>(frames[l]);
-      scales.set(j, p, static_cast<int>(l), levels[anchor].fragment_scale * mean / anchor_mean);
+      scales.set(j, p, static_cast<int>(l), anchor_scale * mean / anchor_mean);
     }
   }
   return scales;

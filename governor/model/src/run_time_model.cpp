@@ -13,6 +13,7 @@ namespace glbudget::model {
 RunTimeModel::RunTimeModel(PlatformProfile profile, ConfigurationSpace space, FitSettings fit, HistorySettings history)
     : space_(std::move(space)), history_settings_(history), fitter_(profile, fit), model_(profile) {
   if (profile.costs) reuse_ = {profile.costs->instruction, profile.costs->texel};
+  known_scales_ = FragmentScales(space_);
 }
 
 // Before the first fit, the window's prior is the platform's costs (when the profile has
@@ -78,8 +79,9 @@ void RunTimeModel::anchor_to_recent(PowerModel& model, const Configuration& conf
 }
 
 void RunTimeModel::refresh_fragment_scales() {
-  if (predictor_ && history_settings_.enabled)
-    predictor_->set_fragment_scales(measure_fragment_scales(recent_history(), space_));
+  if (!predictor_ || !history_settings_.enabled) return;
+  known_scales_ = measure_fragment_scales(recent_history(), space_, kScaleFrames, &known_scales_);
+  predictor_->set_fragment_scales(known_scales_);
 }
 
 std::span<const ConfiguredSample> RunTimeModel::recent_history() const {
@@ -135,7 +137,10 @@ OnlineFitter::Event RunTimeModel::learn(const FrameSample& frame, const Configur
     predictor_.emplace(space_, model, fitted_at, reuse_);
   // Beyond the paper, with the history: fragments at every render-scale or shadow-map level
   // seen in it as measured, not as the table's declared areas (fragment_scales.hpp).
-  if (history_settings_.enabled) predictor_->set_fragment_scales(measure_fragment_scales(recent_history(), space_));
+  if (history_settings_.enabled) {
+    known_scales_ = measure_fragment_scales(recent_history(), space_, kScaleFrames, &known_scales_);
+    predictor_->set_fragment_scales(known_scales_);
+  }
   return event;
 }
 

@@ -37,9 +37,6 @@ class RunTimeModel {
   // leaving the current frame as it is: a scratch copy of the predictor, valid until the next
   // call; null before the first fit.
   const ConfigurationPredictor* predictor_for(const FrameSample& frame, const Configuration& configuration) const;
-  // The coefficients and fragment scales of the moment, at the frame last given; null before
-  // the first fit.
-  const ConfigurationPredictor* predictor() const { return predictor_ ? &*predictor_ : nullptr; }
   // Beyond a fit: the fragments measured at every render-scale or shadow-map level the history
   // holds replace the declared ones now (fragment_scales.hpp), so that a level drawn since the
   // last fit predicts the others from what it was measured to draw.
@@ -80,6 +77,10 @@ class RunTimeModel {
   std::set<Configuration> fitted_configurations_;
   ReuseCoefficients reuse_;
   std::size_t history_fits_ = 0;
+  // Fragment scales as measured so far: a level the history no longer holds keeps its last
+  // measured scale (fragment_scales.hpp).
+  static constexpr std::size_t kScaleFrames = 5;
+  FragmentScales known_scales_;
 };
 
 }  // namespace glbudget::model
