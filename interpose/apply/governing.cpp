@@ -530,18 +530,27 @@ class GovernorThread {
         say("cannot write " + log + ".selections.csv; the selections are not kept");
         return;
       }
-      std::fputs("frame,configuration,predicted_w,est_error,selected,budget_w,margin_w,weighed_w\n", selections_);
+      std::fputs(
+          "frame,configuration,predicted_w,est_error,selected,budget_w,margin_w,weighed_w,range_low_w,range_high_w\n",
+          selections_);
     }
     const loop::Governor::SelectionTable t = governor_.last_selection();
     const model::ConfigurationSpace& space = governor_.space();
     const bool weighed = t.weighed_w->size() == t.power_w->size();
+    // Empty where not a share of the range, as the frame log leaves what was not measured.
+    const auto watts = [](double w) {
+      char text[32] = "";
+      if (std::isfinite(w)) std::snprintf(text, sizeof text, "%.4f", w);
+      return std::string(text);
+    };
+    const std::string range_low = watts(t.range_low_w), range_high = watts(t.range_high_w);
     for (size_t i = 0; i < t.power_w->size() && i < t.error->size(); ++i) {
       const model::Configuration c = space.decode(i);
       std::string text;
       for (size_t p = 0; p + 1 < c.size(); ++p) text += (p ? ":" : "") + std::to_string(c[p]);
-      std::fprintf(selections_, "%llu,%s,%.4f,%.6f,%d,%.4f,%.4f,%.4f\n", static_cast<unsigned long long>(t.frame),
+      std::fprintf(selections_, "%llu,%s,%.4f,%.6f,%d,%.4f,%.4f,%.4f,%s,%s\n", static_cast<unsigned long long>(t.frame),
                    text.c_str(), (*t.power_w)[i], (*t.error)[i], i == t.chosen ? 1 : 0, t.budget_w, t.margin_w,
-                   weighed ? (*t.weighed_w)[i] : (*t.power_w)[i]);
+                   weighed ? (*t.weighed_w)[i] : (*t.power_w)[i], range_low.c_str(), range_high.c_str());
     }
     std::fflush(selections_);
   }
@@ -632,7 +641,6 @@ bool governor_start() {
     settings.explore_when_held = o.explore_held;
     settings.measured_at_windows = o.measured_at_windows;
     settings.meter_windows = o.meter_windows;
-    settings.hold_range_ends = o.hold_range_ends;
     settings.level_interactions = o.level_interactions;
     settings.error_feedback.enabled = o.error_feedback;
     settings.feedback.keep_share = o.keep_share;

@@ -48,7 +48,6 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_EXPLORE_HELD",
     "GLBUDGET_MEASURED_AT_WINDOWS",
     "GLBUDGET_METER_WINDOWS",
-    "GLBUDGET_HOLD_RANGE_ENDS",
     "GLBUDGET_WARM_BLITS",
     "GLBUDGET_DUMP_PROBES",
     "GLBUDGET_PROBE_SCALE",
@@ -232,8 +231,6 @@ Options parse_options(char** env, std::string* warnings) {
       parse_switch(name, value, o.measured_at_windows, warnings);
     } else if (name == "GLBUDGET_METER_WINDOWS") {
       parse_switch(name, value, o.meter_windows, warnings);
-    } else if (name == "GLBUDGET_HOLD_RANGE_ENDS") {
-      parse_switch(name, value, o.hold_range_ends, warnings);
     } else if (name == "GLBUDGET_LEVEL_INTERACTIONS") {
       using L = loop::LevelInteractions;
       parse_choice<L>(

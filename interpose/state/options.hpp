@@ -63,10 +63,6 @@ struct Options {
   // GLBUDGET_METER_WINDOWS=1: a window of the settled configuration read as a meter reads it,
   // probes included, over the budget selects again at once (loop/governor.hpp, meter_windows)
   bool meter_windows = true;
-  // GLBUDGET_HOLD_RANGE_ENDS=1: the top of a share's range, once no fit sees it drawn, keeps its
-  // prediction through a change of the model that moves it by more than a quarter of its power
-  // above idle at once (loop/range_end_hold.hpp)
-  bool hold_range_ends = false;
   // GLBUDGET_LEVEL_INTERACTIONS=calibrated|additive|model|scaled: where `glbudget calibrate --app`
   // measured each level alone, how a combination of levels is predicted (loop/governor.hpp,
   // level_interactions; model/additive_levels.hpp)

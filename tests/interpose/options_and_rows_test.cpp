@@ -227,17 +227,6 @@ TEST_CASE("GLBUDGET_METER_WINDOWS: on unless 0 or off; anything else said once, 
   CHECK(w == "glbudget: GLBUDGET_METER_WINDOWS='always' is not 0/1/on/off; on\n");
 }
 
-TEST_CASE("GLBUDGET_HOLD_RANGE_ENDS: off unless 1 or on; anything else said once, off", "[unit]") {
-  std::string w;
-  CHECK_FALSE(parse_env({}, &w).hold_range_ends);
-  CHECK(parse_env({"GLBUDGET_HOLD_RANGE_ENDS=1"}, &w).hold_range_ends);
-  CHECK(parse_env({"GLBUDGET_HOLD_RANGE_ENDS=on"}, &w).hold_range_ends);
-  CHECK_FALSE(parse_env({"GLBUDGET_HOLD_RANGE_ENDS=0"}, &w).hold_range_ends);
-  CHECK(w.empty());
-  CHECK_FALSE(parse_env({"GLBUDGET_HOLD_RANGE_ENDS=maybe"}, &w).hold_range_ends);
-  CHECK(w == "glbudget: GLBUDGET_HOLD_RANGE_ENDS='maybe' is not 0/1/on/off; off\n");
-}
-
 TEST_CASE("GLBUDGET_PROBE_FOLLOW: on unless 0 or off; anything else said once, on", "[unit]") {
   std::string w;
   CHECK(parse_env({}, &w).probe_follow);

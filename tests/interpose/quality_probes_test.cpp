@@ -456,12 +456,18 @@ TEST_CASE("passes not in the scene estimate no error at any level; passes in it 
   REQUIRE(r.exit_code == 0);
   std::map<std::string, double> estimate;  // at the last selection
   long last = -1;
+  int ranges = 0;
   for (const auto& row : read_csv_rows_by_name(log + ".selections.csv")) {
     const long frame = std::stol(row.at("frame"));
     if (frame > last) estimate.clear(), last = frame;
     if (frame == last && !row.at("est_error").empty())
       estimate[row.at("configuration")] = std::stod(row.at("est_error"));
+    // Each selection's range, on every row: 50 % of it is the budget.
+    const double low = std::stod(row.at("range_low_w")), high = std::stod(row.at("range_high_w"));
+    CHECK(std::stod(row.at("budget_w")) == Approx(0.5 * std::min(low, high) + 0.5 * high).margin(2e-4));
+    ++ranges;
   }
+  CHECK(ranges >= 729);
   REQUIRE(estimate.size() == 729);
   // (resolution, base, reflections, shadows, metals, antialiasing)
   CHECK(estimate.at("0:0:0:0:0:0") == 0.0);

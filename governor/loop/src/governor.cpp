@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <iomanip>
 #include <sstream>
 
 #include "glbudget/loop/error_selection.hpp"
@@ -268,13 +267,16 @@ bool Governor::select(const FrameRecord& record) {
   if (aim_ == Aim::power) {
     model_power_.assign(power_.begin(), power_.end());
     const bool share = settings_.power.kind == model::Budget::Kind::ShareOfRange;
-    if (share) hold_range_ends(record.frame, record.configuration);
     set_calibrated_prior();
     feedback_.correct(space_, power_);
     hold_interactions();
     budget_w = share ? share_of_range_w() : model::budget_watts(settings_.power, power_);
+    if (share) {
+      const RangeEnds ends = range_ends();
+      range_at_selection_ = {ends.low_w, ends.high_w};
+    }
     // 100 % of the range admits the best configuration by definition: no margin below it.
-    const bool whole_range = settings_.power.kind == model::Budget::Kind::ShareOfRange && settings_.power.value >= 1.0;
+    const bool whole_range = share && settings_.power.value >= 1.0;
     // Besides the spread's margin and the windows' overshoot, what the quality probes add to
     // the windows: the model's predictions leave them out, the user's meter not.
     const double margin_without_probes_w = feedback_.margin_w() + overshoot_w_;
@@ -657,41 +659,7 @@ double Governor::measured_weighed_w(std::size_t index) const {
 
 double Governor::measured_now_w(std::size_t index) const {
   if (index < measured_now_.size() && std::isfinite(measured_now_[index])) return measured_now_[index];
-  return model_power_[index] + feedback_.residual(space_.decode(index)) + range_hold_.carried_w(index);
-}
-
-// The rule is RangeEndHold's (range_end_hold.hpp); this feeds it the model's change of each end.
-void Governor::hold_range_ends(std::uint64_t frame, const model::Configuration& frame_configuration) {
-  const model::ConfigurationPredictor* now = model_.predictor();
-  if (!settings_.hold_range_ends || settings_.measured_at_windows || !now) {
-    range_hold_.clear();
-    last_selection_predictor_.reset();
-    return;
-  }
-  const std::size_t top = model::range_top(model_power_, error_);
-  range_hold_.keep_only(top);
-  const model::Configuration c = top < model_power_.size() ? space_.decode(top) : model::Configuration{};
-  // A top never measured in the run follows the model anyway (range_ends).
-  if (last_selection_predictor_ && !c.empty() && feedback_.measured(c)) {
-    // The last selection's coefficients and fragment scales at this frame's counts, those of
-    // passes it skips as this predictor remembers them.
-    model::ConfigurationPredictor before = *now;
-    before.use_coefficients_of(*last_selection_predictor_);
-    before.set_frame(sample_.passes,
-                     space_.contains(frame_configuration) ? frame_configuration : model_.fitted_configuration());
-    const double before_w = before.predict(c), change_w = model_power_[top] - before_w;
-    if (range_hold_.observe(top, change_w, model_.has_data_for(c), before_w - p_min_w_) && !range_hold_noted_) {
-      range_hold_noted_ = true;
-      std::ostringstream text;
-      text
-          << std::fixed << std::setprecision(1) << "frame " << frame << ": the model's fits moved the prediction of "
-          << configuration_text(c) << ", the top of the budget's range, which no fit sees drawn any more, by "
-          << change_w << " W at once, more than a quarter of its " << before_w - p_min_w_
-          << " W above idle: the range keeps it where it was (said once; GLBUDGET_HOLD_RANGE_ENDS=0 follows the model)";
-      notes_.push_back(text.str());
-    }
-  }
-  last_selection_predictor_ = *now;
+  return model_power_[index] + feedback_.residual(space_.decode(index));
 }
 
 // Beyond the paper: probes came more often than the last selection planned for (a burst: a

@@ -21,7 +21,6 @@
 #include "glbudget/loop/meter_window.hpp"
 #include "glbudget/loop/power_feedback.hpp"
 #include "glbudget/loop/probe_overhead.hpp"
-#include "glbudget/loop/range_end_hold.hpp"
 #include "glbudget/loop/step_times.hpp"
 #include "glbudget/model/configuration_space.hpp"
 #include "glbudget/model/online_fitter.hpp"
@@ -90,13 +89,6 @@ struct GovernorSettings {
   // feedback's additive correction, and the range's ends take its own residual, both measured
   // against the coefficients of the windows' time.
   bool measured_at_windows = false;
-  // Beyond the paper: an end of a share's range the model's fits no longer see (the best, drawn
-  // before the first selection, once its frames leave the 300-frame history) is held through a
-  // change of the model's coefficients or fragment scales that moves it by more than a quarter
-  // of its power above idle at once: it moves by the change of the scene's counts, as the
-  // coefficients it was last predicted with see it (range_end_hold.hpp). false: each refit
-  // extrapolates it afresh.
-  bool hold_range_ends = false;
   // Beyond the paper: the settled configuration's frames are also read as a power meter reads
   // them, in windows of the feedback's length holding every frame, probes and the frames that
   // finish them included (MeterWindow); one over the budget selects again at once. false: a
@@ -199,9 +191,20 @@ class Governor {
     const std::vector<double>* power_w = nullptr;
     const std::vector<double>* error = nullptr;
     const std::vector<double>* weighed_w = nullptr;
+    // The ends of a share's range the budget was taken from; NaN under other budgets.
+    double range_low_w = std::numeric_limits<double>::quiet_NaN();
+    double range_high_w = std::numeric_limits<double>::quiet_NaN();
   };
   SelectionTable last_selection() const {
-    return {last_selection_frame_, chosen_index_, budget_w_, margin_w_, &power_, &error_, &guarded_};
+    return {last_selection_frame_,
+            chosen_index_,
+            budget_w_,
+            margin_w_,
+            &power_,
+            &error_,
+            &guarded_,
+            range_at_selection_.low_w,
+            range_at_selection_.high_w};
   }
   const GovernorSettings& settings() const { return settings_; }
   // The share of the run-time model's interaction between levels the last selection kept
@@ -275,10 +278,6 @@ class Governor {
   // weigh_at_windows found it where it did; else its own prediction plus the residual measured
   // against the coefficients of the windows' time.
   double measured_now_w(std::size_t index) const;
-  // At a selection, after its predictions: each end of the range measured in the run, with the
-  // model's change of its prediction since the last selection at this frame's counts, to
-  // range_hold_.
-  void hold_range_ends(std::uint64_t frame, const model::Configuration& frame_configuration);
   void hold_interactions();
   void set_calibrated_prior();
   double calibrated_savings_scale() const;
@@ -348,11 +347,10 @@ class Governor {
   OpenCounts open_counts_;
   std::map<model::Configuration, WindowCounts> window_counts_;
   std::vector<double> measured_now_;  // by space index; NaN where weigh_at_windows found none
-  // The model's predictor at the last selection, and what the range's ends carry back of the
-  // model's changes since (hold_range_ends).
-  std::optional<model::ConfigurationPredictor> last_selection_predictor_;
-  RangeEndHold range_hold_;
-  bool range_hold_noted_ = false;
+  // The last selection's range (share budgets; else both ends NaN).
+  struct {
+    double low_w = std::numeric_limits<double>::quiet_NaN(), high_w = std::numeric_limits<double>::quiet_NaN();
+  } range_at_selection_;
   std::uint64_t fitted_frame_ = 0;   // the frame of the model's first fit
   std::vector<double> power_;        // reused by selections: corrected predictions
   std::vector<double> model_power_;  // and the model's own

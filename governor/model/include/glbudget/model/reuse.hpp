@@ -48,16 +48,6 @@ class ConfigurationPredictor {
 
   PassCoefficients coefficients(std::size_t pass, int level) const;
 
-  // The coefficients and fragment scales of `other` (this predictor as it was before a refit),
-  // the counts remembered here of passes skipped since kept: from the next set_frame() on, the
-  // old coefficients' prediction at the counts this one sees.
-  void use_coefficients_of(const ConfigurationPredictor& other) {
-    fitted_ = other.fitted_;
-    fitted_configuration_ = other.fitted_configuration_;
-    coefficients_ = other.coefficients_;
-    scales_ = other.scales_;
-  }
-
   // Measured fragment scales in place of the table's declared ones, from the next
   // set_frame() on (fragment_scales.hpp).
   void set_fragment_scales(FragmentScales scales) { scales_ = std::move(scales); }
