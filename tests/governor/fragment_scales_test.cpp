@@ -5,6 +5,7 @@
 
 #include "glbudget/model/fragment_scales.hpp"
 #include "glbudget/model/reuse.hpp"
+#include "glbudget/model/run_time_model.hpp"
 #include "synthetic_scene.hpp"
 
 using namespace glbudget::model;
@@ -88,6 +89,39 @@ TEST_CASE("a level the history no longer holds keeps the scale measured while it
   CHECK(at_60.at(1, 0, 1) == Approx(0.77));
   CHECK(at_60.at(1, 0, 2) == Approx(0.77 * 370.0 / 770.0));
   CHECK(at_60.at(2, 2, 1) == Approx(0.147));  // the shadow map's, carried through both
+}
+
+TEST_CASE("the run-time model keeps a measured scale after its level's frames leave the history", "[model][scales]") {
+  // The app draws the shadow map at full size, then at its smallest for longer than the history
+  // holds: predicted from a frame at the smallest, the full-size configuration's shadow pass is
+  // still the fragments it drew, not the declared area's 1.7 times them.
+  const ConfigurationSpace space = fragment_scales_space();
+  HistorySettings history;
+  history.frames = 40;
+  RunTimeModel model(synthetic_profile(), space, {}, history);
+  auto feed = [&](const ConfiguredSample& s) {
+    const double predicted = model.predict_frame(s.sample, s.configuration);
+    model.learn(s.sample, s.configuration, predicted);
+  };
+  // Above the synthetic profile's idle of 20 W: the full-size shadow map costs 8 W more.
+  for (int t = 0; t < 60; ++t) {
+    ConfiguredSample full = frame({0, 0, 0}, 1.0e6 + 1e4 * (t % 7), 4.0e6);
+    full.sample.power_w = 40.0 + 0.01 * (t % 7);
+    feed(full);
+  }
+  ConfiguredSample small = frame({0, 0, 1}, 1.0e6, 5.88e5);
+  small.sample.power_w = 32.0;
+  for (int t = 0; t < 80; ++t) feed(small);
+  REQUIRE(model.fitted());
+  model.refresh_fragment_scales();
+  model.predict_frame(small.sample, small.configuration);
+  const ConfiguredSample full = frame({0, 0, 0}, 1.0e6, 4.0e6);
+  const ConfigurationPredictor* at_full = model.predictor_for(full.sample, full.configuration);
+  REQUIRE(at_full != nullptr);
+  const double drawn_at_full = at_full->predict({0, 0, 0});
+  model.predict_frame(small.sample, small.configuration);
+  // Forgetting the measured scale predicted 36.5 W here, against 40.0 W for the same counts.
+  CHECK(model.predict({0, 0, 0}) == Approx(drawn_at_full).epsilon(1e-9));
 }
 
 TEST_CASE("fragment scales ignore frames that cannot tell and passes scaled twice", "[model][scales][extremes]") {
