@@ -17,8 +17,7 @@ import csv
 import os
 import statistics
 
-SCENES = ("hall", "sponza", "valley", "subway")
-BUDGETS = (40, 50, 60)
+from budget_steps import BUDGETS, SCENES, budgets_at_selections
 
 
 def mean_power(path, first=100, last=600):
@@ -31,14 +30,6 @@ def mean_power(path, first=100, last=600):
             if first <= frame <= last:
                 frames[frame] = float(row["power_w"])
     return statistics.mean(frames.values()) if frames else float("nan")
-
-
-def budgets_at_selections(path):
-    budgets = {}
-    with open(path, newline="") as f:
-        for row in csv.DictReader(f):
-            budgets[int(row["frame"])] = float(row["budget_w"])
-    return budgets
 
 
 def main():
