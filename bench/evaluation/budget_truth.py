@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """How close the governor's budget is to the one the true range gives: at each selection, the
 budget it logged against the share of the range from the cheapest configuration's power to the
-best's, each measured in its own run of the evaluation (frames 100-600, probe frames left out),
+best's, each measured in its own run of the evaluation (frames 100-600, energy over time),
 per scene and budget; the mean absolute difference over selections up to a frame (default 350,
 when a 600-frame run's first frames, the only ones drawn at the best, leave the model's 300-frame
 history) and after it, and each run's largest difference after it.
@@ -13,23 +13,18 @@ DIR/logs/SCENE_pNN.csv.selections.csv, SCENE_best.csv and SCENE_cheapest.csv. Th
 a whole run's mean, so a scene whose load moves along its path moves the truth too; the figure
 is for comparing evaluations of the same scenes."""
 import argparse
-import csv
 import os
 import statistics
 
 from budget_steps import BUDGETS, SCENES, budgets_at_selections
+from evaluate import energy_mean, frames_of, spans_of
 
 
 def mean_power(path, first=100, last=600):
-    frames = {}
-    with open(path, newline="") as f:
-        for row in csv.DictReader(f):
-            if row.get("probe") or not row.get("power_w"):
-                continue
-            frame = int(row["frame"])
-            if first <= frame <= last:
-                frames[frame] = float(row["power_w"])
-    return statistics.mean(frames.values()) if frames else float("nan")
+    """A reference run's mean power over frames first..last, as the evaluation takes it: energy
+    over time."""
+    frames = frames_of(path)
+    return energy_mean(spans_of(frames, [f for f in frames if first <= f <= last]))
 
 
 def main():

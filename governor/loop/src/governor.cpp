@@ -270,11 +270,8 @@ bool Governor::select(const FrameRecord& record) {
     set_calibrated_prior();
     feedback_.correct(space_, power_);
     hold_interactions();
-    budget_w = share ? share_of_range_w() : model::budget_watts(settings_.power, power_);
-    if (share) {
-      const RangeEnds ends = range_ends();
-      range_at_selection_ = {ends.low_w, ends.high_w};
-    }
+    if (share) range_at_selection_ = range_ends();
+    budget_w = share ? share_of_range_w(range_at_selection_) : model::budget_watts(settings_.power, power_);
     // 100 % of the range admits the best configuration by definition: no margin below it.
     const bool whole_range = share && settings_.power.value >= 1.0;
     // Besides the spread's margin and the windows' overshoot, what the quality probes add to
@@ -467,8 +464,7 @@ Governor::RangeEnds Governor::range_ends() const {
   return ends;
 }
 
-double Governor::share_of_range_w() const {
-  const RangeEnds ends = range_ends();
+double Governor::share_of_range_w(const RangeEnds& ends) const {
   if (ends.top >= power_.size()) return std::numeric_limits<double>::infinity();
   const double low = ends.low_w, high = ends.high_w;
   const std::size_t top = ends.top;

@@ -80,7 +80,7 @@ void RunTimeModel::anchor_to_recent(PowerModel& model, const Configuration& conf
 
 void RunTimeModel::refresh_fragment_scales() {
   if (!predictor_ || !history_settings_.enabled) return;
-  known_scales_ = measure_fragment_scales(recent_history(), space_, kScaleFrames, &known_scales_);
+  known_scales_ = measure_fragment_scales(recent_history(), space_, kMinScaleFrames, &known_scales_);
   predictor_->set_fragment_scales(known_scales_);
 }
 
@@ -137,10 +137,7 @@ OnlineFitter::Event RunTimeModel::learn(const FrameSample& frame, const Configur
     predictor_.emplace(space_, model, fitted_at, reuse_);
   // Beyond the paper, with the history: fragments at every render-scale or shadow-map level
   // seen in it as measured, not as the table's declared areas (fragment_scales.hpp).
-  if (history_settings_.enabled) {
-    known_scales_ = measure_fragment_scales(recent_history(), space_, kScaleFrames, &known_scales_);
-    predictor_->set_fragment_scales(known_scales_);
-  }
+  refresh_fragment_scales();
   return event;
 }
 

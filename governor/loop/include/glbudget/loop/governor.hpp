@@ -191,9 +191,9 @@ class Governor {
     const std::vector<double>* power_w = nullptr;
     const std::vector<double>* error = nullptr;
     const std::vector<double>* weighed_w = nullptr;
-    // The ends of a share's range the budget was taken from; NaN under other budgets.
-    double range_low_w = std::numeric_limits<double>::quiet_NaN();
-    double range_high_w = std::numeric_limits<double>::quiet_NaN();
+    // The ends of a share's range the budget was taken from; infinite under other budgets.
+    double range_low_w = std::numeric_limits<double>::infinity();
+    double range_high_w = std::numeric_limits<double>::infinity();
   };
   SelectionTable last_selection() const {
     return {last_selection_frame_,
@@ -258,7 +258,7 @@ class Governor {
     std::size_t top = std::numeric_limits<std::size_t>::max();
   };
   RangeEnds range_ends() const;
-  double share_of_range_w() const;
+  double share_of_range_w(const RangeEnds& ends) const;
   double estimated_error(const model::Configuration& configuration) const;
   // The prediction of `configuration` for the frame last given to the model, whose own is
   // model_w, with the levels' interaction as the last selection held it (level_interactions).
@@ -347,16 +347,13 @@ class Governor {
   OpenCounts open_counts_;
   std::map<model::Configuration, WindowCounts> window_counts_;
   std::vector<double> measured_now_;  // by space index; NaN where weigh_at_windows found none
-  // The last selection's range (share budgets; else both ends NaN).
-  struct {
-    double low_w = std::numeric_limits<double>::quiet_NaN(), high_w = std::numeric_limits<double>::quiet_NaN();
-  } range_at_selection_;
-  std::uint64_t fitted_frame_ = 0;   // the frame of the model's first fit
-  std::vector<double> power_;        // reused by selections: corrected predictions
-  std::vector<double> model_power_;  // and the model's own
-  std::vector<double> guarded_;      // and as the selection weighs them (guard_unmeasured)
-  std::vector<bool> measured_;       // and whether each was measured (guard_unmeasured)
-  std::vector<double> summed_;       // and as their levels' changes summed (hold_interactions)
+  RangeEnds range_at_selection_;      // the last selection's (share budgets; else both ends infinite)
+  std::uint64_t fitted_frame_ = 0;    // the frame of the model's first fit
+  std::vector<double> power_;         // reused by selections: corrected predictions
+  std::vector<double> model_power_;   // and the model's own
+  std::vector<double> guarded_;       // and as the selection weighs them (guard_unmeasured)
+  std::vector<bool> measured_;        // and whether each was measured (guard_unmeasured)
+  std::vector<double> summed_;        // and as their levels' changes summed (hold_interactions)
   std::vector<double> error_;
   StepTimes times_;
   std::vector<std::string> notes_;

@@ -49,7 +49,8 @@ class FragmentScales {
 // follow the area), and once the frames at 2048 left the history the declared 0.0625 came
 // back, predicting the best configuration's shadow pass at 2.35 times its fragments and the
 // best itself 5.7 W over what it draws.
+inline constexpr std::size_t kMinScaleFrames = 5;
 FragmentScales measure_fragment_scales(std::span<const ConfiguredSample> history, const ConfigurationSpace& space,
-                                       std::size_t min_frames = 5, const FragmentScales* known = nullptr);
+                                       std::size_t min_frames = kMinScaleFrames, const FragmentScales* known = nullptr);
 
 }  // namespace glbudget::model

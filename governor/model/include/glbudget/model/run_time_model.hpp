@@ -79,7 +79,6 @@ class RunTimeModel {
   std::size_t history_fits_ = 0;
   // Fragment scales as measured so far: a level the history no longer holds keeps its last
   // measured scale (fragment_scales.hpp).
-  static constexpr std::size_t kScaleFrames = 5;
   FragmentScales known_scales_;
 };
 
