@@ -89,6 +89,10 @@ class PowerFeedback {
   // The configuration is changing, or this frame's power is not the configuration's own: the
   // open window is dropped.
   void interrupt();
+  // A window is open at `configuration` that has not closed yet.
+  bool window_open_at(const model::Configuration& configuration) const {
+    return open_ && open_->configuration == configuration;
+  }
 
   // The model's coefficients changed (a refit), and with them its prediction of
   // `configuration` by change_w watts: its residual measured against the old predictions is
