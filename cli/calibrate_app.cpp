@@ -298,19 +298,29 @@ void add_program(const json& program, LevelSums& s) {
 }
 
 struct PowerRunPlan {
-  std::vector<std::string> sequence;  // GLBUDGET_FORCE's configurations, one block each: each twice
+  std::vector<std::string> sequence;  // GLBUDGET_FORCE's configurations, one block each, in rounds
   unsigned block_frames = 0;          // GLBUDGET_FORCE_EVERY
+  unsigned rounds = 0;                // times each configuration is measured
 };
+
+// Frames of a block that are measured: each block's first two are left out (settled_samples).
+constexpr unsigned kMeasuredPerBlock = 3;
 
 // GLBUDGET_FORCE for the power run: level 0 everywhere, then each level of each pass alone, so
 // that each level's power is told apart from every other's, then the cheapest configuration
-// (every pass at its last level); then all of them again in the reverse order. The best and the
-// cheapest are the range a share of it is taken over (the governor's calibrated_range).
-// Each configuration is measured in two blocks that lie symmetrically about the middle of the
-// run, so a drift linear in time, of the sensor or of the scene along the app's camera path,
-// cancels from every configuration's mean and from each level's difference from the best. (With
-// one block each and the best at both ends, only the levels measured mid-run were spared it: on
-// the demo's Hall the best's power rises 2.5 W over the run's first 270 frames.)
+// (every pass at its last level). The best and the cheapest are the range a share of it is taken
+// over (the governor's calibrated_range).
+// All of them in short blocks, round after round, each round the reverse of the one before.
+// The cpu estimate on the demo jumps between levels 2-5 W apart for tens of frames at a time:
+// with two blocks of 11 frames per configuration, a block that fell in a high stretch moved a
+// level's difference from the best by as much as the level saves, and 32 of 216 levels measured
+// over 18 of the evaluations' calibrations drew more than the best (up to 4.6 W), so that the
+// levels' summed changes put the cheapest anywhere from 0.5 to 33 W under the best. Short
+// blocks spread each configuration's frames over the whole run, so such a stretch falls on
+// every configuration about alike; the mirrored rounds keep each configuration's frames
+// centred on the run, so a drift linear in time, of the sensor or of the scene along the app's
+// camera path, cancels from every configuration's mean and from each level's difference from
+// the best.
 PowerRunPlan power_run_plan(const manifest::Manifest& m, unsigned power_frames) {
   const std::string best = best_configuration(m);
   std::string cheapest;
@@ -325,11 +335,19 @@ PowerRunPlan power_run_plan(const manifest::Manifest& m, unsigned power_frames) 
     }
   if (std::find(forward.begin(), forward.end(), cheapest) == forward.end()) forward.push_back(cheapest);
   PowerRunPlan plan;
-  plan.sequence = forward;
-  plan.sequence.insert(plan.sequence.end(), forward.rbegin(), forward.rend());
-  // Each block leaves out its first two frames (settled_samples); two blocks keep about the
-  // power_frames - 2 frames one block of power_frames would.
-  plan.block_frames = power_frames < 3 ? power_frames : 2 + (power_frames - 2 + 1) / 2;
+  // About power_frames - 2 frames measured per configuration, as one block of power_frames
+  // would give; an even number of rounds, so that every configuration is mirrored. Under 3,
+  // nothing past each switch's first two frames is measured (the command says so).
+  const unsigned measured = power_frames < 3 ? 0 : power_frames - 2;
+  plan.block_frames = power_frames < 3 ? power_frames : 2 + std::min(kMeasuredPerBlock, measured);
+  plan.rounds = (measured + kMeasuredPerBlock - 1) / kMeasuredPerBlock;
+  plan.rounds = std::max(2u, plan.rounds + plan.rounds % 2);
+  for (unsigned r = 0; r < plan.rounds; ++r) {
+    if (r % 2 == 0)
+      plan.sequence.insert(plan.sequence.end(), forward.begin(), forward.end());
+    else
+      plan.sequence.insert(plan.sequence.end(), forward.rbegin(), forward.rend());
+  }
   return plan;
 }
 
@@ -382,9 +400,9 @@ bool measure_power(const Options& o, const manifest::Manifest& m,
   if (!o.fps.empty()) env.emplace_back("GLBUDGET_FPS", o.fps);
   const std::uint64_t frames_needed = configurations.size() * plan.block_frames + 2;
   std::printf(
-      "measuring the power of %zu configurations (the best, each level alone, the cheapest; then again in the "
-      "reverse order), two blocks of %u frames each%s%s...\n",
-      configurations.size() / 2, plan.block_frames, o.fps.empty() ? "" : " at ",
+      "measuring the power of %zu configurations (the best, each level alone, the cheapest), %u rounds of one "
+      "block of %u frames each, every other round in the reverse order%s%s...\n",
+      configurations.size() / std::max(1u, plan.rounds), plan.rounds, plan.block_frames, o.fps.empty() ? "" : " at ",
       o.fps.empty() ? "" : (o.fps + " fps").c_str());
   std::fflush(stdout);
   const RunResult run = run_app(o, env, log, frames_needed);
@@ -455,6 +473,8 @@ bool measure_power(const Options& o, const manifest::Manifest& m,
                     {"sensor", o.sensor.empty() ? "auto" : o.sensor},
                     {"fps", o.fps.empty() ? "the app's own" : o.fps},
                     {"frames", fit->samples_used},
+                    {"rounds", plan.rounds},
+                    {"block_frames", plan.block_frames},
                     {"error_per_frame_percent", fit->per_frame[0].mape_percent()},
                     {"error_per_configuration_percent", fit->per_configuration[0].mape_percent()},
                     {"configurations", std::move(measured)}};

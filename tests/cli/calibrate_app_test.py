@@ -66,7 +66,8 @@ os.makedirs(work)
 
 # 1. The table.
 table_path = os.path.join(work, "demo.variants.json")
-r = calibrate(["--config", manifest, "--frames", "6", "--power-frames", "4", "--error-probes", "2" if SANITIZED else "3",
+POWER_FRAMES = 4 if SANITIZED else 11  # the sanitizer's demo draws a frame in a quarter of a second
+r = calibrate(["--config", manifest, "--frames", "6", "--power-frames", str(POWER_FRAMES), "--error-probes", "2" if SANITIZED else "3",
                "--sensor", "cpu",
                "--profile", profile, "--output", table_path, "--", demo] + DEMO_ARGS + ["--frames", "100000"])
 print(r.stdout, r.stderr)
@@ -104,9 +105,17 @@ check(len(configurations) == 14 and configurations[0] == "0:0:0:0:0:0" and "0:0:
       configurations[-1] == "2:2:2:2:2:2",
       f"level 0, each of the 12 other levels alone, then the cheapest: {configurations}")
 check(all(c["power_w"] > 0 and c["frames"] >= 2 for c in table["power"]["configurations"]), "each one's power")
-# Measured in two blocks each, the second run in the reverse order: every configuration's frames
-# lie about the run's middle (one block each, in order, put them from about 0.04 to 0.96).
-places = {c["configuration"]: c.get("mean_place", -1) for c in table["power"]["configurations"]}
+# Measured in short blocks, round after round, every other round in the reverse order: 11 power
+# frames are 9 measured, three a block of five, in four rounds (4 are 2, in two rounds of blocks
+# of four); every configuration's frames lie about the run's middle (one block each, in order,
+# put them from about 0.04 to 0.96).
+power = table["power"]
+rounds, block = (2, 4) if POWER_FRAMES == 4 else (4, 5)
+check(power.get("rounds") == rounds and power.get("block_frames") == block,
+      f"{rounds} rounds of blocks of {block} frames: {power.get('rounds')}, {power.get('block_frames')}")
+check(all(c["frames"] >= rounds * (block - 2) - 1 for c in power["configurations"]),
+      f"each configuration's frames from every round: {[c['frames'] for c in power['configurations']]}")
+places = {c["configuration"]: c.get("mean_place", -1) for c in power["configurations"]}
 check(all(0.4 <= p <= 0.6 for p in places.values()), f"each configuration's frames centred on the run: {places}")
 
 # The error run: each level's error against the best, probed, and k = e(l) / e(lmax).
