@@ -74,10 +74,10 @@ void print_help() {
       "Then, with a platform profile (--profile, else $GLBUDGET_PROFILE, else the sensor's from\n"
       "`glbudget calibrate`), the app runs again, uninstrumented, with the sensor (--sensor, else\n"
       "$GLBUDGET_SENSOR, else auto): level 0 everywhere, then each level of each pass alone, then\n"
-      "the cheapest, then all again in the reverse order (a drift linear in time cancels), keeping\n"
-      "about --power-frames - 2 frames of each (default 20, at least 3: the first two after each\n"
-      "switch are left out; 0 skips this run), paced at --fps R if given (as the app will run under\n"
-      "a budget).\n"
+      "the cheapest, in short blocks round after round, the second half of the rounds the first\n"
+      "half's mirror image (a drift linear in time cancels), keeping about --power-frames - 2\n"
+      "frames of each (default 20, at least 3: the first two after each switch are left out; 0\n"
+      "skips this run), paced at --fps R if given (as the app will run under a budget).\n"
       "From those frames' power the costs of a batch, vertex, fragment, instruction and texel\n"
       "access in this app's frames are fitted (as `glbudget costs` does) and kept in the table;\n"
       "the model starts from them.\n\n"
@@ -303,24 +303,29 @@ struct PowerRunPlan {
   unsigned rounds = 0;                // times each configuration is measured
 };
 
-// Frames of a block that are measured: each block's first two are left out (settled_samples).
-constexpr unsigned kMeasuredPerBlock = 3;
+// Frames measured per configuration in a round (the first two of each block are left out,
+// settled_samples), and the most rounds: GLBUDGET_FORCE lists every block, and one environment
+// string holds at most 128 KiB.
+constexpr unsigned kMeasuredPerRound = 3;
+constexpr unsigned kMostRounds = 64;
 
 // GLBUDGET_FORCE for the power run: level 0 everywhere, then each level of each pass alone, so
 // that each level's power is told apart from every other's, then the cheapest configuration
 // (every pass at its last level). The best and the cheapest are the range a share of it is taken
 // over (the governor's calibrated_range).
-// All of them in short blocks, round after round, each round the reverse of the one before.
-// The cpu estimate on the demo jumps between levels 2-5 W apart for tens of frames at a time:
-// with two blocks of 11 frames per configuration, a block that fell in a high stretch moved a
-// level's difference from the best by as much as the level saves, and 32 of 216 levels measured
-// over 18 of the evaluations' calibrations drew more than the best (up to 4.6 W), so that the
-// levels' summed changes put the cheapest anywhere from 0.5 to 33 W under the best. Short
-// blocks spread each configuration's frames over the whole run, so such a stretch falls on
-// every configuration about alike; the mirrored rounds keep each configuration's frames
-// centred on the run, so a drift linear in time, of the sensor or of the scene along the app's
-// camera path, cancels from every configuration's mean and from each level's difference from
-// the best.
+// All of them in short blocks, round after round. The cpu estimate on the demo jumps between
+// levels 2-5 W apart for tens of frames at a time: with two blocks of 11 frames per
+// configuration, a block that fell in a high stretch moved a level's difference from the best
+// by as much as the level saves, and 32 of 216 levels measured over 18 of the evaluations'
+// calibrations drew more than the best (up to 4.6 W), so that the levels' summed changes put
+// the cheapest anywhere from 0.5 to 33 W under the best. Short blocks spread each
+// configuration's frames over the whole run, so such a stretch falls on every configuration
+// about alike. Each round of the first half starts further along the list, so that no
+// configuration's blocks of two rounds run into one (the best measured in fewer, longer
+// blocks would carry a high stretch into every level's difference); the second half is the
+// first's mirror image, so that each configuration's frames are centred on the run and a drift
+// linear in time, of the sensor or of the scene along the app's camera path, cancels from every
+// configuration's mean and from each level's difference from the best.
 PowerRunPlan power_run_plan(const manifest::Manifest& m, unsigned power_frames) {
   const std::string best = best_configuration(m);
   std::string cheapest;
@@ -335,19 +340,22 @@ PowerRunPlan power_run_plan(const manifest::Manifest& m, unsigned power_frames) 
     }
   if (std::find(forward.begin(), forward.end(), cheapest) == forward.end()) forward.push_back(cheapest);
   PowerRunPlan plan;
-  // About power_frames - 2 frames measured per configuration, as one block of power_frames
-  // would give; an even number of rounds, so that every configuration is mirrored. Under 3,
-  // nothing past each switch's first two frames is measured (the command says so).
+  // About power_frames - 2 frames measured per configuration, about kMeasuredPerRound a round,
+  // in an even number of rounds. Under 3, nothing past each switch's first two frames is
+  // measured (the command says so).
   const unsigned measured = power_frames < 3 ? 0 : power_frames - 2;
-  plan.block_frames = power_frames < 3 ? power_frames : 2 + std::min(kMeasuredPerBlock, measured);
-  plan.rounds = (measured + kMeasuredPerBlock - 1) / kMeasuredPerBlock;
-  plan.rounds = std::max(2u, plan.rounds + plan.rounds % 2);
-  for (unsigned r = 0; r < plan.rounds; ++r) {
-    if (r % 2 == 0)
-      plan.sequence.insert(plan.sequence.end(), forward.begin(), forward.end());
-    else
-      plan.sequence.insert(plan.sequence.end(), forward.rbegin(), forward.rend());
-  }
+  const unsigned half = std::clamp((measured + kMeasuredPerRound) / (2 * kMeasuredPerRound), 1u, kMostRounds / 2);
+  plan.rounds = 2 * half;
+  plan.block_frames = power_frames < 3 ? power_frames : 2 + std::max(1u, (measured + plan.rounds - 1) / plan.rounds);
+  const std::size_t n = forward.size();
+  // A step that never brings a round's first configuration next to the last one's last.
+  std::size_t step = std::max<std::size_t>(1, n / half);
+  if (n > 2 && step % n == n - 1) step = 1;
+  std::vector<std::string> first_half;
+  for (unsigned r = 0; r < half; ++r)
+    for (std::size_t k = 0; k < n; ++k) first_half.push_back(forward[(r * step + k) % n]);
+  plan.sequence = first_half;
+  plan.sequence.insert(plan.sequence.end(), first_half.rbegin(), first_half.rend());
   return plan;
 }
 
@@ -401,7 +409,7 @@ bool measure_power(const Options& o, const manifest::Manifest& m,
   const std::uint64_t frames_needed = configurations.size() * plan.block_frames + 2;
   std::printf(
       "measuring the power of %zu configurations (the best, each level alone, the cheapest), %u rounds of one "
-      "block of %u frames each, every other round in the reverse order%s%s...\n",
+      "block of %u frames each, the second half of the rounds the first's mirror image%s%s...\n",
       configurations.size() / std::max(1u, plan.rounds), plan.rounds, plan.block_frames, o.fps.empty() ? "" : " at ",
       o.fps.empty() ? "" : (o.fps + " fps").c_str());
   std::fflush(stdout);
@@ -423,7 +431,7 @@ bool measure_power(const Options& o, const manifest::Manifest& m,
   }
   // Each configuration's mean measured power, for the user and the record.
   // And the mean place of its frames in the run (0: the first frame measured, 1: the last): the
-  // two blocks' symmetry about the middle, which the drift's cancelling rests on, made visible.
+  // rounds' symmetry about the middle, which the drift's cancelling rests on, made visible.
   struct Measured {
     double watts = 0.0, place = 0.0;
     int frames = 0;
@@ -441,7 +449,7 @@ bool measure_power(const Options& o, const manifest::Manifest& m,
   std::printf("%-24s %9s %7s\n", "configuration", "power W", "frames");
   std::set<std::string> listed;
   for (const std::string& c : configurations) {
-    if (!listed.insert(c).second) continue;  // the best, measured twice, is one entry
+    if (!listed.insert(c).second) continue;  // measured in every round, listed once
     std::string colon = c;
     std::replace(colon.begin(), colon.end(), ',', ':');
     const auto parsed = model::parse_configuration(colon, variants->space);

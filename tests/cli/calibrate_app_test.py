@@ -105,12 +105,12 @@ check(len(configurations) == 14 and configurations[0] == "0:0:0:0:0:0" and "0:0:
       configurations[-1] == "2:2:2:2:2:2",
       f"level 0, each of the 12 other levels alone, then the cheapest: {configurations}")
 check(all(c["power_w"] > 0 and c["frames"] >= 2 for c in table["power"]["configurations"]), "each one's power")
-# Measured in short blocks, round after round, every other round in the reverse order: 11 power
-# frames are 9 measured, three a block of five, in four rounds (4 are 2, in two rounds of blocks
-# of four); every configuration's frames lie about the run's middle (one block each, in order,
-# put them from about 0.04 to 0.96).
+# Measured in short blocks, round after round, the second half of the rounds the first's mirror
+# image: 11 power frames are 9 measured, three a block of five, in four rounds (4 are 2, in two
+# rounds of blocks of three); every configuration's frames lie about the run's middle (one block
+# each, in order, put them from about 0.04 to 0.96).
 power = table["power"]
-rounds, block = (2, 4) if POWER_FRAMES == 4 else (4, 5)
+rounds, block = (2, 3) if POWER_FRAMES == 4 else (4, 5)
 check(power.get("rounds") == rounds and power.get("block_frames") == block,
       f"{rounds} rounds of blocks of {block} frames: {power.get('rounds')}, {power.get('block_frames')}")
 check(all(c["frames"] >= rounds * (block - 2) - 1 for c in power["configurations"]),
