@@ -594,11 +594,13 @@ void Governor::meter(const FrameRecord& frame) {
   // left the configuration unmeasured, and the selection counted on the same prediction that
   // had just put the window over (the demo's Sponza at 40 and 50 %: the first configuration,
   // predicted 19.2 W, drew 23.7 W; the next one chosen, its neighbour predicted 20.3 W, drew
-  // 25.3 W, and four windows went over). The selection waits for the feedback's window.
-  if (feedback_.window_open_at(frame.configuration))
-    reselect_after_window_ns_ = frame.time_ns;
-  else
+  // 25.3 W, and four windows went over). The selection waits for the feedback's window, once
+  // (a later meter's window over the budget does not put the wait off).
+  if (window->probes > 0 && feedback_.window_open_at(frame.configuration)) {
+    if (!reselect_after_window_ns_) reselect_after_window_ns_ = frame.time_ns;
+  } else {
     reselect_now_ = true;
+  }
 }
 
 // Counts of frames with non-finite counts are not summed; their window's mean is then not kept.

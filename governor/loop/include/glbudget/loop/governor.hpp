@@ -326,8 +326,9 @@ class Governor {
   bool probe_bursts_spaced_ = false;
   FrameRecord after_probe_record_;  // reused: the frame after a probe, its power left out
   bool reselect_now_ = false;       // a window was measured over the budget
-  // A meter's window over the budget while the feedback's window at the same configuration is
-  // still open: the selection waits for it (meter(), at most a window): the time it was found.
+  // A meter's window over the budget closed by a probe while the feedback's window at the same
+  // configuration is still open: the selection waits for it (meter(), at most a window): the
+  // time it was found.
   std::optional<std::int64_t> reselect_after_window_ns_;
   bool exploring_ = false;  // drawing the cheapest configuration until a window measures it
   bool explored_ = false;   // once per run
