@@ -316,7 +316,7 @@ constexpr unsigned kMostRounds = 64;
 // All of them in short blocks, round after round. The cpu estimate on the demo jumps between
 // levels 2-5 W apart for tens of frames at a time: with two blocks of 11 frames per
 // configuration, a block that fell in a high stretch moved a level's difference from the best
-// by as much as the level saves, and 32 of 216 levels measured over 18 of the evaluations'
+// by as much as the level saves, and 73 of 216 levels measured over 18 of the evaluations'
 // calibrations drew more than the best (up to 4.6 W), so that the levels' summed changes put
 // the cheapest anywhere from 0.5 to 33 W under the best. Short blocks spread each
 // configuration's frames over the whole run, so such a stretch falls on every configuration

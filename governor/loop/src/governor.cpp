@@ -30,11 +30,12 @@ std::vector<model::PassFrame>::iterator find_pass(std::vector<model::PassFrame>&
 
 // A level's calibrated change from the best, never above 0: a level below the best that measured
 // more than the best did is the calibration's scatter (the cpu estimate's stretches of a few
-// seconds reading 2-5 W high put 32 of 216 levels in 18 of the demo's calibrations 0.1-4.6 W
+// seconds reading 2-5 W high put 73 of 216 levels in 18 of the demo's calibrations 0.01-4.6 W
 // over the best, some of them in every scene). Taken as measured, such levels cancelled the
 // others' savings when summed: Sponza's cheapest was predicted 1.7 W under the best where the
-// same calibration measured it 11.7 W under, and the governor took it for dearer than a level
-// of resolution and shadows alone that drew 19 W against its 17.8 W.
+// same calibration measured it 11.7 W under, and the governor took it for dearer than the
+// configuration with only resolution and shadows at their cheapest, which drew 19 W against its
+// 17.8 W.
 double calibrated_change_w(double watts, double best_w) { return std::min(0.0, watts - best_w); }
 
 double microseconds_since(Clock::time_point start) {
