@@ -548,10 +548,6 @@ void Governor::feed_back(const FrameRecord& record, Decision& decision) {
     window = feedback_.add(record.configuration, record.time_ns, record.power_w, decision.predicted_w);
     count_window_frame(record, feedback_.frames_taken() != taken, feedback_.windows_opened() != opened, window);
   }
-  if (window && reselect_after_window_ns_) {
-    reselect_after_window_ns_.reset();
-    reselect_now_ = true;
-  }
   if (window) {
     if (exploring_) {
       // The cheapest is measured: select again with it, and leave the overshoot out of it.
@@ -791,8 +787,8 @@ Decision Governor::on_frame(const FrameRecord& frame) {
                       decision.predicted_w > budget_w_;
     if (!record.probe) over_budget_frames_ = over ? over_budget_frames_ + 1 : 0;
     if (probes_outgrew_margin()) reselect_now_ = true;
-    // The feedback's window did not close within a window of the meter's finding it over (the
-    // configuration changed, frames without power): the selection waits no longer.
+    // The wait ends once the feedback's window has closed (feed_back, above), or did not close
+    // within a window of the meter's finding it over (frames without power).
     if (reselect_after_window_ns_ &&
         (!feedback_.window_open_at(record.configuration) ||
          static_cast<double>(record.time_ns - *reselect_after_window_ns_) * 1e-9 >= settings_.feedback.window_s)) {
