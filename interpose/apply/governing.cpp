@@ -467,6 +467,7 @@ class GovernorThread {
     record.probe_period = static_cast<double>(probe_period_in_force());
     record.sweeping_streams = probe_sweep_streams();
     record.probe_sweep_streams = first.probe_sweep_streams;
+    record.sweepable_streams = probe_sweepable_streams();
     // The shim's levels ("0:2:1"), then the "app" pass's only level.
     for (size_t at = 0; at < first.configuration.size();) {
       size_t end = first.configuration.find(':', at);
@@ -489,7 +490,8 @@ class GovernorThread {
       pass->counts.fragments += row.fragments < 0 ? std::nan("") : static_cast<double>(row.fragments);
     }
     const loop::Decision d = governor_.on_frame(record);
-    set_probe_period_wanted(governor_.probe_period_wanted(), governor_.probe_bursts_spaced());
+    set_probe_period_wanted(governor_.probe_period_wanted(), governor_.probe_bursts_spaced(),
+                            governor_.probe_streams_fit());
     set_probe_selection_due(governor_.next_selection_frame(), governor_.settings().select_frames,
                             governor_.transitioning());
     // Observing only for the probes, the governor has nothing to tell.

@@ -61,9 +61,10 @@ const ProbeSettings& probe_settings() {
 namespace {
 std::atomic<uint64_t> g_period_wanted{0}, g_period_in_force{0};
 std::atomic<bool> g_bursts_spaced{false};
+std::atomic<int> g_streams_fit{0};
 std::atomic<uint64_t> g_selection_due{0}, g_select_frames{0};  // set_probe_selection_due
 std::atomic<bool> g_transitioning{false};
-std::atomic<int> g_sweep_streams{0};
+std::atomic<int> g_sweep_streams{0}, g_sweepable_streams{0};
 std::atomic<float> g_pass_error[kMaxPasses];  // set_probe_pass_error
 }  // namespace
 
@@ -72,12 +73,14 @@ void set_probe_pass_error(size_t pass, double error) {
     g_pass_error[pass].store(static_cast<float>(error), std::memory_order_relaxed);
 }
 
-void set_probe_period_wanted(uint64_t frames, bool bursts_too) {
+void set_probe_period_wanted(uint64_t frames, bool bursts_too, int streams_fit) {
   g_period_wanted.store(frames, std::memory_order_relaxed);
   g_bursts_spaced.store(bursts_too, std::memory_order_relaxed);
+  g_streams_fit.store(streams_fit, std::memory_order_relaxed);
 }
 uint64_t probe_period_in_force() { return g_period_in_force.load(std::memory_order_relaxed); }
 int probe_sweep_streams() { return g_sweep_streams.load(std::memory_order_relaxed); }
+int probe_sweepable_streams() { return g_sweepable_streams.load(std::memory_order_relaxed); }
 
 void set_probe_selection_due(uint64_t frame, uint64_t select_frames, bool transitioning) {
   g_selection_due.store(frame, std::memory_order_relaxed);
@@ -1410,8 +1413,9 @@ struct ProbeFrames::Impl {
   // The streams of a probe frame: s0, unless the frame is drawn in it, and s_i^lmax for a pass
   // that has levels and drew in the last probe frame: the next in turn (GLBUDGET_PROBE_ORDER=
   // weighted: until each has been probed, then the one whose error × age is largest), or with
-  // `sweep` every such pass, those probed longest ago first where they are more than the streams.
-  void plan(uint64_t next, bool sweep) {
+  // `sweep` every such pass, those probed longest ago first where they are more than the streams
+  // (max_streams, s0 counted whether it is drawn or shown).
+  void plan(uint64_t next, bool sweep, int max_streams = kMaxStreams) {
     const manifest::Manifest& m = active_manifest();
     const int passes = std::min<int>(static_cast<int>(m.passes.size()), kMaxPasses);
     stream_count = 0;
@@ -1445,8 +1449,10 @@ struct ProbeFrames::Impl {
       for (size_t k = 0; k < order.size(); ++k)
         if (probeable(order[k].first)) taken.push_back(k);
       std::stable_sort(taken.begin(), taken.end(), [&](size_t a, size_t b) { return pair_probed[a] < pair_probed[b]; });
+      // At most max_streams - 1 passes (s0 beside them, whether drawn or shown).
+      int passes_left = max_streams - 1;
       for (size_t k : taken)
-        if (stream_count < kMaxStreams) probe_pair(k);
+        if (stream_count < kMaxStreams && passes_left-- > 0) probe_pair(k);
     } else if (options().probe_order_weighted && settled()) {
       candidates.resize(order.size());
       for (size_t k = 0; k < order.size(); ++k) {
@@ -1547,10 +1553,14 @@ struct ProbeFrames::Impl {
   // that sweeps cost no more than the probes in turn did). After a pass's error moved, half the
   // longest gap after the last, unless a selection is due within that. Never two in one
   // window. Where the governor spaces probes (g_bursts_spaced: a window holding one is over the
-  // budget whatever is shown), a sweep a longest gap, drawn ahead of the selection due in the
-  // last selection period of it. With GLBUDGET_PROBE_PERIOD given, a sweep every period.
+  // budget whatever is shown), a sweep a longest gap (the settled period the governor asks for,
+  // unscaled), drawn ahead of the selection due in the last selection period of it. With GLBUDGET_PROBE_PERIOD given, a
+  // sweep every period.
   uint64_t longest_sweep_gap(const ProbeSettings& settings, uint64_t settled_period) const {
     if (!settings.stretchable) return settings.period;
+    // Spaced, what a probe costs is a window over the budget, a sweep's one as a probe of one
+    // pass's: the governor's period unscaled.
+    if (g_bursts_spaced.load(std::memory_order_relaxed)) return std::max(window_gap(settings), settled_period);
     const uint64_t as_costly =
         settled_period * static_cast<uint64_t>(std::clamp(passes_in_scene(), 1, kSweepCostInProbes));
     const uint64_t whole = age_bound_frames(settings, true);
@@ -1680,8 +1690,17 @@ void ProbeFrames::after_swap(uint64_t next) {
   const uint64_t wanted = settings.stretchable ? g_period_wanted.load(std::memory_order_relaxed) : 0;
   const uint64_t settled_period = std::max(settings.period * settings.settled_factor, wanted);
   const uint64_t bound = settings.period ? p.age_bound_frames(settings) : 0;
-  const bool sweeping = options().probe_sweep && !options().probe_every_level && p.settled() && settings.period;
-  g_sweep_streams.store(sweeping ? p.passes_in_scene() + 1 : 0, std::memory_order_relaxed);
+  // Sweeps where the user asked for them, once every pass is probed, unless the governor has the
+  // passes probed in turn, several at a time or one (a window holding a sweep would not fit
+  // under its budget).
+  const bool sweepable = options().probe_sweep && !options().probe_every_level && settings.period;
+  const int all_streams = std::min(kMaxStreams, p.passes_in_scene() + 1);
+  const int fit = g_streams_fit.load(std::memory_order_relaxed);
+  const int streams = fit > 0 ? std::min(fit, all_streams) : all_streams;
+  const bool sweeping = sweepable && p.settled() && streams >= all_streams;
+  const bool grouped = sweepable && p.settled() && !sweeping && streams > 2;
+  g_sweep_streams.store(sweeping || grouped ? streams : 0, std::memory_order_relaxed);
+  g_sweepable_streams.store(sweepable ? all_streams : 0, std::memory_order_relaxed);
   if (const uint64_t drift = probe_drift_count(); drift != p.drift_seen) {
     p.drift_seen = drift;
     // The scene moved: every pass's error again, at the first period. Not where the age bound
@@ -1718,7 +1737,7 @@ void ProbeFrames::after_swap(uint64_t next) {
   // Earlier probes not yet measured: this one would only wait behind them (governing.hpp).
   if (p.pending.size() >= kMaxPending || governor_probes_backlogged()) return;
   p.last_tried = next;
-  p.plan(next, sweeping);
+  p.plan(next, sweeping || grouped, streams);
 }
 
 void ProbeFrames::collect(bool wait) {

@@ -165,15 +165,21 @@ struct ProbeSettings {
 const ProbeSettings& probe_settings();
 
 // Governor thread: frames between settled probes it asks for at least (0: the settled period
-// of ProbeSettings), and whether bursts (every pass again after the scene moved) keep it too.
+// of ProbeSettings), whether bursts (every pass again after the scene moved) keep it too, and
+// where sweeps were asked for, the most streams a probe frame is to draw (Governor::
+// probe_streams_fit; 0: no limit): all of them sweep, fewer take the passes in turn that many
+// at a time.
 // Render thread: the period its contexts plan probes at now, for the governor's probe overhead
 // (0: none planned yet).
-void set_probe_period_wanted(uint64_t frames, bool bursts_too);
+void set_probe_period_wanted(uint64_t frames, bool bursts_too, int streams_fit = 0);
 uint64_t probe_period_in_force();
 // Render thread: the streams a settled probe frame draws where it measures every pass at once
 // (GLBUDGET_PROBE_SWEEP: the best and one a pass in the scene), for the governor's probe
 // overhead; 0 where probes take one pass each.
 int probe_sweep_streams();
+// The streams a sweep would draw where the user asked for sweeps, whether or not the governor
+// has the shim sweep now (streams_fit above); 0: not asked.
+int probe_sweepable_streams();
 // Governor thread: the frame its next selection is due at, and the frames between selections
 // (GLBUDGET_PROBE_SWEEP: settled probe frames measure every pass just ahead of it; 0: none due),
 // and whether it is moving to the configuration it selected (a sweep at the longest gap waits

@@ -134,9 +134,16 @@ class App {
       s.true_power_w += unseen_(drawn_);
       if (!power) s.record.power_w += unseen_(drawn_);
     }
+    s.record.sweepable_streams = sweepable_streams_;
+    // Playing the shim: sweeps as the governor last asked (probe_streams_fit), their excess as a
+    // probe of one pass's times sweep_excess_factor.
+    const int fit = governor_.probe_streams_fit();
+    const int streams = sweepable_streams_ > 2 ? (fit > 0 ? std::min(fit, sweepable_streams_) : sweepable_streams_) : 0;
+    s.record.sweeping_streams = streams > 2 ? streams : 0;
     if (probe) {
       for (model::PassFrame& p : s.record.passes) p.counts.fragments *= 2.0;
-      s.record.power_w *= probe_power;
+      s.record.power_w *= 1.0 + (probe_power - 1.0) * (streams > 2 ? loop::sweep_excess_factor(streams) : 1.0);
+      s.record.probe_sweep_streams = s.record.sweeping_streams;
     }
     s.decision = governor_.on_frame(s.record);
     s.target = governor_.target();
@@ -155,6 +162,8 @@ class App {
   void set_frame_ns(std::int64_t ns) { frame_ns_ = ns; }
   // The probe period the shim would report with the frames from now on (0: not known).
   void set_probe_period(double frames) { probe_period_ = frames; }
+  // The streams of a sweep where the shim is asked for sweeps (0: not asked).
+  void set_sweepable_streams(int streams) { sweepable_streams_ = streams; }
 
  private:
   std::function<double(const Configuration&)> unseen_;
@@ -166,6 +175,7 @@ class App {
   int slow_;
   std::int64_t frame_ns_ = kFrameNs;
   double probe_period_ = 0.0;
+  int sweepable_streams_ = 0;
 };
 
 GovernorSettings power_budget(const std::string& text) {
@@ -703,26 +713,34 @@ TEST_CASE(
   t += kSlotNs * 3 / 2;
   o.add(true, 30.0, t);
   o.set_sweep_streams(7);
-  CHECK(o.largest_recent_excess_w() == Approx(3.5 * single));
-  CHECK(o.whole_excess_margin_w(1.0) == Approx(5.25).epsilon(0.05));
+  CHECK(o.largest_recent_excess_w() == Approx(2.25 * single));  // sweep_excess_factor(7)
+  CHECK(o.whole_excess_margin_w(1.0) == Approx(3.375).epsilon(0.05));
   for (int k = 0; k < 2; ++k) {
     t += kSlotNs;
     o.add(false, 20.0, t);
   }
   CHECK(o.probes_measured() == 20);
-  CHECK(o.largest_recent_excess_w() == Approx(3.5 * single).epsilon(0.03));
+  CHECK(o.largest_recent_excess_w() == Approx(2.25 * single).epsilon(0.03));
   o.set_sweep_streams(7);  // said again every frame: scaled once
-  CHECK(o.largest_recent_excess_w() == Approx(3.5 * single).epsilon(0.03));
+  CHECK(o.largest_recent_excess_w() == Approx(2.25 * single).epsilon(0.03));
+  CHECK(o.streams_held() == 7);
   // A sweep of 5.5 slots is no pause: it is measured, and it replaces the stand-in whole.
   feed(60, 60, 11, 7);
   REQUIRE(o.probes_measured() == 1);
   CHECK(o.largest_recent_excess_w() == Approx(55.0).epsilon(0.03));
   CHECK(o.excess_w() == Approx(55.0).epsilon(0.03));
-  // A pass back in the scene: the shim's sweeps off for a while; the sweeps measured are not
-  // scaled when it sweeps again.
+  // A pass back in the scene: the shim's sweeps off for a while, the sweeps measured read as
+  // probes of one pass; back as they were when it sweeps again.
   o.set_sweep_streams(0);
+  CHECK(o.streams_held() == 2);
+  CHECK(o.largest_recent_excess_w() == Approx(55.0 / 2.25).epsilon(0.03));
   o.set_sweep_streams(7);
   CHECK(o.largest_recent_excess_w() == Approx(55.0).epsilon(0.03));
+  // Sweeps of three passes (four streams, of 1.5 probes of one pass) read the seven-stream sweeps
+  // converted, until one is measured.
+  o.set_sweep_streams(4);
+  CHECK(o.largest_recent_excess_w() == Approx(55.0 * 1.5 / 2.25).epsilon(0.03));
+  o.set_sweep_streams(7);
   // Past 16 slots a probe frame is a pause (a shader built on the spot): not counted.
   feed(60, 60, 40, 7);
   CHECK(o.probes_measured() == 1);
@@ -924,17 +942,20 @@ struct RareProbeRun {
   double probed_windows = 0.0;      // share of those windows that held a probe
   std::uint64_t period_wanted = 0;  // the governor's last request
   bool bursts_spaced = false;       // and whether bursts are to keep it
+  int streams_fit = 0;              // and the most streams a probe frame is to draw
 };
 
 // At 10 frames a second a probe every 60 frames (the shim's settled period) falls into one
 // window in six; each probe draws 1.5 times a frame's power, its span about 1.3 W over a window.
 // The test plays the shim: probes at the settled period, or at the governor's if longer,
 // counted from the last probe.
-RareProbeRun run_with_probes_at_ten_fps(double stretch_gain, const char* budget = "50%", double probe_power = 1.5) {
+RareProbeRun run_with_probes_at_ten_fps(double stretch_gain, const char* budget = "50%", double probe_power = 1.5,
+                                        int sweepable_streams = 0) {
   GovernorSettings settings = power_budget(budget);
   settings.probe_stretch_gain = stretch_gain;
   App app(settings, Configuration(6, 0), 7, 1 << 20);  // a still camera
   app.set_frame_ns(100'000'000);
+  app.set_sweepable_streams(sweepable_streams);
   constexpr int kFrames = 6000, kWindow = 10, kFirst = 600;
   std::vector<Step> steps;
   std::uint64_t last = 0;
@@ -949,6 +970,7 @@ RareProbeRun run_with_probes_at_ten_fps(double stretch_gain, const char* budget 
   RareProbeRun run;
   run.period_wanted = app.governor().probe_period_wanted();
   run.bursts_spaced = app.governor().probe_bursts_spaced();
+  run.streams_fit = app.governor().probe_streams_fit();
   for (int k = kFirst; k < kFrames; ++k) run.mean_error += steps[k].decision.est_error / (kFrames - kFirst);
   int windows = 0, within = 0, probed = 0;
   for (int start = kFirst; start + kWindow <= kFrames; start += kWindow) {
@@ -1012,6 +1034,36 @@ TEST_CASE("probes are asked rarer where no configuration fits a probe's whole ex
 // scene moved: every pass again, 10 frames apart) puts one in every window. With the feedback
 // on, the first window measured over the budget would select again too, up to a window later:
 // off here, so that only the burst can be what selects.
+// Seven streams sweep six passes; a sweep's whole excess is 2.25 probes of one pass's
+// (sweep_excess_factor). With room under the budget for a probe of one pass's excess but not a
+// sweep's, the passes are probed in turn, as many at a time as fit; with room for none, sweeps,
+// spaced: a window holding a probe is over the budget either way, and a sweep measures all.
+TEST_CASE("sweeps where a window fits one, else probes of fewer passes each, else rare sweeps", "[loop]") {
+  int last_streams = 0;
+  for (const char* budget : {"40%", "50%", "60%"}) {
+    const RareProbeRun r = run_with_probes_at_ten_fps(0.005, budget, 1.5, 7);
+    INFO(budget << ": " << r.streams_fit << " streams, bursts spaced " << r.bursts_spaced << ", windows within "
+                << r.windows_within);
+    CHECK_FALSE(r.bursts_spaced);
+    CHECK(r.streams_fit >= last_streams);  // more room, more passes a probe frame
+    CHECK(r.windows_within >= 0.95);
+    last_streams = r.streams_fit;
+  }
+  CHECK(run_with_probes_at_ten_fps(0.005, "40%", 1.5, 7).streams_fit == 2);
+  const int at_half = run_with_probes_at_ten_fps(0.005, "50%", 1.5, 7).streams_fit;
+  CHECK(at_half > 2);
+  CHECK(at_half < 7);
+  // Probes that cost less: sweeps of every pass.
+  const RareProbeRun cheap = run_with_probes_at_ten_fps(0.005, "60%", 1.2, 7);
+  CHECK(cheap.streams_fit == 7);
+  CHECK_FALSE(cheap.bursts_spaced);
+  // A probe of one pass's excess fits nowhere: sweeps, spaced.
+  const RareProbeRun none_fits = run_with_probes_at_ten_fps(0.005, "30%", 3.0, 7);
+  CHECK(none_fits.streams_fit == 7);
+  CHECK(none_fits.bursts_spaced);
+  CHECK(none_fits.windows_within >= 0.95);
+}
+
 TEST_CASE("a burst of probes beyond what the last selection planned for selects again at once", "[loop]") {
   GovernorSettings settings = power_budget("50%");
   settings.feedback.enabled = false;

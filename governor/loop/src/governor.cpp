@@ -296,7 +296,14 @@ bool Governor::select(const FrameRecord& record) {
     margin_w_ = whole_range ? 0.0 : margin_without_probes_w + probe_margin_w_;
     guard_unmeasured(whole_range ? 0.0 : feedback_.unmeasured_margin_w(), !whole_range);
     const bool probes_were_rare = probe_period_wanted_ > 0, bursts_were_rare = probe_bursts_spaced_;
-    if (!whole_range) want_probe_period(budget_w, margin_without_probes_w);
+    if (!whole_range) {
+      want_probe_period(budget_w, margin_without_probes_w);
+      // Probes of the other kind from now on (sweeps or probes in turn): their margins.
+      const double to_kind = probe_kind_factor();
+      probe_margin_w_ *= to_kind;
+      best_probe_margin_w_ *= to_kind;
+      margin_w_ = margin_without_probes_w + probe_margin_w_;
+    }
     // Probes held rare until now and not from this selection on: the share the probes were
     // planned at found their mean, but they come at the shim's own period from now, and each
     // window holding one must fit its whole excess (the demo's Sponza at 50 % with sweeps: a
@@ -305,8 +312,10 @@ bool Governor::select(const FrameRecord& record) {
     if (!whole_range &&
         ((probes_were_rare && probe_period_wanted_ == 0) || (bursts_were_rare && !probe_bursts_spaced_))) {
       const double window_s = settings_.feedback.window_s;
-      probe_margin_w_ = std::max(probe_margin_w_, probe_overhead_.whole_excess_margin_w(window_s));
-      best_probe_margin_w_ = std::max(best_probe_margin_w_, probe_overhead_.whole_excess_margin_w(window_s, true));
+      const double to_kind = probe_kind_factor();
+      probe_margin_w_ = std::max(probe_margin_w_, to_kind * probe_overhead_.whole_excess_margin_w(window_s));
+      best_probe_margin_w_ =
+          std::max(best_probe_margin_w_, to_kind * probe_overhead_.whole_excess_margin_w(window_s, true));
       margin_w_ = margin_without_probes_w + probe_margin_w_;
     }
     // The best's own probes draw one stream fewer: it keeps only what they cost. After the
@@ -697,6 +706,11 @@ double Governor::probe_window_margin_w(bool shown_best) const {
   return probe_overhead_.window_margin_w(settings_.feedback.window_s, settings_.feedback.keep_share, shown_best);
 }
 
+double Governor::probe_kind_factor() const {
+  if (!probe_streams_fit_) return 1.0;
+  return sweep_excess_factor(probe_streams_fit_) / sweep_excess_factor(probe_overhead_.streams_held());
+}
+
 // Probes rare enough that windows keep their mean margin, where the selection would then show
 // a lower error by probe_stretch_gain, or where no configuration is predicted to fit a probe's
 // whole excess under the budget but some would fit rare probes' mean (a narrow range at a low
@@ -706,26 +720,44 @@ double Governor::probe_window_margin_w(bool shown_best) const {
 // thresholds keeps the period from flapping with the noise).
 void Governor::want_probe_period(double budget_w, double margin_without_probes_w) {
   const double gap = probe_overhead_.rare_gap(settings_.feedback.window_s, settings_.feedback.keep_share);
-  if (!(settings_.probe_stretch_gain > 0.0) || gap <= 0.0 || probe_overhead_.probes_measured() == 0) {
+  if (gap <= 0.0 || probe_overhead_.probes_measured() == 0) {
     probe_period_wanted_ = 0;
     probe_bursts_spaced_ = false;
     return;
   }
-  const double whole = probe_overhead_.whole_excess_margin_w(settings_.feedback.window_s);
-  const double rare = probe_overhead_.watts_at_gap(gap);
+  double whole = probe_overhead_.whole_excess_margin_w(settings_.feedback.window_s);
+  double rare = probe_overhead_.watts_at_gap(gap);
+  const double scatter_w = feedback_.margin_w();
+  const auto fits = [&](double margin_w) {
+    return std::any_of(guarded_.begin(), guarded_.end(), [&](double p) { return p <= budget_w - margin_w; });
+  };
+  // Where sweeps were asked for, the probes' kind (probe_streams_fit), weighed at its excess.
+  if (sweepable_streams_ > kOnePassStreams) {
+    probe_streams_fit_ = 0;
+    const double one_pass = 1.0 / sweep_excess_factor(probe_overhead_.streams_held());
+    const auto as_kind = [&](int streams) { return one_pass * sweep_excess_factor(streams); };
+    for (int streams = sweepable_streams_; streams > kOnePassStreams && !probe_streams_fit_; --streams)
+      if (fits(scatter_w + whole * as_kind(streams))) probe_streams_fit_ = streams;
+    if (!probe_streams_fit_)
+      probe_streams_fit_ = fits(scatter_w + whole * one_pass) ? kOnePassStreams : sweepable_streams_;
+    const double to_kind = as_kind(probe_streams_fit_);
+    whole *= to_kind;
+    rare *= to_kind;
+  }
+  if (!(settings_.probe_stretch_gain > 0.0)) {
+    probe_period_wanted_ = 0;
+    probe_bursts_spaced_ = false;
+    return;
+  }
   const model::Selection with_whole =
       model::select_configuration(guarded_, error_, budget_w, margin_without_probes_w + whole);
   const model::Selection with_rare =
       model::select_configuration(guarded_, error_, budget_w, margin_without_probes_w + rare);
   const double gain = error_[with_whole.index] - error_[with_rare.index];
-  const auto fits = [&](double margin_w) {
-    return std::any_of(guarded_.begin(), guarded_.end(), [&](double p) { return p <= budget_w - margin_w; });
-  };
   // The probes' whole excess is what leaves no room beside the sensor's scatter (where nothing
   // fits without it either, the predictions put every window over the budget, probes or not,
   // and rarer probes would only leave the estimates staler). The windows' overshoot is left
   // out: where probes leave no room, the windows they put over the budget are what run it up.
-  const double scatter_w = feedback_.margin_w();
   const bool probes_leave_no_room = !fits(scatter_w + whole) && fits(scatter_w + rare);
   probe_bursts_spaced_ = probes_leave_no_room;
   if (probes_leave_no_room || gain >= settings_.probe_stretch_gain)
@@ -738,6 +770,7 @@ Decision Governor::on_frame(const FrameRecord& frame) {
   if (!started_) start(frame);
   probe_overhead_.set_period_in_force(frame.probe_period);
   probe_overhead_.set_sweep_streams(frame.sweeping_streams);
+  sweepable_streams_ = frame.sweepable_streams;
   probe_overhead_.add(frame.probe, frame.power_w, frame.time_ns, is_best(space_, frame.configuration),
                       frame.probe_sweep_streams);
   // The frame after a probe reads the probe's images back and compares them, and the one after

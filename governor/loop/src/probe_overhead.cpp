@@ -17,13 +17,12 @@ constexpr double kLongestInterval_s = 0.5;
 // shader built on the spot, a breakpoint).
 constexpr double kLongestProbeFrames = 16.0;
 constexpr double kLongestProbeFrame_s = 2.0;  // and past 2 s whatever the pace (an app at 2-3 frames a second)
-// A sweep's excess as a probe of one pass's stands in for it until one is measured: a probe of
-// one pass shown elsewhere draws two streams (the best and the pass's cheapest).
-double sweep_stand_in_factor(int sweep_streams) { return std::max(1.0, sweep_streams / 2.0); }
 // Of the windows a budget may leave over it (1 - keep_share), the share left to the probes'
 // windows: the other half is the sensor's scatter's, which the feedback's margin is for.
 constexpr double kProbeShareOfOver = 0.5;
 }  // namespace
+
+double sweep_excess_factor(int sweep_streams) { return std::max(1.0, (sweep_streams + 2) / 4.0); }
 
 void ProbeOverhead::Record::add(double excess) {
   excess_w = measured == 0 ? excess : excess_w + kExcessWeight * (excess - excess_w);
@@ -37,18 +36,17 @@ void ProbeOverhead::Record::scale(double factor) {
 }
 
 void ProbeOverhead::set_sweep_streams(int streams) {
-  streams = std::max(0, streams);
-  for (Record* r : {&away_, &at_best_}) {
-    if (streams > 0 && r->holds == Record::Holds::one_pass && r->measured > 0) {
-      r->stand_in_factor = sweep_stand_in_factor(streams);
-      r->scale(r->stand_in_factor);
-      r->holds = Record::Holds::stand_in;
-    } else if (streams == 0 && r->holds == Record::Holds::stand_in) {
-      r->scale(1.0 / r->stand_in_factor);
-      r->holds = Record::Holds::one_pass;
-    }
+  planned_streams_ = streams > 0 ? streams : kOnePassStreams;
+  for (Record* r : {&away_, &at_best_}) convert(*r, planned_streams_);
+}
+
+void ProbeOverhead::convert(Record& r, int streams) {
+  if (r.streams == streams) return;
+  if (r.measured > 0) {
+    r.scale(sweep_excess_factor(streams) / sweep_excess_factor(r.streams));
+    r.converted = true;
   }
-  sweep_streams_ = streams;
+  r.streams = streams;
 }
 
 double ProbeOverhead::Record::largest() const {
@@ -62,20 +60,18 @@ void ProbeOverhead::close_span() {
   if (span_measured_) {
     Record& r = span_at_best_ ? at_best_ : away_;
     Record& other = span_at_best_ ? away_ : at_best_;
-    if (span_sweep_) {
-      // The first sweep measured replaces the probes of one pass; the other record's stand-in
-      // goes too, the sweep standing in for it (source()).
-      if (r.holds != Record::Holds::sweeps) r = Record{.holds = Record::Holds::sweeps};
+    if (span_streams_ == r.streams) {
+      // The first probe measured of the kind the record holds replaces what was converted to
+      // it (from probes of one pass, or sweeps of other passes); the other record's conversion
+      // goes too, this one standing in for it (source()).
+      if (r.converted) r = Record{.streams = r.streams};
       r.add(span_excess_w_);
-      if (other.holds == Record::Holds::stand_in) other = Record{};
-    } else if (r.holds == Record::Holds::one_pass) {
-      r.add(span_excess_w_);
-    } else if (sweep_streams_ > 0) {
-      r.add(span_excess_w_ *
-            (r.holds == Record::Holds::stand_in ? r.stand_in_factor : sweep_stand_in_factor(sweep_streams_)));
+      if (other.converted) other = Record{.streams = other.streams};
     } else {
-      r = Record{};  // probes of one pass again
-      r.add(span_excess_w_);
+      // A probe planned before the shim changed its kind (the last probe of one pass, its span
+      // closing after the first sweep was planned), converted.
+      if (r.measured == 0) r.converted = true;
+      r.add(span_excess_w_ * sweep_excess_factor(r.streams) / sweep_excess_factor(span_streams_));
     }
   }
   span_left_ = 0;
@@ -83,7 +79,7 @@ void ProbeOverhead::close_span() {
   span_measured_ = false;
   span_paused_ = false;
   span_at_best_ = false;
-  span_sweep_ = false;
+  span_streams_ = kOnePassStreams;
 }
 
 std::pair<const ProbeOverhead::Record*, double> ProbeOverhead::source(bool shown_best) const {
@@ -91,6 +87,11 @@ std::pair<const ProbeOverhead::Record*, double> ProbeOverhead::source(bool shown
   if (away_.measured > 0) return {&away_, 0.0};
   if (at_best_.measured > 0) return {&at_best_, best_stream_w_};
   return {nullptr, 0.0};
+}
+
+int ProbeOverhead::streams_held() const {
+  const Record* record = source(false).first;
+  return record ? record->streams : planned_streams_;
 }
 
 double ProbeOverhead::excess_w(bool shown_best) const {
@@ -132,7 +133,9 @@ void ProbeOverhead::add(bool probe, double power_w, std::int64_t time_ns, bool s
     close_span();
     span_left_ = kProbeSpanFrames;
     span_at_best_ = shown_best;
-    span_sweep_ = sweep_streams > 0;
+    // A probe shown at the best draws no stream of it: counted as its kind, the streams it
+    // would draw elsewhere.
+    span_streams_ = sweep_streams > 0 ? sweep_streams + (shown_best ? 1 : 0) : kOnePassStreams;
   }
   const bool finite = std::isfinite(power_w);
   last_in_span_ = span_left_ > 0;

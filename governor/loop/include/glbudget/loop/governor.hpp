@@ -110,6 +110,9 @@ struct FrameRecord {
   int sweeping_streams = 0;
   // On a probe frame: the streams it drew where it measured every pass at once (0: one pass).
   int probe_sweep_streams = 0;
+  // Where the user asked for sweeps (GLBUDGET_PROBE_SWEEP), the streams a sweep would draw,
+  // whether or not the shim sweeps now (Governor::probe_streams_fit); 0: no sweeps asked for.
+  int sweepable_streams = 0;
   // Counts per pass, by its index in the space (PassIndex); passes past the space add a fixed load.
   std::vector<model::PassFrame> passes;
 };
@@ -173,6 +176,17 @@ class Governor {
   // period too: no configuration is predicted to fit a probe's whole excess in a window under
   // the budget, so that each window holding a probe would be over it.
   bool probe_bursts_spaced() const { return probe_bursts_spaced_; }
+  // Where sweeps were asked for (FrameRecord::sweepable_streams), the most streams a probe frame
+  // is to draw: all of them (a sweep: every pass in one probe frame, ahead of each selection)
+  // where some configuration is predicted to fit its whole excess in a window under the budget;
+  // else the most that fit, the passes taken that many at a time at the shim's period for
+  // probes in turn (kOnePassStreams: one pass at a time). Where not even a probe of one pass
+  // fits, sweeps, which the governor spaces (probe_bursts_spaced): a window holding one is over
+  // the budget either way, and a sweep measures every pass. Without this, where a sweep did not
+  // fit, the governor spaced them, and the estimates were minutes old where probes in turn kept
+  // them within the age bound with every window kept (the demo's Valley at 50 %: not one sweep in
+  // 600 frames after the first selection). 0: no sweeps asked for.
+  int probe_streams_fit() const { return probe_streams_fit_; }
   // The frame the next selection is due at by select_frames (one may come sooner: a window
   // over the budget, a scene that got heavier), for probes that measure just ahead of it;
   // 0 before the first selection, whose frame waits on a measured window.
@@ -244,6 +258,9 @@ class Governor {
   void meter(const FrameRecord& frame);
   double initial_budget_w() const;
   void want_probe_period(double budget_w, double margin_without_probes_w);
+  // What turns the probes' excess read now into that of the kind probe_streams_fit asks for (1
+  // where they are the same, or before the governor has chosen).
+  double probe_kind_factor() const;
   bool probes_outgrew_margin() const;
   // What a selection keeps under the budget for the probes in the feedback's windows
   // (ProbeOverhead::window_margin_w), for probes shown away from the best or at it.
@@ -324,6 +341,8 @@ class Governor {
   MeterWindow meter_;
   std::uint64_t probe_period_wanted_ = 0;
   bool probe_bursts_spaced_ = false;
+  int probe_streams_fit_ = 0;
+  int sweepable_streams_ = 0;       // FrameRecord::sweepable_streams of the last frame
   FrameRecord after_probe_record_;  // reused: the frame after a probe, its power left out
   bool reselect_now_ = false;       // a window was measured over the budget
   // A meter's window over the budget closed by a probe while the feedback's window at the same

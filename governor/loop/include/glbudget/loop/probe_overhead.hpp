@@ -51,6 +51,17 @@ inline std::uint64_t one_probe_per_window_gap(double frames_per_window) {
   return static_cast<std::uint64_t>(std::ceil(frames_per_window)) + kProbeSpanFrames - 1;
 }
 
+// A probe frame's excess measuring every pass at once in `sweep_streams` streams (the best and
+// one a pass) against a probe of one pass shown elsewhere (two streams: the best and the pass's
+// cheapest), where each stream costs as much and the probe frame's own work (its read-backs and
+// comparisons, the shadow targets) as much as two: (streams + 2) / 4, at least 1. Measured on
+// the demo at 10 frames a second: Valley's sweeps (five streams) drew 3.0-4.1 J over their
+// neighbours against 1.5-2.8 J for its probes of one pass (about 1.7 times; 1.75 here), Hall's and
+// Sponza's (seven) 1.5-2.2 times
+// theirs (2.25 here).
+double sweep_excess_factor(int sweep_streams);
+constexpr int kOnePassStreams = 2;
+
 class ProbeOverhead {
  public:
   // Every frame, in order; power NaN when not measured; time_ns (when the frame ended, any
@@ -69,15 +80,15 @@ class ProbeOverhead {
   // The frames between probes the shim plans now (0: not known; the gaps measured then
   // tell). Probes may come rarer than planned, never more often.
   void set_period_in_force(double frames) { period_in_force_ = frames > 0.0 ? frames : 0.0; }
-  // The streams the shim's probes draw from now on where each measures every pass at once
-  // (GLBUDGET_PROBE_SWEEP), 0 where they probe one pass. Until a sweep is measured, the probes
-  // of one pass measured before stand for it, their excess times streams / 2 (a probe of one
-  // pass shown elsewhere draws two: the best and the pass's cheapest): the first sweep's window
-  // would otherwise be held to a probe of one pass (the demo's Hall and Sponza at 10 frames a
-  // second: a sweep drew 6.5-6.9 J over its neighbours, the probes of one pass before it 3 J).
-  // A probe of one pass measured while the shim sweeps (the last before the first sweep) counts
-  // so scaled too; sweeps measured are never scaled; back at 0, a stand-in is unscaled.
+  // The streams the shim's probes draw from now on where each measures several passes at once
+  // (GLBUDGET_PROBE_SWEEP: the best and one a pass), 0 where they probe one pass (two streams).
+  // What was measured of probes of another kind is converted to it by sweep_excess_factor (and
+  // converted back when the kind comes back), until a probe of that kind is measured, which
+  // replaces it: the first sweep's window would otherwise be held to a probe of one pass.
   void set_sweep_streams(int streams);
+  // The streams of the probes what is read of them (the record watts() reads shown elsewhere)
+  // stands for: two for probes of one pass.
+  int streams_held() const;
   // The frame last added is a probe's or one of the two after it: its power is not its
   // configuration's own.
   bool in_span() const { return last_in_span_; }
@@ -120,15 +131,16 @@ class ProbeOverhead {
     double excess_w = 0.0;              // exponentially (about 4 probes)
     std::array<double, 4> recent = {};  // the last probes' excess, by measured modulo 4
     std::size_t measured = 0;
-    // What it holds: probes of one pass, those scaled to stand in for sweeps (by
-    // stand_in_factor), or sweeps.
-    enum class Holds { one_pass, stand_in, sweeps } holds = Holds::one_pass;
-    double stand_in_factor = 1.0;
+    // The streams of the probes it holds (the kind: two for probes of one pass), and whether
+    // its values were converted from probes of another kind rather than measured as this one.
+    int streams = 2;
+    bool converted = false;
     void add(double excess);
     void scale(double factor);
     double largest() const;  // of the recent ones (may be negative; requires measured > 0)
   };
   void close_span();
+  static void convert(Record& r, int streams);
   // The record a read of what probes cost takes (watts()): at the best its own where measured,
   // else those shown elsewhere, else those at the best with the stream they lack, which is
   // returned beside it (0 otherwise); nullptr before any probe is measured.
@@ -142,11 +154,11 @@ class ProbeOverhead {
   bool span_measured_ = false;
   bool span_paused_ = false;   // a frame of the span lasted kLongestInterval_s or more
   bool span_at_best_ = false;  // the probe was shown at the best configuration
-  bool span_sweep_ = false;    // the probe measured every pass at once
+  int span_streams_ = 2;       // the probe's kind: its streams shown elsewhere
   bool last_in_span_ = false;
   Record away_, at_best_;
   double best_stream_w_ = 0.0;
-  int sweep_streams_ = 0;
+  int planned_streams_ = 2;             // the kind of probe the shim plans now
   double probes_ = 0.0, frames_ = 0.0;  // decaying counts (about 200 frames), until a gap is seen
   // Frames between probes, exponentially (about 4 gaps), and since the last probe: sparse
   // probes (one every 600 frames) are not a share the decaying counts can hold.
