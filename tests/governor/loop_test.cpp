@@ -950,9 +950,10 @@ struct RareProbeRun {
 // The test plays the shim: probes at the settled period, or at the governor's if longer,
 // counted from the last probe.
 RareProbeRun run_with_probes_at_ten_fps(double stretch_gain, const char* budget = "50%", double probe_power = 1.5,
-                                        int sweepable_streams = 0) {
+                                        int sweepable_streams = 0, double sweep_image_cost = 0.005) {
   GovernorSettings settings = power_budget(budget);
   settings.probe_stretch_gain = stretch_gain;
+  settings.sweep_image_cost = sweep_image_cost;
   App app(settings, Configuration(6, 0), 7, 1 << 20);  // a still camera
   app.set_frame_ns(100'000'000);
   app.set_sweepable_streams(sweepable_streams);
@@ -1038,10 +1039,12 @@ TEST_CASE("probes are asked rarer where no configuration fits a probe's whole ex
 // (sweep_excess_factor). With room under the budget for a probe of one pass's excess but not a
 // sweep's, the passes are probed in turn, as many at a time as fit; with room for none, sweeps,
 // spaced: a window holding a probe is over the budget either way, and a sweep measures all.
+// Here at any cost to the image shown; the next test weighs it.
 TEST_CASE("sweeps where a window fits one, else probes of fewer passes each, else rare sweeps", "[loop]") {
+  constexpr double kAnyCost = 1.0;
   int last_streams = 0;
   for (const char* budget : {"40%", "50%", "60%"}) {
-    const RareProbeRun r = run_with_probes_at_ten_fps(0.005, budget, 1.5, 7);
+    const RareProbeRun r = run_with_probes_at_ten_fps(0.005, budget, 1.5, 7, kAnyCost);
     INFO(budget << ": " << r.streams_fit << " streams, bursts spaced " << r.bursts_spaced << ", windows within "
                 << r.windows_within);
     CHECK_FALSE(r.bursts_spaced);
@@ -1049,19 +1052,38 @@ TEST_CASE("sweeps where a window fits one, else probes of fewer passes each, els
     CHECK(r.windows_within >= 0.95);
     last_streams = r.streams_fit;
   }
-  CHECK(run_with_probes_at_ten_fps(0.005, "40%", 1.5, 7).streams_fit == 2);
-  const int at_half = run_with_probes_at_ten_fps(0.005, "50%", 1.5, 7).streams_fit;
+  CHECK(run_with_probes_at_ten_fps(0.005, "40%", 1.5, 7, kAnyCost).streams_fit == 2);
+  const int at_half = run_with_probes_at_ten_fps(0.005, "50%", 1.5, 7, kAnyCost).streams_fit;
   CHECK(at_half > 2);
   CHECK(at_half < 7);
   // Probes that cost less: sweeps of every pass.
-  const RareProbeRun cheap = run_with_probes_at_ten_fps(0.005, "60%", 1.2, 7);
+  const RareProbeRun cheap = run_with_probes_at_ten_fps(0.005, "60%", 1.2, 7, kAnyCost);
   CHECK(cheap.streams_fit == 7);
   CHECK_FALSE(cheap.bursts_spaced);
   // A probe of one pass's excess fits nowhere: sweeps, spaced.
-  const RareProbeRun none_fits = run_with_probes_at_ten_fps(0.005, "30%", 3.0, 7);
+  const RareProbeRun none_fits = run_with_probes_at_ten_fps(0.005, "30%", 3.0, 7, kAnyCost);
   CHECK(none_fits.streams_fit == 7);
   CHECK(none_fits.bursts_spaced);
   CHECK(none_fits.windows_within >= 0.95);
+}
+
+// The margin a sweep's window needs shows a dearer image; by default only where that costs the
+// estimated error shown at most GovernorSettings::sweep_image_cost (0.005) over a probe of one
+// pass's margin.
+TEST_CASE("probe frames measure more passes at once only where their margin costs the image little", "[loop]") {
+  for (const char* budget : {"50%", "60%"}) {
+    const RareProbeRun any = run_with_probes_at_ten_fps(0.005, budget, 1.2, 7, 1.0),
+                       weighed = run_with_probes_at_ten_fps(0.005, budget, 1.2, 7),
+                       none = run_with_probes_at_ten_fps(0.005, budget, 1.2, 7, -1.0);
+    INFO(budget << ": streams " << any.streams_fit << " / " << weighed.streams_fit << " / " << none.streams_fit
+                << " at any cost / weighed / never; estimated error shown " << any.mean_error << " / "
+                << weighed.mean_error << " / " << none.mean_error);
+    CHECK(none.streams_fit == 2);  // a negative cost: never more than one pass
+    CHECK(weighed.streams_fit <= any.streams_fit);
+    CHECK(weighed.streams_fit >= none.streams_fit);
+    CHECK(weighed.mean_error <= none.mean_error + 0.005 + 0.002);  // the run's own scatter beside it
+    CHECK(any.mean_error >= weighed.mean_error - 0.002);
+  }
 }
 
 TEST_CASE("a burst of probes beyond what the last selection planned for selects again at once", "[loop]") {

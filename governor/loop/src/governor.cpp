@@ -720,7 +720,8 @@ double Governor::probe_kind_factor() const {
 // thresholds keeps the period from flapping with the noise).
 void Governor::want_probe_period(double budget_w, double margin_without_probes_w) {
   const double gap = probe_overhead_.rare_gap(settings_.feedback.window_s, settings_.feedback.keep_share);
-  if (gap <= 0.0 || probe_overhead_.probes_measured() == 0) {
+  // probe_stretch_gain 0: the shim's probes as it plans them, their kind too.
+  if (!(settings_.probe_stretch_gain > 0.0) || gap <= 0.0 || probe_overhead_.probes_measured() == 0) {
     probe_period_wanted_ = 0;
     probe_bursts_spaced_ = false;
     return;
@@ -733,21 +734,28 @@ void Governor::want_probe_period(double budget_w, double margin_without_probes_w
   };
   // Where sweeps were asked for, the probes' kind (probe_streams_fit), weighed at its excess.
   if (sweepable_streams_ > kOnePassStreams) {
-    probe_streams_fit_ = 0;
     const double one_pass = 1.0 / sweep_excess_factor(probe_overhead_.streams_held());
     const auto as_kind = [&](int streams) { return one_pass * sweep_excess_factor(streams); };
-    for (int streams = sweepable_streams_; streams > kOnePassStreams && !probe_streams_fit_; --streams)
-      if (fits(scatter_w + whole * as_kind(streams))) probe_streams_fit_ = streams;
-    if (!probe_streams_fit_)
-      probe_streams_fit_ = fits(scatter_w + whole * one_pass) ? kOnePassStreams : sweepable_streams_;
+    const auto shown_error = [&](int streams) {
+      const double margin_w = margin_without_probes_w + whole * as_kind(streams);
+      return error_[model::select_configuration(guarded_, error_, budget_w, margin_w).index];
+    };
+    if (!fits(scatter_w + whole * one_pass)) {
+      probe_streams_fit_ = sweepable_streams_;
+    } else {
+      probe_streams_fit_ = kOnePassStreams;
+      const double one_pass_error = shown_error(kOnePassStreams);
+      for (int streams = sweepable_streams_; streams > kOnePassStreams; --streams) {
+        if (fits(scatter_w + whole * as_kind(streams)) &&
+            shown_error(streams) <= one_pass_error + settings_.sweep_image_cost) {
+          probe_streams_fit_ = streams;
+          break;
+        }
+      }
+    }
     const double to_kind = as_kind(probe_streams_fit_);
     whole *= to_kind;
     rare *= to_kind;
-  }
-  if (!(settings_.probe_stretch_gain > 0.0)) {
-    probe_period_wanted_ = 0;
-    probe_bursts_spaced_ = false;
-    return;
   }
   const model::Selection with_whole =
       model::select_configuration(guarded_, error_, budget_w, margin_without_probes_w + whole);

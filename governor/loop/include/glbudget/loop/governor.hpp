@@ -77,6 +77,14 @@ struct GovernorSettings {
   // whatever the gain where no configuration fits a probe's whole excess beside the sensor's
   // scatter but some fit rare probes' mean, bursts included (probe_bursts_spaced). 0: never.
   double probe_stretch_gain = 0.005;
+  // Beyond the paper, where sweeps were asked for (FrameRecord::sweepable_streams): a probe frame
+  // measuring more passes at once keeps the estimates fresher, but a window holding it needs more
+  // margin, which shows a dearer image. It measures as many as fit where the selection with that
+  // margin shows an estimated error at most this much above the one with a probe of one pass's
+  // (Governor::probe_streams_fit): fresher estimates are worth the selection regret they are held
+  // to (0.005, issue 14), not more (the demo's Hall at 60 %: sweeps' margin showed 0.051 of true
+  // error where probes in turn showed 0.032).
+  double sweep_image_cost = 0.005;
   // Beyond the paper: where the selection finds nothing within the budget's margin and holds a
   // measured configuration whose windows, probes included, are over the budget, while the
   // range's low end says the cheapest draws less, the cheapest is drawn for one window, once per
@@ -178,14 +186,16 @@ class Governor {
   bool probe_bursts_spaced() const { return probe_bursts_spaced_; }
   // Where sweeps were asked for (FrameRecord::sweepable_streams), the most streams a probe frame
   // is to draw: all of them (a sweep: every pass in one probe frame, ahead of each selection)
-  // where some configuration is predicted to fit its whole excess in a window under the budget;
-  // else the most that fit, the passes taken that many at a time at the shim's period for
-  // probes in turn (kOnePassStreams: one pass at a time). Where not even a probe of one pass
+  // where some configuration is predicted to fit its whole excess in a window under the budget at
+  // an image cost of at most GovernorSettings::sweep_image_cost; else the most that do, the passes
+  // taken that many at a time at the shim's period for probes in turn (kOnePassStreams: one pass
+  // at a time). Where not even a probe of one pass
   // fits, sweeps, which the governor spaces (probe_bursts_spaced): a window holding one is over
   // the budget either way, and a sweep measures every pass. Without this, where a sweep did not
   // fit, the governor spaced them, and the estimates were minutes old where probes in turn kept
   // them within the age bound with every window kept (the demo's Valley at 50 %: not one sweep in
-  // 600 frames after the first selection). 0: no sweeps asked for.
+  // 600 frames after the first selection). 0: no sweeps asked for, or probe_stretch_gain 0 (the
+  // shim's probes as it plans them).
   int probe_streams_fit() const { return probe_streams_fit_; }
   // The frame the next selection is due at by select_frames (one may come sooner: a window
   // over the budget, a scene that got heavier), for probes that measure just ahead of it;
