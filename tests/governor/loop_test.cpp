@@ -750,6 +750,57 @@ TEST_CASE(
   CHECK(o.largest_recent_excess_w() == Approx(single).epsilon(0.05));
 }
 
+TEST_CASE("probe overhead: where every window holds a probe, each fits all but the rarest probe's excess",
+          "[loop][extremes]") {
+  // 10 frames a second at 20 W, a probe every 12 frames: with its span of three frames, every
+  // 1-s window holds one. Each probe's excess scatters between 10 and 20 W x frames.
+  const auto excess_of = [](int k) { return 10.0 + static_cast<double>((k * 7) % 11); };
+  const auto feed = [&](ProbeOverhead& o) {
+    int probes = 0;
+    for (int k = 0; k < 480; ++k) {
+      const bool probe = k % 12 == 6;
+      o.add(probe, probe ? 20.0 + excess_of(probes++) : 20.0, k * 100'000'000LL);
+    }
+    return probes;
+  };
+  ProbeOverhead largest_only, kept;
+  kept.set_keep_share(0.98);
+  const int probes = feed(largest_only);
+  REQUIRE(feed(kept) == probes);
+  double largest = 0.0, mean = 0.0, squares = 0.0;
+  for (int k = probes - 4; k < probes; ++k) largest = std::max(largest, excess_of(k));
+  for (int k = probes - 16; k < probes; ++k) mean += excess_of(k) / 16.0;
+  for (int k = probes - 16; k < probes; ++k) squares += (excess_of(k) - mean) * (excess_of(k) - mean);
+  // Half of the 2 % of windows a 0.98 share leaves over, every window holding a probe: the 99th
+  // percentile, 2.326 spreads over the mean.
+  const double quantile = mean + 2.326 * std::sqrt(squares / 15.0);
+  INFO("largest of the last four " << largest << ", quantile " << quantile);
+  REQUIRE(quantile > largest);
+  CHECK(largest_only.whole_excess_margin_w(1.0) == Approx(largest / 10.0).epsilon(0.02));
+  CHECK(kept.whole_excess_margin_w(1.0) == Approx(quantile / 10.0).epsilon(0.02));
+  // The excess of 16 probes in 100 is over the largest of the four before each; none over the
+  // quantile.
+  int over_largest = 0, over_quantile = 0;
+  for (int k = 4; k < probes; ++k) {
+    double before = 0.0;
+    for (int j = k - 4; j < k; ++j) before = std::max(before, excess_of(j));
+    over_largest += excess_of(k) > before;
+    over_quantile += excess_of(k) > quantile;
+  }
+  CHECK(over_largest >= 3);
+  CHECK(over_quantile == 0);
+  // Probes rare enough that the windows keep their mean: no quantile.
+  ProbeOverhead rare;
+  rare.set_keep_share(0.98);
+  for (int k = 0; k < 24000; ++k) {
+    const bool probe = k % 1200 == 6;
+    rare.add(probe, probe ? 20.0 + excess_of(k / 1200) : 20.0, k * 100'000'000LL);
+  }
+  double rare_largest = 0.0;
+  for (int k = 16; k < 20; ++k) rare_largest = std::max(rare_largest, excess_of(k));
+  CHECK(rare.whole_excess_margin_w(1.0) == Approx(rare_largest / 10.0).epsilon(0.02));
+}
+
 TEST_CASE("probe overhead: a probe shown at the best draws one stream fewer than one shown elsewhere",
           "[loop][extremes]") {
   // 10 frames a second at 20 W. A probe shown at the best configuration draws no stream of

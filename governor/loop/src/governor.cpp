@@ -99,6 +99,7 @@ Governor::Governor(model::PlatformProfile profile, model::ConfigurationSpace spa
       feedback_(settings.feedback),
       error_feedback_(settings.error_feedback),
       meter_(settings.feedback.window_s) {
+  probe_overhead_.set_keep_share(settings.feedback.keep_share);
   if (!errors_.fits(space_)) {
     notes_.push_back("the error table does not match the configuration space (" + std::to_string(errors_.pass_count()) +
                      " passes for " + std::to_string(space_.pass_count()) + "); using the stand-in errors");

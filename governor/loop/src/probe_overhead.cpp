@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+
+#include "normal_quantile.hpp"
 
 namespace glbudget::loop {
 namespace {
@@ -20,6 +23,7 @@ constexpr double kLongestProbeFrame_s = 2.0;  // and past 2 s whatever the pace 
 // Of the windows a budget may leave over it (1 - keep_share), the share left to the probes'
 // windows: the other half is the sensor's scatter's, which the feedback's margin is for.
 constexpr double kProbeShareOfOver = 0.5;
+constexpr std::size_t kLeastForSpread = 8;  // probes measured before their spread is read
 }  // namespace
 
 double sweep_excess_factor(int sweep_streams) { return std::max(1.0, (sweep_streams + 2) / 4.0); }
@@ -50,10 +54,20 @@ void ProbeOverhead::convert(Record& r, int streams) {
 }
 
 double ProbeOverhead::Record::largest() const {
-  const std::size_t n = std::min(measured, recent.size());
-  double out = recent[0];
-  for (std::size_t i = 1; i < n; ++i) out = std::max(out, recent[i]);
+  const std::size_t n = std::min<std::size_t>(measured, 4);
+  double out = recent[(measured - 1) % recent.size()];
+  for (std::size_t i = 1; i < n; ++i) out = std::max(out, recent[(measured - 1 - i) % recent.size()]);
   return out;
+}
+
+double ProbeOverhead::Record::quantile(double z) const {
+  const std::size_t n = std::min(measured, recent.size());
+  if (n < kLeastForSpread) return std::numeric_limits<double>::quiet_NaN();
+  double mean = 0.0;
+  for (std::size_t i = 0; i < n; ++i) mean += recent[i] / static_cast<double>(n);
+  double squares = 0.0;
+  for (std::size_t i = 0; i < n; ++i) squares += (recent[i] - mean) * (recent[i] - mean);
+  return mean + z * std::sqrt(squares / static_cast<double>(n - 1));
 }
 
 void ProbeOverhead::close_span() {
@@ -183,7 +197,19 @@ double ProbeOverhead::largest_recent_excess_w(bool shown_best) const {
 
 double ProbeOverhead::whole_excess_margin_w(double window_s, bool shown_best) const {
   const double frames = frames_per_window(window_s);
-  return probes_measured() == 0 || frames <= 0.0 ? 0.0 : largest_recent_excess_w(shown_best) / frames;
+  if (probes_measured() == 0 || frames <= 0.0) return 0.0;
+  double excess = largest_recent_excess_w(shown_best);
+  const auto [record, stream_w] = source(shown_best);
+  if (record && keep_share_ < 1.0) {
+    // Of the windows holding a probe, the share that may be over the budget.
+    const double per_window = std::min(1.0, share() * (frames + kProbeSpanFrames - 1));
+    const double over = per_window > 0.0 ? kProbeShareOfOver * (1.0 - std::max(0.0, keep_share_)) / per_window : 1.0;
+    if (over < 0.5) {
+      const double q = record->quantile(normal_quantile(1.0 - over));
+      if (std::isfinite(q)) excess = std::max(excess, q + stream_w);
+    }
+  }
+  return excess / frames;
 }
 
 double ProbeOverhead::rare_gap(double window_s, double keep_share) const {

@@ -112,10 +112,19 @@ class ProbeOverhead {
   // Frames in a window of window_s seconds at the recent frame rate (0: not known).
   double frames_per_window(double window_s) const;
   // A probe's whole excess spread over one window's frames (0 while unknown): the largest of
-  // the last few probes', since each window must fit the probe it holds, not the mean probe
-  // (their excess scatters by a tenth with the configuration shown and the frame).
+  // the last four probes', since each window must fit the probe it holds, not the mean probe
+  // (their excess scatters by a tenth or more with the configuration shown and the frame). With
+  // a keep share set (set_keep_share), at least the quantile of the last 16 probes' excess
+  // (their mean and spread, once 8 are measured) that leaves over the budget no more than the
+  // probes' half of 1 - keep_share of all windows, where windows hold probes at the recent
+  // share: where most windows hold one, the largest of four covers about four in five of them
+  // (the demo's Hall and Subway at 40-50 %, a probe every 16 frames: 3-4 windows over in a
+  // run, each holding a probe whose excess was over that largest, by 0.3-0.9 W).
   double whole_excess_margin_w(double window_s, bool shown_best = false) const;
   double largest_recent_excess_w(bool shown_best = false) const;
+  // The share of windows to keep within the budget (FeedbackSettings::keep_share) for
+  // whole_excess_margin_w's quantile; 1 (the default): the largest of the last four alone.
+  void set_keep_share(double keep_share) { keep_share_ = keep_share; }
   // The frames between probes from which at most 1 - keep_share of the windows hold one, so
   // that window_margin_w is the mean (0: the frame rate is not known).
   double rare_gap(double window_s, double keep_share) const;
@@ -128,8 +137,8 @@ class ProbeOverhead {
  private:
   // The probes measured, shown at the best or elsewhere.
   struct Record {
-    double excess_w = 0.0;              // exponentially (about 4 probes)
-    std::array<double, 4> recent = {};  // the last probes' excess, by measured modulo 4
+    double excess_w = 0.0;               // exponentially (about 4 probes)
+    std::array<double, 16> recent = {};  // the last probes' excess, by measured modulo 16
     std::size_t measured = 0;
     // The streams of the probes it holds (the kind: two for probes of one pass), and whether
     // its values were converted from probes of another kind rather than measured as this one.
@@ -137,7 +146,9 @@ class ProbeOverhead {
     bool converted = false;
     void add(double excess);
     void scale(double factor);
-    double largest() const;  // of the recent ones (may be negative; requires measured > 0)
+    double largest() const;  // of the last four (may be negative; requires measured > 0)
+    // Mean + z * spread of the recent ones; NaN under eight.
+    double quantile(double z) const;
   };
   void close_span();
   static void convert(Record& r, int streams);
@@ -158,6 +169,7 @@ class ProbeOverhead {
   bool last_in_span_ = false;
   Record away_, at_best_;
   double best_stream_w_ = 0.0;
+  double keep_share_ = 1.0;
   int planned_streams_ = 2;             // the kind of probe the shim plans now
   double probes_ = 0.0, frames_ = 0.0;  // decaying counts (about 200 frames), until a gap is seen
   // Frames between probes, exponentially (about 4 gaps), and since the last probe: sparse
