@@ -1554,8 +1554,8 @@ struct ProbeFrames::Impl {
   // longest gap after the last, unless a selection is due within that. Never two in one
   // window. Where the governor spaces probes (g_bursts_spaced: a window holding one is over the
   // budget whatever is shown), a sweep a longest gap (the settled period the governor asks for,
-  // unscaled), drawn ahead of the selection due in the last selection period of it. With GLBUDGET_PROBE_PERIOD given, a
-  // sweep every period.
+  // unscaled), drawn ahead of the selection due in the last selection period of it. With
+  // GLBUDGET_PROBE_PERIOD given, a sweep every period.
   uint64_t longest_sweep_gap(const ProbeSettings& settings, uint64_t settled_period) const {
     if (!settings.stretchable) return settings.period;
     // Spaced, what a probe costs is a window over the budget, a sweep's one as a probe of one
@@ -1698,7 +1698,7 @@ void ProbeFrames::after_swap(uint64_t next) {
   const int fit = g_streams_fit.load(std::memory_order_relaxed);
   const int streams = fit > 0 ? std::min(fit, all_streams) : all_streams;
   const bool sweeping = sweepable && p.settled() && streams >= all_streams;
-  const bool grouped = sweepable && p.settled() && !sweeping && streams > 2;
+  const bool grouped = sweepable && p.settled() && !sweeping && streams > loop::kOnePassStreams;
   g_sweep_streams.store(sweeping || grouped ? streams : 0, std::memory_order_relaxed);
   g_sweepable_streams.store(sweepable ? all_streams : 0, std::memory_order_relaxed);
   if (const uint64_t drift = probe_drift_count(); drift != p.drift_seen) {

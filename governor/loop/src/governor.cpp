@@ -707,10 +707,11 @@ double Governor::probe_window_margin_w(bool shown_best) const {
   return probe_overhead_.window_margin_w(settings_.feedback.window_s, settings_.feedback.keep_share, shown_best);
 }
 
-double Governor::probe_kind_factor() const {
-  if (!probe_streams_fit_) return 1.0;
-  return sweep_excess_factor(probe_streams_fit_) / sweep_excess_factor(probe_overhead_.streams_held());
+double Governor::probe_kind_factor(int streams) const {
+  return sweep_excess_factor(streams) / sweep_excess_factor(probe_overhead_.streams_held());
 }
+
+double Governor::probe_kind_factor() const { return probe_streams_fit_ ? probe_kind_factor(probe_streams_fit_) : 1.0; }
 
 // Probes rare enough that windows keep their mean margin, where the selection would then show
 // a lower error by probe_stretch_gain, or where no configuration is predicted to fit a probe's
@@ -735,10 +736,9 @@ void Governor::want_probe_period(double budget_w, double margin_without_probes_w
   };
   // Where sweeps were asked for, the probes' kind (probe_streams_fit), weighed at its excess.
   if (sweepable_streams_ > kOnePassStreams) {
-    const double one_pass = 1.0 / sweep_excess_factor(probe_overhead_.streams_held());
-    const auto as_kind = [&](int streams) { return one_pass * sweep_excess_factor(streams); };
+    const double one_pass = probe_kind_factor(kOnePassStreams);
     const auto shown_error = [&](int streams) {
-      const double margin_w = margin_without_probes_w + whole * as_kind(streams);
+      const double margin_w = margin_without_probes_w + whole * probe_kind_factor(streams);
       return error_[model::select_configuration(guarded_, error_, budget_w, margin_w).index];
     };
     if (!fits(scatter_w + whole * one_pass)) {
@@ -747,14 +747,14 @@ void Governor::want_probe_period(double budget_w, double margin_without_probes_w
       probe_streams_fit_ = kOnePassStreams;
       const double one_pass_error = shown_error(kOnePassStreams);
       for (int streams = sweepable_streams_; streams > kOnePassStreams; --streams) {
-        if (fits(scatter_w + whole * as_kind(streams)) &&
+        if (fits(scatter_w + whole * probe_kind_factor(streams)) &&
             shown_error(streams) <= one_pass_error + settings_.sweep_image_cost) {
           probe_streams_fit_ = streams;
           break;
         }
       }
     }
-    const double to_kind = as_kind(probe_streams_fit_);
+    const double to_kind = probe_kind_factor();
     whole *= to_kind;
     rare *= to_kind;
   }

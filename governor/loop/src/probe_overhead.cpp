@@ -186,6 +186,11 @@ double ProbeOverhead::share() const {
   return frames_ > 0.0 ? probes_ / frames_ : 0.0;
 }
 
+double ProbeOverhead::probes_per_window(double frames) const {
+  // A probe's span of three frames touches two more window starts than the window has frames.
+  return share() * (frames + kProbeSpanFrames - 1);
+}
+
 double ProbeOverhead::frames_per_window(double window_s) const {
   return interval_s_ > 0.0 && window_s > 0.0 ? std::max(1.0, window_s / interval_s_) : 0.0;
 }
@@ -202,7 +207,7 @@ double ProbeOverhead::whole_excess_margin_w(double window_s, bool shown_best) co
   const auto [record, stream_w] = source(shown_best);
   if (record && keep_share_ < 1.0) {
     // Of the windows holding a probe, the share that may be over the budget.
-    const double per_window = std::min(1.0, share() * (frames + kProbeSpanFrames - 1));
+    const double per_window = std::min(1.0, probes_per_window(frames));
     const double over = per_window > 0.0 ? kProbeShareOfOver * (1.0 - std::max(0.0, keep_share_)) / per_window : 1.0;
     if (over < 0.5) {
       const double q = record->quantile(normal_quantile(1.0 - over));
@@ -226,10 +231,8 @@ double ProbeOverhead::watts_at_gap(double gap, bool shown_best) const {
 double ProbeOverhead::window_margin_w(double window_s, double keep_share, bool shown_best) const {
   const double frames = frames_per_window(window_s);
   if (probes_measured() == 0 || frames <= 0.0) return watts(shown_best);
-  // Probes per window (a probe's span of three frames touches two more window starts than the
-  // window has frames): under one, that share of windows holds one (and the rest none).
-  const double per_window = share() * (frames + kProbeSpanFrames - 1);
-  if (per_window <= kProbeShareOfOver * (1.0 - keep_share)) return watts(shown_best);
+  // Under one probe per window, that share of windows holds one (and the rest none).
+  if (probes_per_window(frames) <= kProbeShareOfOver * (1.0 - keep_share)) return watts(shown_best);
   return std::max(watts(shown_best), whole_excess_margin_w(window_s, shown_best));
 }
 

@@ -189,9 +189,9 @@ class Governor {
   // where some configuration is predicted to fit its whole excess in a window under the budget at
   // an image cost of at most GovernorSettings::sweep_image_cost; else the most that do, the passes
   // taken that many at a time at the shim's period for probes in turn (kOnePassStreams: one pass
-  // at a time). Where not even a probe of one pass
-  // fits, sweeps, which the governor spaces (probe_bursts_spaced): a window holding one is over
-  // the budget either way, and a sweep measures every pass. Without this, where a sweep did not
+  // at a time). Where not even a probe of one pass fits, sweeps, which the governor spaces
+  // (probe_bursts_spaced): a window holding one is over the budget either way, and a sweep
+  // measures every pass. Without this, where a sweep did not
   // fit, the governor spaced them, and the estimates were minutes old where probes in turn kept
   // them within the age bound with every window kept (the demo's Valley at 50 %: not one sweep in
   // 600 frames after the first selection). 0: no sweeps asked for, or probe_stretch_gain 0 (the
@@ -268,8 +268,9 @@ class Governor {
   void meter(const FrameRecord& frame);
   double initial_budget_w() const;
   void want_probe_period(double budget_w, double margin_without_probes_w);
-  // What turns the probes' excess read now into that of the kind probe_streams_fit asks for (1
-  // where they are the same, or before the governor has chosen).
+  // What turns the probes' excess read now into that of probes drawing `streams` streams, and
+  // into that of the kind probe_streams_fit asks for (1 before the governor has chosen).
+  double probe_kind_factor(int streams) const;
   double probe_kind_factor() const;
   bool probes_outgrew_margin() const;
   // What a selection keeps under the budget for the probes in the feedback's windows

@@ -57,8 +57,7 @@ inline std::uint64_t one_probe_per_window_gap(double frames_per_window) {
 // comparisons, the shadow targets) as much as two: (streams + 2) / 4, at least 1. Measured on
 // the demo at 10 frames a second: Valley's sweeps (five streams) drew 3.0-4.1 J over their
 // neighbours against 1.5-2.8 J for its probes of one pass (about 1.7 times; 1.75 here), Hall's and
-// Sponza's (seven) 1.5-2.2 times
-// theirs (2.25 here).
+// Sponza's (seven) 1.5-2.2 times theirs (2.25 here).
 double sweep_excess_factor(int sweep_streams);
 constexpr int kOnePassStreams = 2;
 
@@ -111,6 +110,9 @@ class ProbeOverhead {
   double window_margin_w(double window_s, double keep_share, bool shown_best = false) const;
   // Frames in a window of window_s seconds at the recent frame rate (0: not known).
   double frames_per_window(double window_s) const;
+  // Probes in a window of that many frames at the recent share (under one: the share of
+  // windows holding one).
+  double probes_per_window(double frames) const;
   // A probe's whole excess spread over one window's frames (0 while unknown): the largest of
   // the last four probes', since each window must fit the probe it holds, not the mean probe
   // (their excess scatters by a tenth or more with the configuration shown and the frame). With
@@ -142,7 +144,7 @@ class ProbeOverhead {
     std::size_t measured = 0;
     // The streams of the probes it holds (the kind: two for probes of one pass), and whether
     // its values were converted from probes of another kind rather than measured as this one.
-    int streams = 2;
+    int streams = kOnePassStreams;
     bool converted = false;
     void add(double excess);
     void scale(double factor);
@@ -163,15 +165,15 @@ class ProbeOverhead {
   int span_left_ = 0;
   double span_excess_w_ = 0.0;
   bool span_measured_ = false;
-  bool span_paused_ = false;   // a frame of the span lasted kLongestInterval_s or more
-  bool span_at_best_ = false;  // the probe was shown at the best configuration
-  int span_streams_ = 2;       // the probe's kind: its streams shown elsewhere
+  bool span_paused_ = false;            // a frame of the span lasted kLongestInterval_s or more
+  bool span_at_best_ = false;           // the probe was shown at the best configuration
+  int span_streams_ = kOnePassStreams;  // the probe's kind: its streams shown elsewhere
   bool last_in_span_ = false;
   Record away_, at_best_;
   double best_stream_w_ = 0.0;
   double keep_share_ = 1.0;
-  int planned_streams_ = 2;             // the kind of probe the shim plans now
-  double probes_ = 0.0, frames_ = 0.0;  // decaying counts (about 200 frames), until a gap is seen
+  int planned_streams_ = kOnePassStreams;  // the kind of probe the shim plans now
+  double probes_ = 0.0, frames_ = 0.0;     // decaying counts (about 200 frames), until a gap is seen
   // Frames between probes, exponentially (about 4 gaps), and since the last probe: sparse
   // probes (one every 600 frames) are not a share the decaying counts can hold.
   double gap_frames_ = 0.0;
