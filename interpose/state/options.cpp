@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <climits>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -47,6 +48,7 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_FIRST_SAVING_DISCOUNT",
     "GLBUDGET_EXPLORE_HELD",
     "GLBUDGET_MEASURED_AT_WINDOWS",
+    "GLBUDGET_BEST_BAND",
     "GLBUDGET_METER_WINDOWS",
     "GLBUDGET_WARM_BLITS",
     "GLBUDGET_DUMP_PROBES",
@@ -191,6 +193,14 @@ Options parse_options(char** env, std::string* warnings) {
         o.keep_share = *k;
       else
         warn(warnings, "GLBUDGET_KEEP_SHARE='" + value + "' is not a share in [0.5, 0.999] (0.98 or 98%); 0.98");
+    } else if (name == "GLBUDGET_BEST_BAND") {
+      if (value == "off") {
+        o.best_band = std::numeric_limits<double>::infinity();
+      } else if (const auto b = share(value, 0.0, 1.0)) {
+        o.best_band = *b;
+      } else {
+        warn(warnings, "GLBUDGET_BEST_BAND='" + value + "' is not a share in [0, 1] (0.1 or 10%) or off; 0.1");
+      }
     } else if (name == "GLBUDGET_FIRST_SAVING_DISCOUNT") {
       // 1 would raise every unmeasured configuration to the one measured: nothing would fit, and
       // the selection could keep the measured one, so that the discount never lifts.

@@ -3,6 +3,7 @@
 // on stderr and the default.
 #pragma once
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -60,6 +61,10 @@ struct Options {
   // an end of a share's range, at its windows' measured power moved by the model's change between
   // their counts and the frame's (loop/governor.hpp, measured_at_windows)
   bool measured_at_windows = false;
+  // GLBUDGET_BEST_BAND=S: under a share of the range, the top (the best configuration's power now)
+  // stays within S of its windows' measured power above P_m (loop/governor.hpp, best_band);
+  // `off`: no bound
+  double best_band = 0.1;
   // GLBUDGET_METER_WINDOWS=1: a window of the settled configuration read as a meter reads it,
   // probes included, over the budget selects again at once (loop/governor.hpp, meter_windows)
   bool meter_windows = true;

@@ -2015,6 +2015,74 @@ TEST_CASE("scaled: the levels' changes summed, scaled so that the cheapest is pr
   CHECK(scaled.cheapest_w < scaled.best_w);
 }
 
+TEST_CASE("the range's top stays within best_band of the best's measured power above P_m", "[loop][feedback]") {
+  // The app starts at its best and leaves it at the first selection; 5 s later the best's frames
+  // have left the model's history (300 frames). A share's top is then the best's prediction
+  // now plus its windows' residual, held within best_band of what those windows measured above
+  // P_m: 0 holds it there, an infinite band leaves it to the prediction. The six-pass scene's
+  // model is of the scene's own family, so its prediction is good here: the default band must
+  // cost it little.
+  const double p_min_w = model::testing::synthetic_profile().p_min_w;
+  const Configuration best(6, 0);
+  struct Result {
+    double best_measured_w = 0.0;  // its frames' mean before the first selection
+    double lowest_w = std::numeric_limits<double>::infinity(), highest_w = 0.0;
+    double truth_gap_w = 0.0;  // the top's mean distance from the best's true power at the frame
+    int selections = 0;
+  };
+  auto run = [&](double band) {
+    GovernorSettings settings = power_budget("50%");
+    settings.best_band = band;
+    App app(settings);
+    Result r;
+    int at_best = 0;
+    std::uint64_t seen = 0;
+    for (int k = 0; k < 120 * kFps; ++k) {
+      const Step s = app.step();
+      if (app.governor().selections() == 0) {
+        if (s.record.configuration == best && s.record.frame >= 1 * kFps) {
+          r.best_measured_w += s.record.power_w;
+          ++at_best;
+        }
+        continue;
+      }
+      const Governor::SelectionTable table = app.governor().last_selection();
+      if (table.frame == seen || s.record.frame != table.frame) continue;
+      seen = table.frame;
+      if (s.record.frame < 10 * kFps) continue;  // the best's frames still in the history
+      r.lowest_w = std::min(r.lowest_w, table.range_high_w);
+      r.highest_w = std::max(r.highest_w, table.range_high_w);
+      r.truth_gap_w += std::abs(table.range_high_w - Truth(app.hidden(), s.record.passes).power(best));
+      ++r.selections;
+    }
+    REQUIRE(at_best > 0);
+    r.best_measured_w /= at_best;
+    if (r.selections > 0) r.truth_gap_w /= r.selections;
+    return r;
+  };
+  const Result held = run(0.0), banded = run(0.1), free = run(std::numeric_limits<double>::infinity());
+  const double above_w = held.best_measured_w - p_min_w;
+  INFO("the best measured " << held.best_measured_w << " W before the first selection; the top from 10 s on, "
+                            << "band 0: " << held.lowest_w << "-" << held.highest_w << " W (" << held.truth_gap_w
+                            << " W from the truth on average), 0.1: " << banded.lowest_w << "-" << banded.highest_w
+                            << " W (" << banded.truth_gap_w << " W), none: " << free.lowest_w << "-" << free.highest_w
+                            << " W (" << free.truth_gap_w << " W)");
+  REQUIRE(held.selections >= 10);
+  REQUIRE(banded.selections >= 10);
+  REQUIRE(free.selections >= 10);
+  // Band 0: the windows' measurement, unmoved by the prediction (the windows leave the frames of
+  // the transitions out; the frames' mean here keeps them).
+  CHECK(held.highest_w - held.lowest_w < 1e-9);
+  CHECK(std::abs(held.lowest_w - held.best_measured_w) < 0.3);
+  // The default band: within 0.1 of the measurement above P_m, and as close to the truth as the
+  // prediction alone, give or take the scene's noise.
+  CHECK(banded.lowest_w >= p_min_w + 0.9 * above_w - 0.3);
+  CHECK(banded.highest_w <= p_min_w + 1.1 * above_w + 0.3);
+  CHECK(banded.truth_gap_w <= free.truth_gap_w + 0.2);
+  // No band: the prediction moves it with the scene's counts.
+  CHECK(free.highest_w - free.lowest_w > 0.1);
+}
+
 TEST_CASE("scaled: a level calibrated over the best is taken as no change, not a cost", "[loop][feedback]") {
   // The calibration's scatter put one pass's cheapest level 6 W over the best (the demo's
   // calibrations on the cpu estimate: up to 4.6 W). Taken as measured it would cancel 6 W of the
@@ -2239,11 +2307,16 @@ TEST_CASE("configurations never measured are kept further under the budget once 
   // more than the counts say, but only at full resolution (a level whose saving depends on
   // another's). Each configuration combining them is predicted that much too cheap until a
   // window measures it; after the first such surprise, the others not measured keep a margin
-  // of it, so fewer first windows go over the budget.
+  // of it, so fewer first windows go over the budget. Measured without the range's top held
+  // near its measurement (best_band), which moves both runs' paths here: with bands of 0.1, 0.15,
+  // 0.2 and 0.3 the guarded runs kept 0.71, 0.82, 0.82 and 0.80 of their windows and the
+  // unguarded 0.71, 0.77, 0.67 and 0.71 (without a band 0.80 and 0.71). The guard is what this
+  // compares.
   const auto unseen = [](const Configuration& c) { return c[0] == 0 && c[3] > 0 ? 4.0 : 0.0; };
   auto run = [&](const char* budget, bool guard, int* first_over, int* firsts) {
     GovernorSettings settings = power_budget(budget);
     settings.feedback.guard_unmeasured = guard;
+    settings.best_band = std::numeric_limits<double>::infinity();
     App app(settings, Configuration(6, 0), 11, 64, unseen);
     const std::vector<Step> steps = app.run(120 * kFps);
     // 1-s windows of one configuration: over its budget, and whether it was the first of that

@@ -216,6 +216,21 @@ TEST_CASE("GLBUDGET_MEASURED_AT_WINDOWS: off unless 1 or on; anything else said 
   CHECK(w == "glbudget: GLBUDGET_MEASURED_AT_WINDOWS='often' is not 0/1/on/off; off\n");
 }
 
+TEST_CASE("GLBUDGET_BEST_BAND: a share in [0, 1] or off; anything else said once, 0.1", "[unit]") {
+  std::string w;
+  CHECK(parse_env({}, &w).best_band == 0.1);
+  CHECK(parse_env({"GLBUDGET_BEST_BAND=0"}, &w).best_band == 0.0);
+  CHECK(parse_env({"GLBUDGET_BEST_BAND=25%"}, &w).best_band == Approx(0.25));
+  CHECK(parse_env({"GLBUDGET_BEST_BAND=1"}, &w).best_band == 1.0);
+  CHECK(std::isinf(parse_env({"GLBUDGET_BEST_BAND=off"}, &w).best_band));
+  CHECK(w.empty());
+  CHECK(parse_env({"GLBUDGET_BEST_BAND=1.5"}, &w).best_band == 0.1);
+  CHECK(w == "glbudget: GLBUDGET_BEST_BAND='1.5' is not a share in [0, 1] (0.1 or 10%) or off; 0.1\n");
+  w.clear();
+  CHECK(parse_env({"GLBUDGET_BEST_BAND=wide"}, &w).best_band == 0.1);
+  CHECK(w == "glbudget: GLBUDGET_BEST_BAND='wide' is not a share in [0, 1] (0.1 or 10%) or off; 0.1\n");
+}
+
 TEST_CASE("GLBUDGET_METER_WINDOWS: on unless 0 or off; anything else said once, on", "[unit]") {
   std::string w;
   CHECK(parse_env({}, &w).meter_windows);

@@ -16,6 +16,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// Of the best's power above P_m, the least saving the model must predict for the cheapest
+// configuration to be taken for telling the configurations apart (explore_cheapest, within_band).
+constexpr double kUnseenSaving = 0.05;
+
 // The configuration of the space with every pass at its best level: probes shown there draw one
 // stream fewer (probe_overhead.hpp).
 bool is_best(const model::ConfigurationSpace& space, const model::Configuration& configuration) {
@@ -405,13 +409,12 @@ model::Selection Governor::select_at_expected_power(const model::Selection& guar
 // measurement anchors the low end of the range (share_of_range_w), and its frames teach the
 // history fit what the knobs save.
 bool Governor::explore_cheapest(double budget_w) const {
-  constexpr double kUnseenSaving = 0.05;
   if (explored_ || !feedback_.settings().enabled || space_.size() < 2) return false;
   const model::Configuration cheapest = space_.cheapest();
   if (feedback_.measured(cheapest)) return false;
   const model::Configuration best(space_.pass_count(), 0);
   const std::size_t b = space_.index_of(best), c = space_.index_of(cheapest);
-  const double best_w = measured_now_w(b);
+  const double best_w = best_now_w();
   if (!std::isfinite(best_w) || !std::isfinite(model_power_[c]) || !(best_w > p_min_w_)) return false;
   const bool asks_less =
       settings_.power.kind == model::Budget::Kind::ShareOfRange ? settings_.power.value < 1.0 : power_[b] > budget_w;
@@ -452,7 +455,8 @@ double Governor::calibrated_cheapest_w(double best_now_w) const {
 // A share of the range in watts. Beyond the paper: the range runs from the cheapest
 // configuration to the best-quality one, each at the model's prediction moved by its own
 // measured residual where it has one (the app starts at its best), the cheapest's else by the
-// best's; with a calibrated range (`glbudget calibrate --app` measured the best and the
+// best's, the best's within GovernorSettings::best_band of its windows (best_now_w); with a
+// calibrated range (`glbudget calibrate --app` measured the best and the
 // cheapest, every pass at its last level) the cheapest is the best's power above P_m times
 // the share the calibration measured, unless the run has measured it itself. A correction
 // learnt at another configuration (a level whose saving the model misjudged) moves every
@@ -463,13 +467,14 @@ Governor::RangeEnds Governor::range_ends() const {
   const std::size_t top = model::range_top(model_power_, error_);
   if (top >= power_.size()) return ends;
   ends.top = top;
-  const double high = measured_now_w(top);
+  const double high = is_best(space_, space_.decode(top)) ? best_now_w() : measured_now_w(top);
   const double shift = high - model_power_[top];
   double low = std::numeric_limits<double>::infinity();
   const model::Configuration last_levels = space_.cheapest();
   if (feedback_.measured(last_levels)) {
-    low = settings_.measured_at_windows ? measured_now_w(space_.index_of(last_levels))
-                                        : power_[space_.index_of(last_levels)];
+    low = within_band(settings_.measured_at_windows ? measured_now_w(space_.index_of(last_levels))
+                                                    : power_[space_.index_of(last_levels)],
+                      cheapest_windows_);
   } else {
     low = calibrated_cheapest_w(high);
   }
@@ -515,7 +520,7 @@ void Governor::set_calibrated_prior() {
   if (measured.empty() || !range || !feedback_.settings().enabled) return;
   const model::Configuration best(space_.pass_count(), 0);
   const std::size_t best_index = space_.index_of(best);
-  const double scale = calibrated_scale(measured_now_w(best_index));
+  const double scale = calibrated_scale(best_now_w());
   if (!std::isfinite(scale)) return;
   std::vector<std::vector<double>> prior(space_.pass_count());
   for (const auto& [calibrated, watts] : measured) {
@@ -558,6 +563,10 @@ void Governor::feed_back(const FrameRecord& record, Decision& decision) {
     window = feedback_.add(record.configuration, record.time_ns, record.power_w, decision.predicted_w);
     count_window_frame(record, feedback_.frames_taken() != taken, feedback_.windows_opened() != opened, window);
   }
+  if (window && is_best(space_, record.configuration))
+    best_windows_.add(window->measured_w, settings_.feedback.memory_windows);
+  if (window && record.configuration == space_.cheapest())
+    cheapest_windows_.add(window->measured_w, settings_.feedback.memory_windows);
   if (window) {
     if (exploring_) {
       // The cheapest is measured: select again with it, and leave the overshoot out of it.
@@ -684,6 +693,33 @@ void Governor::weigh_at_windows() {
 
 double Governor::measured_weighed_w(std::size_t index) const {
   return index < measured_now_.size() && std::isfinite(measured_now_[index]) ? measured_now_[index] : power_[index];
+}
+
+void Governor::EndWindows::add(double measured_w, double memory_windows) {
+  ++windows;
+  mean_w += (measured_w - mean_w) / std::min(static_cast<double>(windows), std::max(1.0, memory_windows));
+}
+
+// Where the model cannot tell the configurations apart (it predicts the cheapest to save under
+// kUnseenSaving of the best's measured power above P_m), the ends follow its predictions: held
+// to what they measured, the range would leave every prediction outside it (a knob the model
+// does not see; "a model that cannot tell the configurations apart", governor_loop_test).
+double Governor::within_band(double now_w, const EndWindows& end) const {
+  const double band = settings_.best_band;
+  if (end.windows == 0 || !(band >= 0.0) || std::isinf(band) || !std::isfinite(now_w)) return now_w;
+  const std::size_t b = space_.index_of(model::Configuration(space_.pass_count(), 0));
+  const std::size_t c = space_.index_of(space_.cheapest());
+  if (best_windows_.windows == 0 || std::max(b, c) >= model_power_.size() ||
+      !(model_power_[b] - model_power_[c] >= kUnseenSaving * (best_windows_.mean_w - p_min_w_)))
+    return now_w;
+  // Measured under P_m (a profile whose idle was measured high), the band is as wide as its
+  // distance from it.
+  const double width_w = band * std::abs(end.mean_w - p_min_w_);
+  return std::clamp(now_w, end.mean_w - width_w, end.mean_w + width_w);
+}
+
+double Governor::best_now_w() const {
+  return within_band(measured_now_w(space_.index_of(model::Configuration(space_.pass_count(), 0))), best_windows_);
 }
 
 double Governor::measured_now_w(std::size_t index) const {
