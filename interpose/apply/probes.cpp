@@ -1690,10 +1690,12 @@ void ProbeFrames::after_swap(uint64_t next) {
   const uint64_t wanted = settings.stretchable ? g_period_wanted.load(std::memory_order_relaxed) : 0;
   const uint64_t settled_period = std::max(settings.period * settings.settled_factor, wanted);
   const uint64_t bound = settings.period ? p.age_bound_frames(settings) : 0;
-  // Sweeps where the user asked for them, once every pass is probed, unless the governor has the
-  // passes probed in turn, several at a time or one (a window holding a sweep would not fit
-  // under its budget).
-  const bool sweepable = options().probe_sweep && !options().probe_every_level && settings.period;
+  // Sweeps once every pass is probed, unless the governor has the passes probed in turn, several
+  // at a time or one (a window holding a sweep would not fit under its budget). By default only
+  // under a budget: sweeps are drawn ahead of the governor's selections, and where it does not
+  // steer the passes go in turn at the user's period; GLBUDGET_PROBE_SWEEP=1 sweeps regardless.
+  const bool sweepable = options().probe_sweep && (options().probe_sweep_set || governor_steering()) &&
+                         !options().probe_every_level && settings.period;
   const int all_streams = std::min(kMaxStreams, p.passes_in_scene() + 1);
   const int fit = g_streams_fit.load(std::memory_order_relaxed);
   const int streams = fit > 0 ? std::min(fit, all_streams) : all_streams;

@@ -231,6 +231,7 @@ Options parse_options(char** env, std::string* warnings) {
       parse_switch(name, value, o.probe_follow, warnings);
     } else if (name == "GLBUDGET_PROBE_SWEEP") {
       parse_switch(name, value, o.probe_sweep, warnings);
+      o.probe_sweep_set = true;
     } else if (name == "GLBUDGET_FEEDBACK") {
       parse_switch(name, value, o.feedback, warnings);
     } else if (name == "GLBUDGET_FEEDBACK_OWN") {

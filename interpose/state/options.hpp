@@ -45,10 +45,15 @@ struct Options {
   // GLBUDGET_PROBE_FOLLOW=0: every probe stream draws the whole frame, rather than starting at
   // the first call it draws differently from the app or from stream s0 (apply/probes.hpp).
   bool probe_follow = true;
-  // GLBUDGET_PROBE_SWEEP=1: once every pass in the scene is probed, a settled probe frame
-  // probes all of them at once (s0 drawn once for all), just before each of the governor's
-  // selections and at least every GLBUDGET_PROBE_MAX_AGE_S (apply/probes.cpp, sweep_due)
-  bool probe_sweep = false;
+  // GLBUDGET_PROBE_SWEEP (on by default; 0: the passes in turn, one a probe frame): once every
+  // pass in the scene is probed, a settled probe frame probes all of them at once (s0 drawn once
+  // for all), just before each of the governor's selections and at least every
+  // GLBUDGET_PROBE_MAX_AGE_S (apply/probes.cpp, sweep_due), or as many at a time as the governor
+  // finds room for under the budget (loop/governor.hpp, probe_streams_fit)
+  bool probe_sweep = true;
+  // GLBUDGET_PROBE_SWEEP was set (to 1: sweeps without a budget too, the probes' period then
+  // being the user's; unset, sweeps only where the governor steers: apply/probes.cpp)
+  bool probe_sweep_set = false;
   bool feedback = true;  // GLBUDGET_FEEDBACK=0: no correction from measured power (the paper's open loop)
   // GLBUDGET_FEEDBACK_OWN=1: a measured configuration's correction moves from the additive fit
   // towards its own windows' residual (loop/power_feedback.hpp, own_residuals)

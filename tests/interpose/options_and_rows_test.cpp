@@ -253,15 +253,18 @@ TEST_CASE("GLBUDGET_PROBE_FOLLOW: on unless 0 or off; anything else said once, o
   CHECK(w == "glbudget: GLBUDGET_PROBE_FOLLOW='lead' is not 0/1/on/off; on\n");
 }
 
-TEST_CASE("GLBUDGET_PROBE_SWEEP: off unless 1 or on; anything else said once, off", "[unit]") {
+TEST_CASE("GLBUDGET_PROBE_SWEEP: on unless 0 or off; anything else said once, on", "[unit]") {
   std::string w;
-  CHECK_FALSE(parse_env({}, &w).probe_sweep);
+  CHECK(parse_env({}, &w).probe_sweep);
+  CHECK_FALSE(parse_env({}, &w).probe_sweep_set);
   CHECK(parse_env({"GLBUDGET_PROBE_SWEEP=1"}, &w).probe_sweep);
+  CHECK(parse_env({"GLBUDGET_PROBE_SWEEP=1"}, &w).probe_sweep_set);
   CHECK(parse_env({"GLBUDGET_PROBE_SWEEP=on"}, &w).probe_sweep);
   CHECK_FALSE(parse_env({"GLBUDGET_PROBE_SWEEP=0"}, &w).probe_sweep);
+  CHECK_FALSE(parse_env({"GLBUDGET_PROBE_SWEEP=off"}, &w).probe_sweep);
   CHECK(w.empty());
-  CHECK_FALSE(parse_env({"GLBUDGET_PROBE_SWEEP=all"}, &w).probe_sweep);
-  CHECK(w == "glbudget: GLBUDGET_PROBE_SWEEP='all' is not 0/1/on/off; off\n");
+  CHECK(parse_env({"GLBUDGET_PROBE_SWEEP=all"}, &w).probe_sweep);
+  CHECK(w == "glbudget: GLBUDGET_PROBE_SWEEP='all' is not 0/1/on/off; on\n");
 }
 
 TEST_CASE("GLBUDGET_PROBE_MAX_AGE_S and GLBUDGET_TRANSITION_S: seconds up to an hour; others said, the default",

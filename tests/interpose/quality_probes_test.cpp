@@ -595,9 +595,11 @@ TEST_CASE(
   const std::string log = temp_path("subway_drift.csv");
   // Unpaced, the age bound (probe_max_age_s) would come later than the settled period; off, so
   // that how fast this machine draws cannot matter.
-  const ProcessResult r = governed_demo(
-      "subway", 260, log,
-      {{"GLBUDGET_SELECT_FRAMES", "30"}, {"GLBUDGET_PROBE_MAX_AGE_S", "0"}, {"GLBUDGET_PROBE_ORDER", "weighted"}});
+  const ProcessResult r = governed_demo("subway", 260, log,
+                                        {{"GLBUDGET_SELECT_FRAMES", "30"},
+                                         {"GLBUDGET_PROBE_MAX_AGE_S", "0"},
+                                         {"GLBUDGET_PROBE_ORDER", "weighted"},
+                                         {"GLBUDGET_PROBE_SWEEP", "0"}});
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   CHECK(count_lines_with(r.err, "unknown variable") == 0);
@@ -655,8 +657,8 @@ TEST_CASE("settled probes come often enough that each pass in the scene is probe
   // metallic) probed within 12 s: a settled probe every 12 s / 0.1 s / 4 = 30 frames, where the
   // settled period alone is 60 (the case above: without the bound its gaps are 60).
   const std::string log = temp_path("valley_age.csv");
-  const ProcessResult r =
-      governed_demo("valley", 170, log, {{"GLBUDGET_FPS", "10"}, {"GLBUDGET_PROBE_MAX_AGE_S", "12"}});
+  const ProcessResult r = governed_demo(
+      "valley", 170, log, {{"GLBUDGET_FPS", "10"}, {"GLBUDGET_PROBE_MAX_AGE_S", "12"}, {"GLBUDGET_PROBE_SWEEP", "0"}});
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   std::set<long> probe_frames;
@@ -689,7 +691,7 @@ TEST_CASE("under the age bound a pass whose error moved does not bring the first
   // between its probes at frames 20 and 92. Without the bound that brings probes every 10
   // frames until each pass is probed again (the case above); with it, the bound's gaps go on.
   const std::string log = temp_path("subway_age.csv");
-  const ProcessResult r = governed_demo("subway", 200, log, {{"GLBUDGET_FPS", "10"}});
+  const ProcessResult r = governed_demo("subway", 200, log, {{"GLBUDGET_FPS", "10"}, {"GLBUDGET_PROBE_SWEEP", "0"}});
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   const ProbedPasses run = probed_passes(log);
