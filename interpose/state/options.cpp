@@ -5,11 +5,11 @@
 #include <cerrno>
 #include <climits>
 #include <cmath>
-#include <limits>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <initializer_list>
+#include <limits>
 #include <mutex>
 #include <optional>
 #include <string_view>

@@ -3,7 +3,6 @@
 // on stderr and the default.
 #pragma once
 #include <cstdint>
-#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -45,7 +44,7 @@ struct Options {
   // GLBUDGET_PROBE_FOLLOW=0: every probe stream draws the whole frame, rather than starting at
   // the first call it draws differently from the app or from stream s0 (apply/probes.hpp).
   bool probe_follow = true;
-  // GLBUDGET_PROBE_SWEEP (on by default; 0: the passes in turn, one a probe frame): once every
+  // GLBUDGET_PROBE_SWEEP (on by default under a budget; 0: the passes in turn, one a probe frame): once every
   // pass in the scene is probed, a settled probe frame probes all of them at once (s0 drawn once
   // for all), just before each of the governor's selections and at least every
   // GLBUDGET_PROBE_MAX_AGE_S (apply/probes.cpp, sweep_due), or as many at a time as the governor
@@ -67,8 +66,8 @@ struct Options {
   // their counts and the frame's (loop/governor.hpp, measured_at_windows)
   bool measured_at_windows = false;
   // GLBUDGET_BEST_BAND=S: under a share of the range, the top (the best configuration's power now)
-  // stays within S of its windows' measured power above P_m (loop/governor.hpp, best_band);
-  // `off`: no bound
+  // stays within S of its windows' measured power above P_m, a measured cheapest within S of its
+  // own (loop/governor.hpp, best_band); `off`: no bound
   double best_band = 0.1;
   // GLBUDGET_METER_WINDOWS=1: a window of the settled configuration read as a meter reads it,
   // probes included, over the budget selects again at once (loop/governor.hpp, meter_windows)

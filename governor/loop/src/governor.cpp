@@ -648,8 +648,7 @@ void Governor::count_window_frame(const FrameRecord& record, bool taken, bool ne
   // The window's means join the configuration's as its residual's memory weighs them.
   WindowCounts& counts = window_counts_[record.configuration];
   ++counts.windows;
-  const double weight =
-      1.0 / std::min(static_cast<double>(counts.windows), std::max(1.0, settings_.feedback.memory_windows));
+  const double weight = memory_weight(counts.windows, settings_.feedback.memory_windows);
   const auto blend = [weight](double& mean, double value) { mean += weight * (value - mean); };
   std::vector<model::PassFrame>& mean = counts.mean.passes;
   for (model::PassFrame& pass : mean) {  // passes this window did not draw drew nothing in it
@@ -697,7 +696,7 @@ double Governor::measured_weighed_w(std::size_t index) const {
 
 void Governor::EndWindows::add(double measured_w, double memory_windows) {
   ++windows;
-  mean_w += (measured_w - mean_w) / std::min(static_cast<double>(windows), std::max(1.0, memory_windows));
+  mean_w += memory_weight(windows, memory_windows) * (measured_w - mean_w);
 }
 
 // Where the model cannot tell the configurations apart (it predicts the cheapest to save under

@@ -70,8 +70,7 @@ std::optional<PowerFeedback::Window> PowerFeedback::add(const model::Configurati
                    static_cast<double>(std::min<std::size_t>(++between_count_, kSpreadWindows));
   }
   ++residual.windows;
-  const double weight = 1.0 / std::min(static_cast<double>(residual.windows), std::max(1.0, settings_.memory_windows));
-  residual.value += weight * (r - residual.value);
+  residual.value += memory_weight(residual.windows, settings_.memory_windows) * (r - residual.value);
   ++windows_;
   mean_power_w_ += (window.measured_w - mean_power_w_) / static_cast<double>(std::min<std::size_t>(windows_, 16));
   fit();

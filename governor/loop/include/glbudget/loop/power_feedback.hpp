@@ -15,6 +15,7 @@
 // unmeasured neighbours look cheaper than they are). The terms are a ridge fit over the
 // measured configurations whose prior scale is prior_share of the measured power: with few
 // configurations measured, what they show goes mostly to the offset.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -24,6 +25,12 @@
 #include "glbudget/model/configuration_space.hpp"
 
 namespace glbudget::loop {
+
+// The weight of a configuration's `windows`-th window in its average over memory_windows
+// (FeedbackSettings): the mean of its windows up to that many, then an exponential average.
+inline double memory_weight(std::size_t windows, double memory_windows) {
+  return 1.0 / std::min(static_cast<double>(windows), std::max(1.0, memory_windows));
+}
 
 struct FeedbackSettings {
   bool enabled = true;    // GLBUDGET_FEEDBACK=0: the paper's open loop
