@@ -1410,25 +1410,42 @@ struct ProbeFrames::Impl {
     }
   }
 
+  // The (pass, level) pairs probes take: each pass at its cheapest level, or at every level
+  // below the best (GLBUDGET_PROBE_LEVELS=all).
+  static std::vector<std::pair<size_t, int>> probe_pairs(const manifest::Manifest& m) {
+    std::vector<std::pair<size_t, int>> order;
+    for (size_t i = 0; i < m.passes.size() && i < static_cast<size_t>(kMaxPasses); ++i) {
+      const int lmax = static_cast<int>(m.passes[i].levels.size()) - 1;
+      for (int l = options().probe_every_level ? 1 : lmax; l <= lmax && l >= 1; ++l) order.emplace_back(i, l);
+    }
+    return order;
+  }
+  // The pairs of passes in the scene last probed before `frame` (never probed included).
+  int pairs_probed_before(uint64_t frame) const {
+    const manifest::Manifest& m = active_manifest();
+    const auto order = probe_pairs(m);
+    int stale = 0;
+    for (size_t k = 0; k < order.size(); ++k)
+      if (pass_in_scene(m.passes[order[k].first], order[k].first, passes_drawn) &&
+          (k >= pair_probed.size() || pair_probed[k] < frame))
+        ++stale;
+    return stale;
+  }
+
   // The streams of a probe frame: s0, unless the frame is drawn in it, and s_i^lmax for a pass
   // that has levels and drew in the last probe frame: the next in turn (GLBUDGET_PROBE_ORDER=
-  // weighted: until each has been probed, then the one whose error × age is largest), or with
-  // `sweep` every such pass, those probed longest ago first where they are more than the streams
-  // (max_streams, s0 counted whether it is drawn or shown).
-  void plan(uint64_t next, bool sweep, int max_streams = kMaxStreams) {
+  // weighted: until each has been probed, then the one whose error × age is largest; with
+  // `stalest`, the one probed longest ago), or with `sweep` every such pass, those probed longest
+  // ago first where they are more than the streams (max_streams, s0 counted whether it is drawn
+  // or shown).
+  void plan(uint64_t next, bool sweep, int max_streams = kMaxStreams, bool stalest = false) {
     const manifest::Manifest& m = active_manifest();
     const int passes = std::min<int>(static_cast<int>(m.passes.size()), kMaxPasses);
     stream_count = 0;
     Levels best;
     best.count = passes;
     if (!(c.config == best)) streams[stream_count++].config = best;
-    // The (pass, level) pairs in turn: each pass at its cheapest level, or at every level
-    // below the best (GLBUDGET_PROBE_LEVELS=all).
-    std::vector<std::pair<size_t, int>> order;
-    for (size_t i = 0; i < m.passes.size() && static_cast<int>(i) < passes; ++i) {
-      const int lmax = static_cast<int>(m.passes[i].levels.size()) - 1;
-      for (int l = options().probe_every_level ? 1 : lmax; l <= lmax && l >= 1; ++l) order.emplace_back(i, l);
-    }
+    const std::vector<std::pair<size_t, int>> order = probe_pairs(m);
     const auto probeable = [&](size_t i) {
       return i < static_cast<size_t>(kMaxPasses) && pass_in_scene(m.passes[i], i, passes_drawn);
     };
@@ -1453,6 +1470,9 @@ struct ProbeFrames::Impl {
       int passes_left = max_streams - 1;
       for (size_t k : taken)
         if (stream_count < kMaxStreams && passes_left-- > 0) probe_pair(k);
+    } else if (stalest) {
+      for (size_t k = 0; k < order.size(); ++k)
+        if (probeable(order[k].first) && (pick == order.size() || pair_probed[k] < pair_probed[pick])) pick = k;
     } else if (options().probe_order_weighted && settled()) {
       candidates.resize(order.size());
       for (size_t k = 0; k < order.size(); ++k) {
@@ -1617,6 +1637,44 @@ struct ProbeFrames::Impl {
     return std::min(longest, std::max(selections, window_gap(settings)));  // ahead of each selection
   }
 
+  // Probes of one pass or a few at a time (the governor found no room under its budget for a
+  // sweep's excess in a window: Governor::probe_streams_fit), where it selects at a known frame:
+  // the passes in the scene, stalest first, in the windows just ahead of each selection, one probe
+  // frame a window, the last kSweepLead frames ahead of it, so that the selection weighs errors a
+  // few windows old, as a sweep's are, rather than anywhere up to the age bound (the demo's Valley
+  // at 50 %, four passes in turn: 47-109 frames old at the last selection, the estimates ranking
+  // the 729 configurations at ρ 0.943-0.950; a probe every window throughout: 20 frames, ρ 0.984,
+  // at twice the probe frames). The frames of such a round: one per `passes_a_frame` passes in
+  // the scene, as many as a selection period holds; 0 where the governor spaces probes (a window
+  // holding one is over the budget whatever is shown), where no selection is due, or where the
+  // user gave GLBUDGET_PROBE_PERIOD.
+  int round_frames(const ProbeSettings& settings, int passes_a_frame) const {
+    const uint64_t selections = g_select_frames.load(std::memory_order_relaxed);
+    if (!settings.stretchable || selections <= kSweepLead || !g_selection_due.load(std::memory_order_relaxed) ||
+        g_bursts_spaced.load(std::memory_order_relaxed))
+      return 0;
+    const int needed = (passes_in_scene() + passes_a_frame - 1) / std::max(1, passes_a_frame);
+    const uint64_t fit = (selections - kSweepLead - 1) / window_gap(settings) + 1;
+    return static_cast<int>(std::min<uint64_t>(static_cast<uint64_t>(std::max(needed, 0)), fit));
+  }
+  // A round's probe frame at `next`: the pairs not yet probed in the round that began `frames`
+  // windows ahead of the selection due need that many frames still, the last kSweepLead ahead
+  // of it; or a pass's probe older than the whole age bound (GLBUDGET_PROBE_MAX_AGE_S), where
+  // selections are further apart than it.
+  bool round_due(const ProbeSettings& settings, uint64_t next, int passes_a_frame, int frames) const {
+    const uint64_t gap = window_gap(settings);
+    if (next - last_tried < gap) return false;
+    const uint64_t whole = age_bound_frames(settings, true);
+    if (whole && next > whole && pairs_probed_before(next - whole) > 0) return true;
+    const uint64_t due = g_selection_due.load(std::memory_order_relaxed);
+    if (due <= next) return false;
+    const uint64_t span = kSweepLead + static_cast<uint64_t>(frames - 1) * gap;
+    if (due - next > span) return false;
+    const int stale = pairs_probed_before(due > span ? due - span : 0);
+    const int left = std::min(frames, (stale + passes_a_frame - 1) / std::max(1, passes_a_frame));
+    return left > 0 && due - next <= kSweepLead + static_cast<uint64_t>(left - 1) * gap;
+  }
+
   // This context's seconds between swaps, smoothed over about ten frames.
   void time_swap() {
     const auto now = std::chrono::steady_clock::now();
@@ -1697,12 +1755,14 @@ void ProbeFrames::after_swap(uint64_t next) {
   const bool sweepable = options().probe_sweep && (options().probe_sweep_set || governor_steering()) &&
                          !options().probe_every_level && settings.period;
   const int all_streams = std::min(kMaxStreams, p.passes_in_scene() + 1);
+  // As many as the governor finds room for, and the user allows (s0 beside the passes).
   const int fit = g_streams_fit.load(std::memory_order_relaxed);
-  const int streams = fit > 0 ? std::min(fit, all_streams) : all_streams;
+  const int allowed = options().probe_passes > 0 ? std::min(all_streams, options().probe_passes + 1) : all_streams;
+  const int streams = fit > 0 ? std::min(fit, allowed) : allowed;
   const bool sweeping = sweepable && p.settled() && streams >= all_streams;
   const bool grouped = sweepable && p.settled() && !sweeping && streams > loop::kOnePassStreams;
   g_sweep_streams.store(sweeping || grouped ? streams : 0, std::memory_order_relaxed);
-  g_sweepable_streams.store(sweepable ? all_streams : 0, std::memory_order_relaxed);
+  g_sweepable_streams.store(sweepable ? allowed : 0, std::memory_order_relaxed);
   if (const uint64_t drift = probe_drift_count(); drift != p.drift_seen) {
     p.drift_seen = drift;
     // The scene moved: every pass's error again, at the first period. Not where the age bound
@@ -1721,8 +1781,20 @@ void ProbeFrames::after_swap(uint64_t next) {
     period = settled_period;
   else if (g_bursts_spaced.load(std::memory_order_relaxed))
     period = std::max(period, wanted);
-  // The period the governor's probe overhead counts is the shorter of the two.
-  const uint64_t in_force = sweeping ? p.sweep_gap(settings, settled_period) : bound ? std::min(period, bound) : period;
+  // Probes of a pass or a few, settled, in rounds ahead of each selection where the governor steers.
+  const int passes_a_frame = std::max(1, streams - 1);
+  // Not where the governor asks for rarer probes and gets them; where the age bound comes sooner
+  // than what it asks for, probes come at the bound anyway, and rounds place them.
+  const bool rare_wanted = wanted && !(bound && bound < settled_period);
+  const int round_frames =
+      sweepable && p.settled() && !sweeping && !rare_wanted ? p.round_frames(settings, passes_a_frame) : 0;
+  // The period the governor's probe overhead counts is the shorter of the two; in rounds, their
+  // probe frames spread over the selection period.
+  const uint64_t selections = g_select_frames.load(std::memory_order_relaxed);
+  const uint64_t in_force = sweeping       ? p.sweep_gap(settings, settled_period)
+                            : round_frames ? std::max(p.window_gap(settings), selections / round_frames)
+                            : bound        ? std::min(period, bound)
+                                           : period;
   if (in_force != g_period_in_force.load(std::memory_order_relaxed))
     g_period_in_force.store(in_force, std::memory_order_relaxed);
   // Not the first frames: the app may still be setting up what it draws. A period just made
@@ -1731,6 +1803,8 @@ void ProbeFrames::after_swap(uint64_t next) {
   if (period == 0 || next < 3) return;
   if (sweeping) {
     if (!p.sweep_due(settings, settled_period, next)) return;
+  } else if (round_frames) {
+    if (!p.round_due(settings, next, passes_a_frame, round_frames)) return;
   } else {
     const bool due = next % period == 0 && next - p.last_tried >= period;
     const bool overdue = bound && p.last_tried && next - p.last_tried >= bound;
@@ -1739,7 +1813,7 @@ void ProbeFrames::after_swap(uint64_t next) {
   // Earlier probes not yet measured: this one would only wait behind them (governing.hpp).
   if (p.pending.size() >= kMaxPending || governor_probes_backlogged()) return;
   p.last_tried = next;
-  p.plan(next, sweeping || grouped, streams);
+  p.plan(next, sweeping || grouped, streams, round_frames > 0);
 }
 
 void ProbeFrames::collect(bool wait) {

@@ -58,6 +58,7 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_PROBE_ORDER",
     "GLBUDGET_PROBE_FOLLOW",
     "GLBUDGET_PROBE_SWEEP",
+    "GLBUDGET_PROBE_PASSES",
     "GLBUDGET_SHIM",
     "GLBUDGET_COSTS",
     // A test switch, to be documented in README's options table: GL extensions the shim
@@ -232,6 +233,11 @@ Options parse_options(char** env, std::string* warnings) {
     } else if (name == "GLBUDGET_PROBE_SWEEP") {
       parse_switch(name, value, o.probe_sweep, warnings);
       o.probe_sweep_set = true;
+    } else if (name == "GLBUDGET_PROBE_PASSES") {
+      if (const auto n = whole_number(value, 1, 64))
+        o.probe_passes = static_cast<int>(*n);
+      else
+        warn(warnings, "GLBUDGET_PROBE_PASSES='" + value + "' is not a number of passes in [1, 64]; as many as fit");
     } else if (name == "GLBUDGET_FEEDBACK") {
       parse_switch(name, value, o.feedback, warnings);
     } else if (name == "GLBUDGET_FEEDBACK_OWN") {

@@ -53,6 +53,11 @@ struct Options {
   // GLBUDGET_PROBE_SWEEP was set (to 1: sweeps without a budget too, the probes' period then
   // being the user's; unset, sweeps only where the governor steers: apply/probes.cpp)
   bool probe_sweep_set = false;
+  // GLBUDGET_PROBE_PASSES=N: where settled probe frames sweep, at most N passes in one (each pass
+  // a stream drawing the frame again: a probe frame's hitch grows with them); fewer take the
+  // passes in rounds ahead of each selection (apply/probes.cpp, round_frames). 0: as many as the
+  // governor finds room for.
+  int probe_passes = 0;
   bool feedback = true;  // GLBUDGET_FEEDBACK=0: no correction from measured power (the paper's open loop)
   // GLBUDGET_FEEDBACK_OWN=1: a measured configuration's correction moves from the additive fit
   // towards its own windows' residual (loop/power_feedback.hpp, own_residuals)

@@ -267,6 +267,21 @@ TEST_CASE("GLBUDGET_PROBE_SWEEP: on unless 0 or off; anything else said once, on
   CHECK(w == "glbudget: GLBUDGET_PROBE_SWEEP='all' is not 0/1/on/off; on\n");
 }
 
+TEST_CASE("GLBUDGET_PROBE_PASSES: 1 to 64 passes a probe frame; others said, as many as fit", "[unit]") {
+  std::string w;
+  CHECK(parse_env({}, &w).probe_passes == 0);
+  CHECK(parse_env({"GLBUDGET_PROBE_PASSES=1"}, &w).probe_passes == 1);
+  CHECK(parse_env({"GLBUDGET_PROBE_PASSES=64"}, &w).probe_passes == 64);
+  CHECK(w.empty());
+  for (const char* bad : {"0", "65", "-1", "2.5", "", "all"}) {
+    INFO(bad);
+    w.clear();
+    CHECK(parse_env({std::string("GLBUDGET_PROBE_PASSES=") + bad}, &w).probe_passes == 0);
+    CHECK(w == std::string("glbudget: GLBUDGET_PROBE_PASSES='") + bad +
+                   "' is not a number of passes in [1, 64]; as many as fit\n");
+  }
+}
+
 TEST_CASE("GLBUDGET_PROBE_MAX_AGE_S and GLBUDGET_TRANSITION_S: seconds up to an hour; others said, the default",
           "[unit]") {
   std::string w;

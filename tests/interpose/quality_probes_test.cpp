@@ -774,6 +774,57 @@ TEST_CASE("sweeps measure every pass in the scene in one probe frame, just ahead
   CHECK(missed <= 1);
 }
 
+TEST_CASE("probes of one pass a frame come in rounds just ahead of the governor's selections") {
+  if (kSanitizedRun) return;  // the governor's bookkeeping, as above
+  // Valley paced at 10 fps, a selection every 60 frames, probe frames of one pass each
+  // (GLBUDGET_PROBE_PASSES=1, as where the governor finds no room for a sweep): once its four
+  // passes in the scene are probed (every 10 frames, to frame 40), each selection due by the
+  // period is preceded by a round of them, one probe frame a window (at least 10 frames apart),
+  // the last kSweepLead (5) ahead of it, so that every pass's error is at most a few windows old
+  // when the governor selects (without rounds: up to the 10-s bound, 100 frames).
+  const std::string log = temp_path("valley_rounds.csv");
+  const ProcessResult r = governed_demo("valley", 320, log,
+                                        {{"GLBUDGET_FPS", "10"},
+                                         {"GLBUDGET_PROBE_PASSES", "1"},
+                                         {"GLBUDGET_SELECT_FRAMES", "60"},
+                                         {"GLBUDGET_METER_WINDOWS", "0"}});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  std::set<long> selections;
+  for (const auto& row : read_csv_rows_by_name(log))
+    if (row.at("decision") == "select") selections.insert(std::stol(row.at("frame")));
+  const ProbedPasses run = probed_passes(log);
+  unlink(log.c_str());
+  std::string at;
+  for (long s : selections) at += std::to_string(s) + " ";
+  INFO(run.text << "selections: " << at);
+  REQUIRE(run.streams.size() >= 8);
+  const long settled = std::next(run.streams.begin(), 3)->first;
+  CHECK(settled == 40);
+  std::set<int> in_scene;
+  long previous = 0;
+  for (const auto& [frame, text] : run.streams) {
+    // One pass a probe frame, in the scene's passes probed before it settled.
+    CHECK(std::count(text.begin(), text.end(), '=') <= 1);
+    if (previous) CHECK(frame - previous >= 10);
+    previous = frame;
+    if (frame <= settled && run.probed.count(frame)) in_scene.insert(run.probed.at(frame).first);
+  }
+  REQUIRE(in_scene.size() == 4);
+  // Each selection due by the period, once settled: every pass in the scene probed within the
+  // 50 frames before it (a round of four a window apart, 13 frames at 10 fps, and the lead).
+  int rounds = 0;
+  for (auto it = std::next(selections.begin()); it != selections.end(); ++it) {
+    if (*it - *std::prev(it) != 60 || *std::prev(it) < settled) continue;
+    std::set<int> fresh;
+    for (auto p = run.probed.lower_bound(*it - 50); p != run.probed.end() && p->first < *it; ++p)
+      fresh.insert(p->second.first);
+    CHECK(fresh == in_scene);
+    ++rounds;
+  }
+  CHECK(rounds >= 2);
+}
+
 TEST_CASE("bad probe settings are said once and the app runs on") {
   const std::string dir = temp_path("probes_bad");
   fs::create_directories(dir + "/app");
