@@ -1410,25 +1410,29 @@ struct ProbeFrames::Impl {
     }
   }
 
-  // The (pass, level) pairs probes take: each pass at its cheapest level, or at every level
-  // below the best (GLBUDGET_PROBE_LEVELS=all).
-  static std::vector<std::pair<size_t, int>> probe_pairs(const manifest::Manifest& m) {
-    std::vector<std::pair<size_t, int>> order;
+  // The (pass, level) pairs probes take, in order, each given to `f` with its index: each pass at
+  // its cheapest level, or at every level below the best (GLBUDGET_PROBE_LEVELS=all).
+  template <class F>
+  static void each_probe_pair(const manifest::Manifest& m, F&& f) {
+    size_t k = 0;
     for (size_t i = 0; i < m.passes.size() && i < static_cast<size_t>(kMaxPasses); ++i) {
       const int lmax = static_cast<int>(m.passes[i].levels.size()) - 1;
-      for (int l = options().probe_every_level ? 1 : lmax; l <= lmax && l >= 1; ++l) order.emplace_back(i, l);
+      for (int l = options().probe_every_level ? 1 : lmax; l <= lmax && l >= 1; ++l) f(k++, i, l);
     }
+  }
+  static std::vector<std::pair<size_t, int>> probe_pairs(const manifest::Manifest& m) {
+    std::vector<std::pair<size_t, int>> order;
+    each_probe_pair(m, [&](size_t, size_t i, int level) { order.emplace_back(i, level); });
     return order;
   }
-  // The pairs of passes in the scene last probed before `frame` (never probed included).
+  // The pairs of passes in the scene last probed before `frame` (never probed included). Asked
+  // after each swap in rounds: it allocates nothing.
   int pairs_probed_before(uint64_t frame) const {
     const manifest::Manifest& m = active_manifest();
-    const auto order = probe_pairs(m);
     int stale = 0;
-    for (size_t k = 0; k < order.size(); ++k)
-      if (pass_in_scene(m.passes[order[k].first], order[k].first, passes_drawn) &&
-          (k >= pair_probed.size() || pair_probed[k] < frame))
-        ++stale;
+    each_probe_pair(m, [&](size_t k, size_t i, int) {
+      if (pass_in_scene(m.passes[i], i, passes_drawn) && (k >= pair_probed.size() || pair_probed[k] < frame)) ++stale;
+    });
     return stale;
   }
 
@@ -1460,19 +1464,17 @@ struct ProbeFrames::Impl {
       if (!(probed == c.config)) streams[stream_count++].config = probed;
     };
     size_t pick = order.size();
-    if (sweep) {
-      sweep_soon = false;
+    if (sweep || stalest) {
+      if (sweep) sweep_soon = false;
       std::vector<size_t> taken;
       for (size_t k = 0; k < order.size(); ++k)
         if (probeable(order[k].first)) taken.push_back(k);
       std::stable_sort(taken.begin(), taken.end(), [&](size_t a, size_t b) { return pair_probed[a] < pair_probed[b]; });
-      // At most max_streams - 1 passes (s0 beside them, whether drawn or shown).
-      int passes_left = max_streams - 1;
+      // At most max_streams - 1 passes (s0 beside them, whether drawn or shown); the stalest alone
+      // where the frame probes one pass.
+      int passes_left = sweep ? max_streams - 1 : 1;
       for (size_t k : taken)
         if (stream_count < kMaxStreams && passes_left-- > 0) probe_pair(k);
-    } else if (stalest) {
-      for (size_t k = 0; k < order.size(); ++k)
-        if (probeable(order[k].first) && (pick == order.size() || pair_probed[k] < pair_probed[pick])) pick = k;
     } else if (options().probe_order_weighted && settled()) {
       candidates.resize(order.size());
       for (size_t k = 0; k < order.size(); ++k) {
