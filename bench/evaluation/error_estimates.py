@@ -20,8 +20,9 @@ Per scene of the demo:
      probes' staleness and the levels' error ratios k.
 Budgets are shares of the range of the selection's predictions (the cheapest to the best).
 
-Writes DIR/error-estimates.md and DIR/error_estimates.png, and each governed run's log as
-DIR/SCENE.csv (with its .selections.csv).
+Writes DIR/error-estimates.md and DIR/error_estimates.png, each governed run's log as
+DIR/SCENE.csv (with its .selections.csv), and every configuration's true and estimated error at
+the last selection as DIR/SCENE.truth.csv.
 Usage: error_estimates.py BUILD_DIR --out DIR [--scenes hall,sponza,valley,subway]
        [--budget 50] [--regret-budgets 30,40,50,60,70] [--frames 200] [--fps 10] [--size 320x180]
        [--detail 0.2] [--costs measure|off|PATH] [--quick]
@@ -113,6 +114,14 @@ class Study(Evaluation):
         others = [path for c, path in by_config.items() if c != BEST]
         errors = self.ssim_errors(by_config[BEST], others)
         truth = {c: 0.0 if c == BEST else errors[path] for c, path in by_config.items() if c == BEST or path in errors}
+        # Every configuration's true and estimated error at that frame beside the log, for studies
+        # of the estimate's form offline (how the passes' errors combine).
+        with open(os.path.join(a.out, f"{scene}.truth.csv"), "w") as f:
+            f.write("configuration,true_error,est_error,predicted_w\n")
+            for c in sorted(truth):
+                predicted, estimated = table.get(c, (None, None))
+                f.write(f"{c},{truth[c]:.6f},{'' if estimated is None else estimated},"
+                        f"{'' if predicted is None else predicted}\n")
         pairs = [(table[c][1], truth[c]) for c in truth if c in table and table[c][1] is not None]
         estimated, computed = [p[0] for p in pairs], [p[1] for p in pairs]
         sums = fresh_sums(truth)

@@ -723,31 +723,67 @@ TEST_CASE(
   CHECK(o.largest_recent_excess_w() == Approx(2.25 * single).epsilon(0.03));
   o.set_sweep_streams(7);  // said again every frame: scaled once
   CHECK(o.largest_recent_excess_w() == Approx(2.25 * single).epsilon(0.03));
-  CHECK(o.streams_held() == 7);
-  // A sweep of 5.5 slots is no pause: it is measured, and it replaces the stand-in whole.
+  CHECK(o.planned_streams() == 7);
+  // A sweep of 5.5 slots is no pause: it is measured, and the probes of one pass before it read
+  // as sweeps by the ratio of the two kinds measured.
   feed(60, 60, 11, 7);
-  REQUIRE(o.probes_measured() == 1);
+  REQUIRE(o.probes_measured() == 21);
   CHECK(o.largest_recent_excess_w() == Approx(55.0).epsilon(0.03));
   CHECK(o.excess_w() == Approx(55.0).epsilon(0.03));
-  // A pass back in the scene: the shim's sweeps off for a while, the sweeps measured read as
-  // probes of one pass; back as they were when it sweeps again.
+  CHECK(o.kind_factor(2) == Approx(single / 55.0).epsilon(0.03));
+  // A pass back in the scene: the shim's sweeps off for a while, the probes read as what probes
+  // of one pass were measured to draw; back as they were when it sweeps again.
   o.set_sweep_streams(0);
-  CHECK(o.streams_held() == 2);
-  CHECK(o.largest_recent_excess_w() == Approx(55.0 / 2.25).epsilon(0.03));
+  CHECK(o.planned_streams() == 2);
+  CHECK(o.largest_recent_excess_w() == Approx(single).epsilon(0.03));
   o.set_sweep_streams(7);
   CHECK(o.largest_recent_excess_w() == Approx(55.0).epsilon(0.03));
-  // Sweeps of three passes (four streams, of 1.5 probes of one pass) read the seven-stream sweeps
-  // converted, until one is measured.
+  // Sweeps of three passes (four streams), not measured: between the two kinds measured.
   o.set_sweep_streams(4);
-  CHECK(o.largest_recent_excess_w() == Approx(55.0 * 1.5 / 2.25).epsilon(0.03));
+  CHECK(o.largest_recent_excess_w() == Approx(single + 0.4 * (55.0 - single)).epsilon(0.03));
   o.set_sweep_streams(7);
   // Past 16 slots a probe frame is a pause (a shader built on the spot): not counted.
   feed(60, 60, 40, 7);
-  CHECK(o.probes_measured() == 1);
-  // Back to probes of one pass: the first measured replaces the sweeps.
+  CHECK(o.probes_measured() == 21);
+  // Back to probes of one pass: what they draw.
   o.set_sweep_streams(0);
   feed(60, 20, 3, 0);
   CHECK(o.largest_recent_excess_w() == Approx(single).epsilon(0.05));
+}
+
+TEST_CASE(
+    "probe overhead: each kind of probe is read at the ratio measured between the kinds, its spread from "
+    "every probe",
+    "[loop][extremes]") {
+  // 10 frames a second at 20 W; probes of one pass draw 10 W x frames over their neighbours,
+  // sweeps of three passes (four streams) 18: 1.8 times, where sweep_excess_factor guesses 1.5.
+  ProbeOverhead o;
+  std::int64_t t = 0;
+  int frame = 0;
+  const auto feed = [&](int probes, int streams, double excess) {
+    for (int k = 0; k < probes * 20; ++k, ++frame) {
+      const bool probe = k % 20 == 10;
+      t += 100'000'000;
+      o.add(probe, probe ? 20.0 + excess : 20.0, t, false, probe && streams > 2 ? streams : 0);
+    }
+  };
+  CHECK(o.kind_factor(4) == Approx(loop::sweep_excess_factor(4)));  // nothing measured: the guess
+  feed(6, 2, 10.0);
+  CHECK(o.kind_factor(4) == Approx(1.5));  // one kind measured: the guess from it
+  o.set_sweep_streams(4);
+  feed(2, 4, 18.0);
+  o.set_sweep_streams(0);
+  CHECK(o.kind_factor(4) == Approx(1.8).epsilon(0.01));
+  // Beyond the kinds measured: the line through them (3.0) where over the guess from the nearest
+  // (18 x 2.25 / 1.5 = 27, 2.7).
+  CHECK(o.kind_factor(7) == Approx(3.0).epsilon(0.01));
+  CHECK(o.kind_factor(3) == Approx(1.4).epsilon(0.01));  // between them
+  // Eight probes over the two kinds give a spread at once: the quantile reads them all, at the
+  // kind asked for, where a record of the one kind held two.
+  o.set_keep_share(0.95);
+  o.set_sweep_streams(4);
+  CHECK(o.largest_recent_excess_w() == Approx(18.0).epsilon(0.01));
+  CHECK(o.whole_excess_margin_w(1.0) == Approx(1.8).epsilon(0.01));  // no scatter: the largest
 }
 
 TEST_CASE("probe overhead: where every window holds a probe, each fits all but the rarest probe's excess",

@@ -742,9 +742,7 @@ double Governor::probe_window_margin_w(bool shown_best) const {
   return probe_overhead_.window_margin_w(settings_.feedback.window_s, settings_.feedback.keep_share, shown_best);
 }
 
-double Governor::probe_kind_factor(int streams) const {
-  return sweep_excess_factor(streams) / sweep_excess_factor(probe_overhead_.streams_held());
-}
+double Governor::probe_kind_factor(int streams) const { return probe_overhead_.kind_factor(streams); }
 
 double Governor::probe_kind_factor() const { return probe_streams_fit_ ? probe_kind_factor(probe_streams_fit_) : 1.0; }
 

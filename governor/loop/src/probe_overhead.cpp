@@ -28,66 +28,90 @@ constexpr std::size_t kLeastForSpread = 8;  // probes measured before their spre
 
 double sweep_excess_factor(int sweep_streams) { return std::max(1.0, (sweep_streams + 2) / 4.0); }
 
-void ProbeOverhead::Record::add(double excess) {
-  excess_w = measured == 0 ? excess : excess_w + kExcessWeight * (excess - excess_w);
-  recent[measured % recent.size()] = excess;
+void ProbeOverhead::Record::add(double excess, int streams) {
+  recent[measured % recent.size()] = {excess, streams};
   ++measured;
-}
-
-void ProbeOverhead::Record::scale(double factor) {
-  excess_w *= factor;
-  for (double& e : recent) e *= factor;
-}
-
-void ProbeOverhead::set_sweep_streams(int streams) {
-  planned_streams_ = streams > 0 ? streams : kOnePassStreams;
-  for (Record* r : {&away_, &at_best_}) convert(*r, planned_streams_);
-}
-
-void ProbeOverhead::convert(Record& r, int streams) {
-  if (r.streams == streams) return;
-  if (r.measured > 0) {
-    r.scale(sweep_excess_factor(streams) / sweep_excess_factor(r.streams));
-    r.converted = true;
+  for (auto& [kind, level] : levels) {
+    if (kind == streams) {
+      level += kExcessWeight * (excess - level);
+      return;
+    }
   }
-  r.streams = streams;
+  levels.emplace_back(streams, excess);
 }
 
-double ProbeOverhead::Record::largest() const {
-  const std::size_t n = std::min<std::size_t>(measured, 4);
-  double out = recent[(measured - 1) % recent.size()];
-  for (std::size_t i = 1; i < n; ++i) out = std::max(out, recent[(measured - 1 - i) % recent.size()]);
+double ProbeOverhead::Record::level(int streams) const {
+  if (levels.empty()) return std::numeric_limits<double>::quiet_NaN();
+  // The measured kinds nearest below and above.
+  const std::pair<int, double>*below = nullptr, *above = nullptr;
+  for (const auto& kind : levels) {
+    if (kind.first == streams) return kind.second;
+    if (kind.first < streams && (!below || kind.first > below->first)) below = &kind;
+    if (kind.first > streams && (!above || kind.first < above->first)) above = &kind;
+  }
+  if (below && above) {
+    const double t = static_cast<double>(streams - below->first) / (above->first - below->first);
+    return below->second + t * (above->second - below->second);
+  }
+  // Beyond every kind measured: from the nearest by sweep_excess_factor, or on the line through
+  // it and the next one where that is more (a line fitted to two noisy kinds can fall).
+  const auto& nearest = below ? *below : *above;
+  double out = nearest.second * sweep_excess_factor(streams) / sweep_excess_factor(nearest.first);
+  const std::pair<int, double>* next = nullptr;
+  for (const auto& kind : levels) {
+    if (&kind == &nearest) continue;
+    const bool beyond = below ? kind.first < nearest.first : kind.first > nearest.first;
+    if (beyond && (!next || std::abs(kind.first - nearest.first) < std::abs(next->first - nearest.first))) next = &kind;
+  }
+  if (next) {
+    const double slope = std::max(0.0, (nearest.second - next->second) / (nearest.first - next->first));
+    out = std::max(out, nearest.second + slope * (streams - nearest.first));
+  }
   return out;
 }
 
-double ProbeOverhead::Record::quantile(double z) const {
+double ProbeOverhead::Record::as_kind(const Sample& sample, int streams) const {
+  if (sample.streams == streams) return sample.excess;
+  const double from = level(sample.streams), to = level(streams);
+  // Kinds whose probes draw no more than their neighbours carry no ratio: the prior's.
+  if (!(from > 0.0) || !(to > 0.0))
+    return sample.excess * sweep_excess_factor(streams) / sweep_excess_factor(sample.streams);
+  return sample.excess * to / from;
+}
+
+double ProbeOverhead::Record::largest(int streams) const {
+  const std::size_t n = std::min<std::size_t>(measured, 4);
+  double out = as_kind(recent[(measured - 1) % recent.size()], streams);
+  for (std::size_t i = 1; i < n; ++i) out = std::max(out, as_kind(recent[(measured - 1 - i) % recent.size()], streams));
+  return out;
+}
+
+double ProbeOverhead::Record::quantile(double z, int streams) const {
   const std::size_t n = std::min(measured, recent.size());
   if (n < kLeastForSpread) return std::numeric_limits<double>::quiet_NaN();
+  std::array<double, 16> excess{};
   double mean = 0.0;
-  for (std::size_t i = 0; i < n; ++i) mean += recent[i] / static_cast<double>(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    excess[i] = as_kind(recent[i], streams);
+    mean += excess[i] / static_cast<double>(n);
+  }
   double squares = 0.0;
-  for (std::size_t i = 0; i < n; ++i) squares += (recent[i] - mean) * (recent[i] - mean);
+  for (std::size_t i = 0; i < n; ++i) squares += (excess[i] - mean) * (excess[i] - mean);
   return mean + z * std::sqrt(squares / static_cast<double>(n - 1));
 }
 
+void ProbeOverhead::set_sweep_streams(int streams) { planned_streams_ = streams > 0 ? streams : kOnePassStreams; }
+
+double ProbeOverhead::kind_factor(int streams) const {
+  const int kind = streams > 0 ? streams : kOnePassStreams;
+  const Record* record = source(false).first;
+  const double from = record ? record->level(planned_streams_) : 0.0, to = record ? record->level(kind) : 0.0;
+  if (!(from > 0.0) || !(to > 0.0)) return sweep_excess_factor(kind) / sweep_excess_factor(planned_streams_);
+  return to / from;
+}
+
 void ProbeOverhead::close_span() {
-  if (span_measured_) {
-    Record& r = span_at_best_ ? at_best_ : away_;
-    Record& other = span_at_best_ ? away_ : at_best_;
-    if (span_streams_ == r.streams) {
-      // The first probe measured of the kind the record holds replaces what was converted to
-      // it (from probes of one pass, or sweeps of other passes); the other record's conversion
-      // goes too, this one standing in for it (source()).
-      if (r.converted) r = Record{.streams = r.streams};
-      r.add(span_excess_w_);
-      if (other.converted) other = Record{.streams = other.streams};
-    } else {
-      // A probe planned before the shim changed its kind (the last probe of one pass, its span
-      // closing after the first sweep was planned), converted.
-      if (r.measured == 0) r.converted = true;
-      r.add(span_excess_w_ * sweep_excess_factor(r.streams) / sweep_excess_factor(span_streams_));
-    }
-  }
+  if (span_measured_) (span_at_best_ ? at_best_ : away_).add(span_excess_w_, span_streams_);
   span_left_ = 0;
   span_excess_w_ = 0.0;
   span_measured_ = false;
@@ -103,14 +127,9 @@ std::pair<const ProbeOverhead::Record*, double> ProbeOverhead::source(bool shown
   return {nullptr, 0.0};
 }
 
-int ProbeOverhead::streams_held() const {
-  const Record* record = source(false).first;
-  return record ? record->streams : planned_streams_;
-}
-
 double ProbeOverhead::excess_w(bool shown_best) const {
   const auto [record, stream_w] = source(shown_best);
-  return record ? record->excess_w + stream_w : 0.0;
+  return record ? record->level(planned_streams_) + stream_w : 0.0;
 }
 
 void ProbeOverhead::add(bool probe, double power_w, std::int64_t time_ns, bool shown_best, int sweep_streams) {
@@ -197,7 +216,7 @@ double ProbeOverhead::frames_per_window(double window_s) const {
 
 double ProbeOverhead::largest_recent_excess_w(bool shown_best) const {
   const auto [record, stream_w] = source(shown_best);
-  return record ? std::max(0.0, record->largest() + stream_w) : 0.0;
+  return record ? std::max(0.0, record->largest(planned_streams_) + stream_w) : 0.0;
 }
 
 double ProbeOverhead::whole_excess_margin_w(double window_s, bool shown_best) const {
@@ -210,7 +229,7 @@ double ProbeOverhead::whole_excess_margin_w(double window_s, bool shown_best) co
     const double per_window = std::min(1.0, probes_per_window(frames));
     const double over = per_window > 0.0 ? kProbeShareOfOver * (1.0 - std::max(0.0, keep_share_)) / per_window : 1.0;
     if (over < 0.5) {
-      const double q = record->quantile(normal_quantile(1.0 - over));
+      const double q = record->quantile(normal_quantile(1.0 - over), planned_streams_);
       if (std::isfinite(q)) excess = std::max(excess, q + stream_w);
     }
   }

@@ -34,6 +34,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <utility>
+#include <vector>
 
 namespace glbudget::loop {
 
@@ -80,14 +81,22 @@ class ProbeOverhead {
   // tell). Probes may come rarer than planned, never more often.
   void set_period_in_force(double frames) { period_in_force_ = frames > 0.0 ? frames : 0.0; }
   // The streams the shim's probes draw from now on where each measures several passes at once
-  // (GLBUDGET_PROBE_SWEEP: the best and one a pass), 0 where they probe one pass (two streams).
-  // What was measured of probes of another kind is converted to it by sweep_excess_factor (and
-  // converted back when the kind comes back), until a probe of that kind is measured, which
-  // replaces it: the first sweep's window would otherwise be held to a probe of one pass.
+  // (GLBUDGET_PROBE_SWEEP: the best and one a pass), 0 where they probe one pass (two streams):
+  // what is read of the probes (watts(), whole_excess_margin_w()) is for probes of that kind.
+  // Every probe measured counts for every kind, converted by what each kind is measured to
+  // cost (kind_factor): the governor moves between sweeps of more or fewer passes and probes
+  // of one from one selection to the next, and a record of one kind alone, started again at
+  // each move, held a window to the largest of one or two probes, and to sweep_excess_factor's
+  // guess until the kind was measured (the demo's Valley at 60 %: a sweep of three passes
+  // planned at 1.5 times the probes of one pass drew 1.7 times theirs and put its window over).
   void set_sweep_streams(int streams);
-  // The streams of the probes what is read of them (the record watts() reads shown elsewhere)
-  // stands for: two for probes of one pass.
-  int streams_held() const;
+  int planned_streams() const { return planned_streams_; }
+  // What a probe of `streams` streams (two: one pass) costs against one of the kind planned,
+  // shown elsewhere: the ratio of their excess where both kinds were measured, else from the
+  // kinds measured (between two: on the line through them; beyond them: the larger of that
+  // line, never falling with more streams, and sweep_excess_factor's ratio to the nearest);
+  // sweep_excess_factor's ratio before any probe is measured.
+  double kind_factor(int streams) const;
   // The frame last added is a probe's or one of the two after it: its power is not its
   // configuration's own.
   bool in_span() const { return last_in_span_; }
@@ -137,23 +146,26 @@ class ProbeOverhead {
   std::size_t probes_measured_away() const { return away_.measured; }
 
  private:
-  // The probes measured, shown at the best or elsewhere.
-  struct Record {
-    double excess_w = 0.0;               // exponentially (about 4 probes)
-    std::array<double, 16> recent = {};  // the last probes' excess, by measured modulo 16
-    std::size_t measured = 0;
-    // The streams of the probes it holds (the kind: two for probes of one pass), and whether
-    // its values were converted from probes of another kind rather than measured as this one.
+  // The probes measured, shown at the best or elsewhere, of every kind.
+  struct Sample {
+    double excess = 0.0;
     int streams = kOnePassStreams;
-    bool converted = false;
-    void add(double excess);
-    void scale(double factor);
-    double largest() const;  // of the last four (may be negative; requires measured > 0)
+  };
+  struct Record {
+    std::array<Sample, 16> recent = {};  // the last probes' excess, by measured modulo 16
+    std::size_t measured = 0;
+    // Each kind's excess, exponentially (about 4 probes), by streams.
+    std::vector<std::pair<int, double>> levels;
+    void add(double excess, int streams);
+    // A kind's excess: measured, or from the kinds measured (kind_factor); NaN before any.
+    double level(int streams) const;
+    // A probe's excess as a probe of `streams` streams would have drawn it.
+    double as_kind(const Sample& sample, int streams) const;
+    double largest(int streams) const;  // of the last four (may be negative; requires measured > 0)
     // Mean + z * spread of the recent ones; NaN under eight.
-    double quantile(double z) const;
+    double quantile(double z, int streams) const;
   };
   void close_span();
-  static void convert(Record& r, int streams);
   // The record a read of what probes cost takes (watts()): at the best its own where measured,
   // else those shown elsewhere, else those at the best with the stream they lack, which is
   // returned beside it (0 otherwise); nullptr before any probe is measured.
