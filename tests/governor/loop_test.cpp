@@ -738,9 +738,10 @@ TEST_CASE(
   CHECK(o.largest_recent_excess_w() == Approx(single).epsilon(0.03));
   o.set_sweep_streams(7);
   CHECK(o.largest_recent_excess_w() == Approx(55.0).epsilon(0.03));
-  // Sweeps of three passes (four streams), not measured: between the two kinds measured.
+  // Sweeps of three passes (four streams), not measured: from the kind measured four times or
+  // more (one sweep is not), by sweep_excess_factor's ratio.
   o.set_sweep_streams(4);
-  CHECK(o.largest_recent_excess_w() == Approx(single + 0.4 * (55.0 - single)).epsilon(0.03));
+  CHECK(o.largest_recent_excess_w() == Approx(1.5 * single).epsilon(0.03));
   o.set_sweep_streams(7);
   // Past 16 slots a probe frame is a pause (a shader built on the spot): not counted.
   feed(60, 60, 40, 7);
@@ -773,17 +774,33 @@ TEST_CASE(
   o.set_sweep_streams(4);
   feed(2, 4, 18.0);
   o.set_sweep_streams(0);
-  CHECK(o.kind_factor(4) == Approx(1.8).epsilon(0.01));
-  // Beyond the kinds measured: the line through them (3.0) where over the guess from the nearest
-  // (18 x 2.25 / 1.5 = 27, 2.7).
-  CHECK(o.kind_factor(7) == Approx(3.0).epsilon(0.01));
-  CHECK(o.kind_factor(3) == Approx(1.4).epsilon(0.01));  // between them
-  // Eight probes over the two kinds give a spread at once: the quantile reads them all, at the
-  // kind asked for, where a record of the one kind held two.
+  CHECK(o.kind_factor(4) == Approx(1.8).epsilon(0.01));  // each kind as measured
+  // Kinds not measured: from the kinds measured four times or more; two sweeps are not yet.
+  CHECK(o.kind_factor(3) == Approx(1.25));
+  o.set_sweep_streams(4);
+  feed(2, 4, 18.0);
+  o.set_sweep_streams(0);
+  CHECK(o.kind_factor(3) == Approx(1.4).epsilon(0.01));  // between two measured often enough
+  // Beyond them: from the nearest by the guess's ratio (18 x 2.25 / 1.5 = 27).
+  CHECK(o.kind_factor(7) == Approx(2.7).epsilon(0.01));
+  // Ten probes over the two kinds give a spread at once: the quantile reads them all, at the
+  // kind asked for, where a record of the one kind held four.
   o.set_keep_share(0.95);
   o.set_sweep_streams(4);
   CHECK(o.largest_recent_excess_w() == Approx(18.0).epsilon(0.01));
   CHECK(o.whole_excess_margin_w(1.0) == Approx(1.8).epsilon(0.01));  // no scatter: the largest
+
+  // A ratio measured is kept within twice and half the guess: one probe of one pass at 4 W x
+  // frames against sweeps of two passes at 25 reads 0.4 of them (the guess 0.8), not 0.16.
+  ProbeOverhead noisy;
+  std::int64_t at = 0;
+  for (int k = 0; k < 100; ++k) {
+    const bool probe = k % 20 == 10, one_pass = k == 10;
+    at += 100'000'000;
+    if (k == 20) noisy.set_sweep_streams(3);
+    noisy.add(probe, probe ? (one_pass ? 24.0 : 45.0) : 20.0, at, false, probe && !one_pass ? 3 : 0);
+  }
+  CHECK(noisy.kind_factor(2) == Approx(0.4));
 }
 
 TEST_CASE("probe overhead: where every window holds a probe, each fits all but the rarest probe's excess",

@@ -92,10 +92,10 @@ class ProbeOverhead {
   void set_sweep_streams(int streams);
   int planned_streams() const { return planned_streams_; }
   // What a probe of `streams` streams (two: one pass) costs against one of the kind planned,
-  // shown elsewhere: the ratio of their excess where both kinds were measured, else from the
-  // kinds measured (between two: on the line through them; beyond them: the larger of that
-  // line, never falling with more streams, and sweep_excess_factor's ratio to the nearest);
-  // sweep_excess_factor's ratio before any probe is measured.
+  // shown elsewhere: the ratio of the two kinds' excess, each as measured, or, for a kind not
+  // measured, between the kinds measured four times or more on either side of it, else from the
+  // nearest such (before any is, the kind measured most) by sweep_excess_factor's ratio; kept
+  // within twice and half that guess. The guess before any probe is measured.
   double kind_factor(int streams) const;
   // The frame last added is a probe's or one of the two after it: its power is not its
   // configuration's own.
@@ -151,14 +151,20 @@ class ProbeOverhead {
     double excess = 0.0;
     int streams = kOnePassStreams;
   };
+  struct Kind {
+    int streams = kOnePassStreams;
+    double level = 0.0;  // its excess, exponentially (about 4 probes)
+    std::size_t measured = 0;
+  };
   struct Record {
     std::array<Sample, 16> recent = {};  // the last probes' excess, by measured modulo 16
     std::size_t measured = 0;
-    // Each kind's excess, exponentially (about 4 probes), by streams.
-    std::vector<std::pair<int, double>> levels;
+    std::vector<Kind> kinds;
     void add(double excess, int streams);
     // A kind's excess: measured, or from the kinds measured (kind_factor); NaN before any.
     double level(int streams) const;
+    // What a probe of `to` streams draws against one of `from` (kind_factor).
+    double ratio(int from, int to) const;
     // A probe's excess as a probe of `streams` streams would have drawn it.
     double as_kind(const Sample& sample, int streams) const;
     double largest(int streams) const;  // of the last four (may be negative; requires measured > 0)
