@@ -4,7 +4,8 @@ window over its budget, the selection it ran under (the selected configuration's
 the margin beside it, the budget), its frames' mean power without the probe and the two frames
 after one (which share its read-back), and what the probe added; then, per run, the excess of
 every window holding one probe over its own frames without it (median, 90th percentile, largest)
-beside the selections' median margin.
+beside the selections' median margin, and, where the log has it (`probe_margin_w`), the part of
+the margin kept for the probes and the windows whose probe drew more than that part.
 
     python3 bench/evaluation/probe_windows.py DIR...
 
@@ -66,12 +67,15 @@ def main():
         per_run = []
         for log in logs:
             run = os.path.basename(log)[:-4]
-            excess, margins = [], []
+            excess, margins, probe_margins, beyond = [], [], [], 0
             for numbers, power, budget, sel, at, probes, base in windows_of(log):
                 weighed, margin = float(sel["weighed_w"]), float(sel["margin_w"])
+                probe_margin = float(sel["probe_margin_w"]) if sel.get("probe_margin_w") else float("nan")
                 if len(probes) == 1 and base == base:
                     excess.append(power - base)
                     margins.append(margin)
+                    probe_margins.append(probe_margin)
+                    beyond += power - base > probe_margin
                 if power > budget:
                     print(f"| {run} | {numbers[0]}–{numbers[-1]} | {power - budget:.2f} | {at} | {weighed:.2f} | "
                           f"{margin:.2f} | {budget:.2f} | {base:.2f} | {base - weighed:+.2f} | {len(probes)} | "
@@ -79,13 +83,15 @@ def main():
             if excess:
                 excess.sort()
                 per_run.append((run, len(excess), statistics.median(excess), excess[int(0.9 * len(excess))],
-                                excess[-1], statistics.median(margins)))
+                                excess[-1], statistics.median(margins), statistics.median(probe_margins), beyond))
         print("\nWindows holding one probe:\n")
         print("| run | windows | excess over the window's own frames: median / 90th percentile / largest (W) "
-              "| selections' margin, median (W) |")
-        print("|---|---:|---|---:|")
-        for run, n, median, p90, largest, margin in per_run:
-            print(f"| {run} | {n} | {median:.2f} / {p90:.2f} / {largest:.2f} | {margin:.2f} |")
+              "| selections' margin, median (W) | of it for the probes, median (W) | windows whose excess was over it |")
+        print("|---|---:|---|---:|---:|---:|")
+        for run, n, median, p90, largest, margin, probe_margin, beyond in per_run:
+            known = probe_margin == probe_margin
+            print(f"| {run} | {n} | {median:.2f} / {p90:.2f} / {largest:.2f} | {margin:.2f} | "
+                  f"{f'{probe_margin:.2f}' if known else '–'} | {beyond if known else '–'} |")
         print()
     return 0
 

@@ -533,7 +533,8 @@ class GovernorThread {
         return;
       }
       std::fputs(
-          "frame,configuration,predicted_w,est_error,selected,budget_w,margin_w,weighed_w,range_low_w,range_high_w\n",
+          "frame,configuration,predicted_w,est_error,selected,budget_w,margin_w,weighed_w,range_low_w,range_high_w,"
+          "probe_margin_w\n",
           selections_);
     }
     const loop::Governor::SelectionTable t = governor_.last_selection();
@@ -550,9 +551,10 @@ class GovernorThread {
       const model::Configuration c = space.decode(i);
       std::string text;
       for (size_t p = 0; p + 1 < c.size(); ++p) text += (p ? ":" : "") + std::to_string(c[p]);
-      std::fprintf(selections_, "%llu,%s,%.4f,%.6f,%d,%.4f,%.4f,%.4f,%s,%s\n", static_cast<unsigned long long>(t.frame),
-                   text.c_str(), (*t.power_w)[i], (*t.error)[i], i == t.chosen ? 1 : 0, t.budget_w, t.margin_w,
-                   weighed ? (*t.weighed_w)[i] : (*t.power_w)[i], range_low.c_str(), range_high.c_str());
+      std::fprintf(selections_, "%llu,%s,%.4f,%.6f,%d,%.4f,%.4f,%.4f,%s,%s,%.4f\n",
+                   static_cast<unsigned long long>(t.frame), text.c_str(), (*t.power_w)[i], (*t.error)[i],
+                   i == t.chosen ? 1 : 0, t.budget_w, t.margin_w, weighed ? (*t.weighed_w)[i] : (*t.power_w)[i],
+                   range_low.c_str(), range_high.c_str(), t.probe_margin_w);
     }
     std::fflush(selections_);
   }

@@ -231,6 +231,8 @@ class Governor {
     // The ends of a share's range the budget was taken from; infinite under other budgets.
     double range_low_w = std::numeric_limits<double>::infinity();
     double range_high_w = std::numeric_limits<double>::infinity();
+    // Of margin_w, what was kept for the quality probes' windows (0 where none was).
+    double probe_margin_w = 0.0;
   };
   SelectionTable last_selection() const {
     return {last_selection_frame_,
@@ -241,7 +243,8 @@ class Governor {
             &error_,
             &guarded_,
             range_at_selection_.low_w,
-            range_at_selection_.high_w};
+            range_at_selection_.high_w,
+            std::isfinite(probe_margin_w_) && margin_w_ > 0.0 ? probe_margin_w_ : 0.0};
   }
   const GovernorSettings& settings() const { return settings_; }
   // The share of the run-time model's interaction between levels the last selection kept
