@@ -760,9 +760,8 @@ TEST_CASE(
   // sweeps of three passes (four streams) 18: 1.8 times, where sweep_excess_factor guesses 1.5.
   ProbeOverhead o;
   std::int64_t t = 0;
-  int frame = 0;
   const auto feed = [&](int probes, int streams, double excess) {
-    for (int k = 0; k < probes * 20; ++k, ++frame) {
+    for (int k = 0; k < probes * 20; ++k) {
       const bool probe = k % 20 == 10;
       t += 100'000'000;
       o.add(probe, probe ? 20.0 + excess : 20.0, t, false, probe && streams > 2 ? streams : 0);

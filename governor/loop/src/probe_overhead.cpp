@@ -34,6 +34,11 @@ constexpr double kRatioBand = 2.0;
 
 double sweep_excess_factor(int sweep_streams) { return std::max(1.0, (sweep_streams + 2) / 4.0); }
 
+namespace {
+// What a probe of `to` streams draws against one of `from` by sweep_excess_factor's guess.
+double guessed_ratio(int from, int to) { return sweep_excess_factor(to) / sweep_excess_factor(from); }
+}  // namespace
+
 void ProbeOverhead::Record::add(double excess, int streams) {
   recent[measured % recent.size()] = {excess, streams};
   ++measured;
@@ -65,11 +70,11 @@ double ProbeOverhead::Record::level(int streams) const {
     return below->level + t * (above->level - below->level);
   }
   const Kind& from = below ? *below : above ? *above : *most;
-  return from.level * sweep_excess_factor(streams) / sweep_excess_factor(from.streams);
+  return from.level * guessed_ratio(from.streams, streams);
 }
 
 double ProbeOverhead::Record::ratio(int from, int to) const {
-  const double guess = sweep_excess_factor(to) / sweep_excess_factor(from);
+  const double guess = guessed_ratio(from, to);
   const double a = level(from), b = level(to);
   // Kinds whose probes draw no more than their neighbours carry no ratio: the guess's.
   if (!(a > 0.0) || !(b > 0.0)) return guess;
@@ -106,8 +111,7 @@ void ProbeOverhead::set_sweep_streams(int streams) { planned_streams_ = streams 
 double ProbeOverhead::kind_factor(int streams) const {
   const int kind = streams > 0 ? streams : kOnePassStreams;
   const Record* record = source(false).first;
-  return record ? record->ratio(planned_streams_, kind)
-                : sweep_excess_factor(kind) / sweep_excess_factor(planned_streams_);
+  return record ? record->ratio(planned_streams_, kind) : guessed_ratio(planned_streams_, kind);
 }
 
 void ProbeOverhead::close_span() {
