@@ -14,10 +14,15 @@ four additive estimates built from the table itself:
   - governor's cheapest, fresh k: the governor's (probed, so older) error at the cheapest level,
     the levels between by that frame's own ratios (what staleness costs);
   - the governor's own single-pass estimates summed (its estimate, as a check).
+A second table combines the governor's single-pass errors otherwise than by their sum (a
+Minkowski sum (sum e_i^p)^(1/p), p = 1.25, 1.5, 2; 1 - prod(1 - e_i), as SSIMs multiply) and gives
+each form's rho and its worst selection regret at 30-70 % of the table's predicted range, the
+regret as error_estimates.py takes it.
 
     python3 bench/evaluation/estimate_losses.py DIR/SCENE.truth.csv...
 """
 import csv
+import math
 import os
 import sys
 
@@ -26,14 +31,16 @@ from evaluate import spearman  # noqa: E402
 
 
 def read(path):
-    truth, estimate = {}, {}
+    truth, estimate, power = {}, {}, {}
     with open(path) as f:
         for row in csv.DictReader(f):
             levels = tuple(int(level) for level in row["configuration"].split(":"))
             truth[levels] = float(row["true_error"])
             if row["est_error"]:
                 estimate[levels] = float(row["est_error"])
-    return truth, estimate
+            if row.get("predicted_w"):
+                power[levels] = float(row["predicted_w"])
+    return truth, estimate, power
 
 
 def single_pass_table(errors, passes, lmax):
@@ -61,12 +68,55 @@ def rescaled(cheapest_from, ratios_from, lmax):
     return out
 
 
+def table_name(path):
+    """DIR/SCENE.truth.csv as DIR's own name and the file's: the rounds' tables side by side."""
+    return os.path.join(os.path.basename(os.path.dirname(os.path.abspath(path))), os.path.basename(path))
+
+
 def rho_of(table, truth):
     estimated, computed = [], []
     for levels, true_error in truth.items():
         estimated.append(sum(table[i][level] for i, level in enumerate(levels)))
         computed.append(true_error)
     return spearman(estimated, computed)
+
+
+def minkowski(p):
+    return lambda errors: sum(e ** p for e in errors) ** (1.0 / p)
+
+
+FORMS = (("sum", minkowski(1.0)), ("Minkowski 1.25", minkowski(1.25)), ("Minkowski 1.5", minkowski(1.5)),
+         ("Minkowski 2", minkowski(2.0)), ("1 - prod(1 - e)", lambda errors: 1.0 - math.prod(1.0 - e for e in errors)))
+REGRET_SHARES = (0.3, 0.4, 0.5, 0.6, 0.7)
+
+
+def worst_regret(estimated, truth, power):
+    """The largest regret over REGRET_SHARES of the predicted range (error_estimates.regret)."""
+    best = tuple(0 for _ in next(iter(truth)))
+    if best not in power:
+        return float("nan")
+    low, high, worst = min(power.values()), power[best], 0.0
+    for share in REGRET_SHARES:
+        feasible = [c for c in truth if c in power and power[c] <= low + share * (high - low)]
+        if feasible:
+            picked = min(feasible, key=lambda c: (estimated[c], power[c]))
+            worst = max(worst, truth[picked] - min(truth[c] for c in feasible))
+    return worst
+
+
+def forms_table(rows):
+    """rows: (name, truth, single-pass table, power) per table; each form's rho and worst regret."""
+    print()
+    print("| table | " + " | ".join(name for name, _ in FORMS) + " |")
+    print("|---|" + "---:|" * len(FORMS))
+    for name, truth, table, power in rows:
+        cells = []
+        for _, combine in FORMS:
+            estimated = {c: combine([max(0.0, table[i][level]) for i, level in enumerate(c) if level])
+                         for c in truth}
+            rho = spearman([estimated[c] for c in truth], list(truth.values()))
+            cells.append(f"{rho:.3f} / {worst_regret(estimated, truth, power):.4f}")
+        print(f"| {name} | " + " | ".join(cells) + " |")
 
 
 def main():
@@ -76,20 +126,24 @@ def main():
         return 2
     print("| table | governor | fresh (additive ceiling) | fresh cheapest, governor's k | governor's cheapest, fresh k |")
     print("|---|---:|---:|---:|---:|")
+    forms = []
     for path in paths:
-        truth, estimate = read(path)
+        truth, estimate, power = read(path)
         passes = len(next(iter(truth)))
         lmax = [max(levels[i] for levels in truth) for i in range(passes)]
         fresh = single_pass_table(truth, passes, lmax)
         governor = single_pass_table(estimate, passes, lmax)
         if any(v is None for row in fresh + governor for v in row):
-            print(f"| {path} | single-pass configurations missing | | | |")
+            print(f"| {table_name(path)} | single-pass configurations missing | | | |")
             continue
         common = {c: t for c, t in truth.items() if c in estimate}
         own = spearman([estimate[c] for c in common], [common[c] for c in common])
-        print(f"| {os.path.basename(path)} | {own:.3f} | {rho_of(fresh, truth):.3f} | "
+        print(f"| {table_name(path)} | {own:.3f} | {rho_of(fresh, truth):.3f} | "
               f"{rho_of(rescaled(fresh, governor, lmax), truth):.3f} | "
               f"{rho_of(rescaled(governor, fresh, lmax), truth):.3f} |")
+        forms.append((table_name(path), truth, governor, power))
+    if forms:
+        forms_table(forms)
     return 0
 
 

@@ -1,0 +1,100 @@
+#!/usr/bin/env python3
+"""What each selection's configuration drew against what the governor weighed it at, by how far it
+was from the configurations the run had drawn before (issue 13).
+
+For every selection in governed logs (LOG.selections.csv, the row marked selected), the mean power
+of the first ten frames drawn at the chosen configuration after it and before the next selection
+(probe frames and the two after each left out, as the governor leaves them out) less the
+selection's weighed_w for it. Selections followed by fewer than eight such frames are skipped.
+Grouped by whether the configuration had been drawn before in the run, else by the number of
+passes in which it differs from the nearest configuration drawn before. A guard on configurations
+never measured aims at the upper quantile of the new groups' spread.
+
+    python3 bench/evaluation/selection_surprises.py DIR... [--list 1.0]
+
+DIR is an evaluation's output whose logs were kept (`scripts/evaluate --keep-logs DIR/logs`);
+--list W also lists every selection whose configuration drew more than W over its weighed power.
+"""
+import argparse
+import csv
+import glob
+import os
+import statistics
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from evaluate import frames_of, number  # noqa: E402
+
+FIRST_FRAMES = 10
+LEAST_FRAMES = 8
+PROBE_SPAN = 3  # a probe frame and the two after it (loop/probe_overhead.hpp, kProbeSpanFrames)
+
+
+def chosen_rows(selections_csv):
+    """[(frame, row of the selected configuration)] in frame order."""
+    with open(selections_csv) as f:
+        return sorted((int(r["frame"]), r) for r in csv.DictReader(f) if r.get("selected") == "1")
+
+
+def distance(a, b):
+    return sum(x != y for x, y in zip(a.split(":"), b.split(":")))
+
+
+def surprises(log):
+    """[(group, first frames' mean less weighed, whole period's mean less weighed, frame, configuration)]."""
+    frames = frames_of(log)
+    probes = {f for f, r in frames.items() if r.get("probe") == "1"}
+    left_out = {p + d for p in probes for d in range(PROBE_SPAN)}
+    power = {f: number(r.get("power_w")) for f, r in frames.items()}
+    chosen = chosen_rows(log + ".selections.csv")
+    out = []
+    for k, (frame, row) in enumerate(chosen):
+        configuration, weighed = row["configuration"], number(row["weighed_w"])
+        following = chosen[k + 1][0] if k + 1 < len(chosen) else max(frames) + 1
+        drawn = [power[f] for f in sorted(frames) if frame < f < following and f not in left_out and
+                 frames[f]["configuration"] == configuration and power[f] is not None]
+        if len(drawn) < LEAST_FRAMES or weighed is None:
+            continue
+        before = {r["configuration"] for f, r in frames.items() if f <= frame}
+        if configuration in before:
+            group = "measured before"
+        else:
+            passes = min((distance(configuration, b) for b in before), default=0)
+            group = f"new, {passes} pass{'es' if passes != 1 else ''} from the nearest drawn" if passes < 3 \
+                else "new, 3 passes or more from the nearest drawn"
+        out.append((group, statistics.mean(drawn[:FIRST_FRAMES]) - weighed, statistics.mean(drawn) - weighed,
+                    frame, configuration))
+    return out
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("dirs", nargs="+")
+    ap.add_argument("--list", type=float, default=None, metavar="W")
+    a = ap.parse_args()
+    rows = []
+    for d in a.dirs:
+        for log in sorted(glob.glob(os.path.join(d, "logs", "*_p[0-9][0-9].csv"))):
+            if os.path.exists(log + ".selections.csv"):
+                rows += [(os.path.basename(log),) + s for s in surprises(log)]
+    if not rows:
+        print("glbudget: no governed logs with selections under " + ", ".join(a.dirs), file=sys.stderr)
+        return 1
+    print("| chosen configuration | selections | mean (W) | standard deviation (W) | largest (W) |")
+    print("|---|---:|---:|---:|---:|")
+    for group in sorted({r[1] for r in rows}):
+        values = [r[2] for r in rows if r[1] == group]
+        print(f"| {group} | {len(values)} | {statistics.mean(values):+.2f} | {statistics.pstdev(values):.2f} | "
+              f"{max(values):+.2f} |")
+    if a.list is not None:
+        print()
+        print("| run | selection | configuration | group | first frames − weighed (W) | period − weighed (W) |")
+        print("|---|---:|---|---|---:|---:|")
+        for log, group, first, whole, frame, configuration in rows:
+            if first > a.list:
+                print(f"| {log} | {frame} | `{configuration}` | {group} | {first:+.2f} | {whole:+.2f} |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
