@@ -66,6 +66,11 @@ def number(text):
         return None
 
 
+def is_probe(row):
+    """A log row of a quality-probe frame (the log's probe column: 1 on probe frames, else empty)."""
+    return row.get("probe") == "1"
+
+
 def selection_frames(frames):
     """The frames of a governed log (frames_of) at which the governor selected, in order."""
     return sorted(f for f, r in frames.items() if r.get("decision") in ("select", "explore"))

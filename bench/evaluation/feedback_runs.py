@@ -32,7 +32,7 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 from evaluate import (MANIFEST, PROFILE, ROOT, Evaluation, energy_mean_from, frames_of, mean,  # noqa: E402
-                      number, selection_frames, shadow_note, timed_windows)
+                      is_probe, number, selection_frames, shadow_note, timed_windows)
 
 
 def first_selection(frames):
@@ -54,7 +54,7 @@ def summarise(log, fps):
         within += power <= budget
         predicted = [number(r.get("predicted_w")) for r in rows]
         if (len({r["configuration"] for r in rows}) == 1 and None not in predicted
-                and not any(r.get("probe") == "1" or r.get("decision") == "transition" for r in rows)):
+                and not any(is_probe(r) or r.get("decision") == "transition" for r in rows)):
             residuals.append(power - mean(predicted))
     steps = []
     numbers = sorted(frames)

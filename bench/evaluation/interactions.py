@@ -30,7 +30,7 @@ import statistics
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from evaluate import frames_of, number  # noqa: E402
+from evaluate import frames_of, is_probe, number  # noqa: E402
 
 PASSES = 6
 BEST = ":".join(["0"] * PASSES)
@@ -77,7 +77,7 @@ def measured_after(frames, configuration, start, end, most=10, least=5):
         row = frames.get(frame)
         if row is None:
             continue
-        if row["probe"] == "1":
+        if is_probe(row):
             last_probe = frame
             continue
         if frame - last_probe <= 2 or row["configuration"] != configuration:

@@ -51,7 +51,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from evaluate import spearman  # noqa: E402
+from evaluate import is_probe, spearman  # noqa: E402
 
 PASSES = 6
 LEVELS = 3
@@ -303,7 +303,7 @@ def log_probes(path):
     out, seen = [], set()
     with open(path) as f:
         for row in csv.DictReader(f):
-            if row.get("probe") != "1" or int(row["frame"]) in seen:
+            if not is_probe(row) or int(row["frame"]) in seen:
                 continue
             seen.add(int(row["frame"]))
             streams = []

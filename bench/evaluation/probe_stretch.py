@@ -21,7 +21,7 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from evaluate import (MANIFEST, PROFILE, ROOT, Evaluation, frames_of, mean, number, settled_start,  # noqa: E402
+from evaluate import (MANIFEST, PROFILE, ROOT, Evaluation, frames_of, is_probe, mean, number, settled_start,  # noqa: E402
                       shadow_note, timed_windows)
 
 
@@ -29,7 +29,7 @@ def probe_windows(log, start, fps):
     """Share of 1-s windows of the log's time from `start` (evaluate.timed_windows) that hold a
     probe frame or the frame reading it back."""
     frames = frames_of(log)
-    probes = {f for f, r in frames.items() if r.get("probe") == "1"}
+    probes = {f for f, r in frames.items() if is_probe(r)}
     windows = timed_windows(frames, start, 1.0)
     held = sum(any(f in probes or f - 1 in probes for f in window) for window, _, _ in windows)
     return held / len(windows) if windows else float("nan"), len(probes)

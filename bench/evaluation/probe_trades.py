@@ -35,7 +35,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, "..", "interpose"))
 from error_estimates import Study  # noqa: E402
-from evaluate import (MANIFEST, energy_mean_from, frames_of, mean, number, parse_study_arguments,  # noqa: E402
+from evaluate import (MANIFEST, energy_mean_from, frames_of, is_probe, mean, number, parse_study_arguments,  # noqa: E402
                       settled_start, shadow_note, study_arguments, timed_windows)
 from demo_bench import clean_environment, run  # noqa: E402
 
@@ -64,7 +64,7 @@ def staleness(log, frame):
         for row in csv.DictReader(f):  # a row per pass and frame
             at = int(row["frame"])
             frames.add(at)
-            if row.get("probe") != "1":
+            if not is_probe(row):
                 continue
             probes.add(at)
             for stream in filter(None, (row.get("probe_streams") or "").split(";")):

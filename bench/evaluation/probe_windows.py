@@ -19,13 +19,9 @@ import statistics
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from evaluate import frames_of, settled_start, timed_windows  # noqa: E402
+from evaluate import frames_of, is_probe, settled_start, timed_windows  # noqa: E402
 
 PROBE_SPAN = 3  # the probe frame and the two after it (apply/governing.cpp)
-
-
-def is_probe(row):
-    return row.get("probe") not in (None, "", "0")
 
 
 def selections_of(log):

@@ -23,7 +23,7 @@ import statistics
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from evaluate import frames_of, number  # noqa: E402
+from evaluate import frames_of, is_probe, number  # noqa: E402
 
 FIRST_FRAMES = 10
 LEAST_FRAMES = 8
@@ -43,7 +43,7 @@ def distance(a, b):
 def surprises(log):
     """[(group, first frames' mean less weighed, whole period's mean less weighed, frame, configuration)]."""
     frames = frames_of(log)
-    probes = {f for f, r in frames.items() if r.get("probe") == "1"}
+    probes = {f for f, r in frames.items() if is_probe(r)}
     left_out = {p + d for p in probes for d in range(PROBE_SPAN)}
     power = {f: number(r.get("power_w")) for f, r in frames.items()}
     chosen = chosen_rows(log + ".selections.csv")

@@ -22,7 +22,8 @@ import argparse
 import os
 import statistics
 
-from evaluate import frames_of, number, settled_start, timed_windows, window_power_and_budget, windows_of
+from evaluate import (frames_of, is_probe, number, settled_start, timed_windows, window_power_and_budget,
+                      windows_of)
 
 SCENES = ("hall", "sponza", "valley", "subway")
 
@@ -49,7 +50,7 @@ def probe_excess(frames):
     its interval over the median interval of the frames before): their means and count, and the
     excesses by time of the probes shown at the best configuration and of those shown elsewhere."""
     by_frame, by_time, at_best, away = [], [], [], []
-    probes = {f for f, r in frames.items() if r.get("probe") == "1"}
+    probes = {f for f, r in frames.items() if is_probe(r)}
     for f in sorted(probes):
         if not all(g in frames for g in (f - 1, f, f + 1, f + 2)):
             continue
