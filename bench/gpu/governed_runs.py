@@ -12,7 +12,8 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "evaluation"))
-from evaluate import energy_mean_from, frames_of, number, selection_frames, settled_start, timed_windows  # noqa: E402
+from evaluate import (energy_mean_from, frames_of, is_probe, number, selection_frames, settled_start,  # noqa: E402
+                      timed_windows)
 
 
 def figures(path, none_path, fps, window_s):
@@ -29,7 +30,7 @@ def figures(path, none_path, fps, window_s):
     return {"start": start, "windows": len(windows), "kept": kept, "power": power, "none": unbudgeted,
             "budget_lo": min(budgets, default=float("nan")), "budget_hi": max(budgets, default=float("nan")),
             "over_max": max(over, default=0.0), "selections": len(selection_frames(frames)),
-            "probes": sum(1 for r in frames.values() if r.get("probe") not in (None, "", "0")),
+            "probes": sum(1 for r in frames.values() if is_probe(r)),
             "last": frames[max(frames)].get("configuration")}
 
 
