@@ -27,6 +27,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from error_estimates import regret  # noqa: E402
 from evaluate import spearman  # noqa: E402
 
 
@@ -91,17 +92,13 @@ REGRET_SHARES = (0.3, 0.4, 0.5, 0.6, 0.7)
 
 
 def worst_regret(estimated, truth, power):
-    """The largest regret over REGRET_SHARES of the predicted range (error_estimates.regret)."""
-    best = tuple(0 for _ in next(iter(truth)))
-    if best not in power:
-        return float("nan")
-    low, high, worst = min(power.values()), power[best], 0.0
-    for share in REGRET_SHARES:
-        feasible = [c for c in truth if c in power and power[c] <= low + share * (high - low)]
-        if feasible:
-            picked = min(feasible, key=lambda c: (estimated[c], power[c]))
-            worst = max(worst, truth[picked] - min(truth[c] for c in feasible))
-    return worst
+    """The largest of error_estimates.regret over REGRET_SHARES of the predicted range; NaN where
+    the table has no prediction of the best."""
+    name = ":".join
+    table = {name(map(str, c)): (power.get(c), estimated[c]) for c in truth}
+    regrets = [regret(table, {name(map(str, c)): t for c, t in truth.items()}, share) for share in REGRET_SHARES]
+    measured = [r for r in regrets if r == r]
+    return max(measured) if measured else float("nan")
 
 
 def forms_table(rows):

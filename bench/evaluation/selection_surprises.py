@@ -16,24 +16,17 @@ DIR is an evaluation's output whose logs were kept (`scripts/evaluate --keep-log
 --list W also lists every selection whose configuration drew more than W over its weighed power.
 """
 import argparse
-import csv
 import glob
 import os
 import statistics
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from evaluate import frames_of, is_probe, number  # noqa: E402
+from evaluate import frames_of, number  # noqa: E402
+from interactions import measured_after, selection_tables  # noqa: E402
 
 FIRST_FRAMES = 10
 LEAST_FRAMES = 8
-PROBE_SPAN = 3  # a probe frame and the two after it (loop/probe_overhead.hpp, kProbeSpanFrames)
-
-
-def chosen_rows(selections_csv):
-    """[(frame, row of the selected configuration)] in frame order."""
-    with open(selections_csv) as f:
-        return sorted((int(r["frame"]), r) for r in csv.DictReader(f) if r.get("selected") == "1")
 
 
 def distance(a, b):
@@ -43,27 +36,25 @@ def distance(a, b):
 def surprises(log):
     """[(group, first frames' mean less weighed, whole period's mean less weighed, frame, configuration)]."""
     frames = frames_of(log)
-    probes = {f for f, r in frames.items() if is_probe(r)}
-    left_out = {p + d for p in probes for d in range(PROBE_SPAN)}
-    power = {f: number(r.get("power_w")) for f, r in frames.items()}
-    chosen = chosen_rows(log + ".selections.csv")
+    tables = selection_tables(log + ".selections.csv")
+    chosen = sorted(frame for frame, (_, configuration, _) in tables.items() if configuration)
     out = []
-    for k, (frame, row) in enumerate(chosen):
-        configuration, weighed = row["configuration"], number(row["weighed_w"])
-        following = chosen[k + 1][0] if k + 1 < len(chosen) else max(frames) + 1
-        drawn = [power[f] for f in sorted(frames) if frame < f < following and f not in left_out and
-                 frames[f]["configuration"] == configuration and power[f] is not None]
-        if len(drawn) < LEAST_FRAMES or weighed is None:
+    for k, frame in enumerate(chosen):
+        _, configuration, row = tables[frame]
+        weighed = number(row["weighed_w"])
+        following = chosen[k + 1] if k + 1 < len(chosen) else max(frames) + 1
+        first = measured_after(frames, configuration, frame, following, most=FIRST_FRAMES, least=LEAST_FRAMES)
+        whole = measured_after(frames, configuration, frame, following, most=None, least=LEAST_FRAMES)
+        if first is None or weighed is None:
             continue
         before = {r["configuration"] for f, r in frames.items() if f <= frame}
         if configuration in before:
-            group = "measured before"
+            group = "drawn before"
         else:
             passes = min((distance(configuration, b) for b in before), default=0)
             group = f"new, {passes} pass{'es' if passes != 1 else ''} from the nearest drawn" if passes < 3 \
                 else "new, 3 passes or more from the nearest drawn"
-        out.append((group, statistics.mean(drawn[:FIRST_FRAMES]) - weighed, statistics.mean(drawn) - weighed,
-                    frame, configuration))
+        out.append((group, first - weighed, whole - weighed, frame, configuration))
     return out
 
 
