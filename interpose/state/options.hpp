@@ -66,10 +66,6 @@ struct Options {
   // configuration's recent residual alone, not also about the power the selection counted on
   // (loop/power_feedback.hpp, counted_spread)
   bool feedback_counted = true;
-  // GLBUDGET_PROBE_ROOM=0: a window selects again only when its frames plus the probes' mean are
-  // over the budget, not also when they leave less than the selection kept for a window's probes
-  // (loop/governor.hpp, reselect_without_room_for_probes)
-  bool probe_room = true;
   // GLBUDGET_EXPLORE_HELD=0: a run held over a power budget at a measured configuration, where
   // the range says the cheapest draws less, stays held rather than drawing the cheapest for one
   // window (loop/governor.hpp, explore_when_held)

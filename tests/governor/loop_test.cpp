@@ -1296,53 +1296,6 @@ TEST_CASE("a meter's window over the budget selects again at once (meter_windows
   CHECK(frames_to_reselect(true, -1.0) == -1);
 }
 
-TEST_CASE(
-    "the first window after a selection that leaves less under the budget than was kept for its probes "
-    "selects again at once",
-    "[loop]") {
-  // 10 frames a second, a probe every 20 frames: half the windows hold one, so a selection keeps
-  // a probe's whole excess for each, twice the probes' mean. The meter is off, so that the
-  // feedback's window is the only measured check. Right after a selection the frames rise to
-  // where they plus the probes' mean are under the budget, but they plus a probe's whole excess
-  // are over it (a configuration drawing more than it was weighed at).
-  struct Reselect {
-    int frames = -1;  // from the selection to the next; -1: none within 60
-    double kept_w = 0.0, mean_w = 0.0;
-  };
-  auto frames_to_reselect = [](bool room, double rise) {
-    GovernorSettings settings = power_budget("50%");
-    settings.meter_windows = false;
-    settings.reselect_without_room_for_probes = room;
-    App app(settings, Configuration(6, 0), 7, 1 << 20);
-    app.set_frame_ns(100'000'000);
-    app.set_probe_period(20.0);
-    int k = 0;
-    for (; k < 5000 && (k < 1000 || k != static_cast<int>(app.governor().last_selection().frame) + 1); ++k)
-      app.step(std::nullopt, k % 20 == 0, 1.5);
-    REQUIRE(k < 5000);
-    Reselect r;
-    const double budget = app.governor().last_selection().budget_w;
-    r.kept_w = app.governor().last_selection().probe_margin_w;
-    r.mean_w = app.governor().probe_overhead().watts();
-    // `rise` of the way from where the probes' mean fits to where their whole excess does not.
-    const double frames_w = budget - r.mean_w - rise * (r.kept_w - r.mean_w);
-    for (int j = 1; j <= 60 && r.frames < 0; ++j, ++k) {
-      const Step s = app.step(frames_w, k % 20 == 0, 1.5);
-      if (s.decision.event == Event::select || s.decision.event == Event::explore) r.frames = j;
-    }
-    return r;
-  };
-  const Reselect on = frames_to_reselect(true, 0.5), off = frames_to_reselect(false, 0.5);
-  INFO("kept for a window's probes " << on.kept_w << " W, their mean " << on.mean_w << " W; selected again after "
-                                     << on.frames << " frames, " << off.frames << " without the check");
-  REQUIRE(on.kept_w > 1.5 * on.mean_w);
-  CHECK(on.frames >= 1);
-  CHECK(on.frames <= 40);  // after the transition (2 s) and the first window
-  CHECK(off.frames == -1);
-  // Frames that leave the whole excess under the budget: no selection.
-  CHECK(frames_to_reselect(true, 1.5).frames == -1);
-}
-
 TEST_CASE("a meter's window closed by a probe waits for the feedback's window before selecting again", "[loop]") {
   // 10 frames a second, a still camera; every configuration but the best draws 6 W more than
   // the model can see. The first configuration chosen is over the budget by that much. A probe

@@ -583,21 +583,17 @@ ProcessResult governed_demo(const std::string& scene, int frames, const std::str
 bool moved(double before, double now) { return std::abs(now - before) > std::max(0.003, 0.25 * std::max(before, now)); }
 
 // A governed Valley paced at 10 fps, selecting every 60 frames, with `setting` besides: its
-// selections and probe frames (the meter's windows and the first window's check for the probes'
-// room off: a window over the budget, or leaving a probe no room under it, would select again
-// off the period). The log goes.
+// selections and probe frames (the meter's windows off: a window over the budget would select
+// again off the period). The log goes.
 struct SelectingRun {
   std::set<long> selections;
   ProbedPasses probes;
   std::string text;  // the run's stderr, probe frames and selections, for the test's messages
 };
 SelectingRun valley_selecting(const std::string& log, int frames, const std::pair<std::string, std::string>& setting) {
-  const ProcessResult r = governed_demo("valley", frames, log,
-                                        {{"GLBUDGET_FPS", "10"},
-                                         {"GLBUDGET_SELECT_FRAMES", "60"},
-                                         {"GLBUDGET_METER_WINDOWS", "0"},
-                                         {"GLBUDGET_PROBE_ROOM", "0"},
-                                         setting});
+  const ProcessResult r = governed_demo(
+      "valley", frames, log,
+      {{"GLBUDGET_FPS", "10"}, {"GLBUDGET_SELECT_FRAMES", "60"}, {"GLBUDGET_METER_WINDOWS", "0"}, setting});
   SelectingRun run;
   run.text = r.err;
   INFO(r.err);

@@ -337,7 +337,6 @@ bool Governor::select(const FrameRecord& record) {
 
   ++selections_;
   reselect_now_ = false;
-  first_window_since_selection_ = true;
   reselect_after_window_ns_.reset();
   last_selection_frame_ = record.frame;
   chosen_index_ = selection.index;
@@ -579,23 +578,8 @@ void Governor::feed_back(const FrameRecord& record, Decision& decision) {
       reselect_now_ = true;
     } else if (std::isfinite(budget_w_) && selections_ > 0) {
       // The window as the user's meter sees it: its frames and the probes drawn among them.
-      const bool best = is_best(space_, record.configuration);
-      const double measured_w = window->measured_w + probe_overhead_.watts(best);
+      const double measured_w = window->measured_w + probe_overhead_.watts(is_best(space_, record.configuration));
       if (measured_w > budget_w_) reselect_now_ = true;
-      // The first window after a selection: where the selection kept a probe's whole excess
-      // for each window (most windows hold one), one whose own frames leave less than that
-      // under the budget says that the next window holding a probe goes over it: select again,
-      // counting on what was measured. The probes' mean alone waited for such windows to go
-      // over: in four evaluations (runs ZV-ZY) 19 of 37 windows over came after a window of
-      // their selection had shown it, 8 of them in run ZY under the first selection, whose
-      // configuration drew 1.2-2.2 W over its weighed power (docs/evaluation/budgets.md). Later
-      // windows are the spread's (PowerFeedback::counted_spread_w): checked at every window, the
-      // loop's synthetic scene selected again a fifth more often and sweeps no longer fit at 40 %.
-      if (settings_.reselect_without_room_for_probes && first_window_since_selection_) {
-        const double kept_w = best ? best_probe_margin_w_ : probe_margin_w_;
-        if (std::isfinite(kept_w) && window->measured_w + kept_w > budget_w_) reselect_now_ = true;
-      }
-      first_window_since_selection_ = false;
       // Beyond the paper: windows over the budget accumulate, and windows under it pay back,
       // what the next selection keeps under the budget besides the spread's margin (integral
       // control). Where the model misjudges the savings of configurations not yet drawn, the

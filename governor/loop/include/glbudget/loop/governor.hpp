@@ -102,10 +102,6 @@ struct GovernorSettings {
   // finish them included (MeterWindow); one over the budget selects again at once. false: a
   // window selects again when its frames without probes plus the probes' mean are over.
   bool meter_windows = true;
-  // Beyond the paper: the first feedback window after a selection whose frames leave less under
-  // the budget than the selection kept for a window's probes selects again at once (feed_back).
-  // false (GLBUDGET_PROBE_ROOM=0): only one whose frames plus the probes' mean are over it does.
-  bool reselect_without_room_for_probes = true;
   // Beyond the paper: the best configuration's power now, the top of a share's range, stays
   // within this share of what its own windows measured above P_m; its prediction moves it no
   // further. The app starts at its best and leaves it at the first selection, and once the
@@ -393,8 +389,6 @@ class Governor {
   // configuration is still open: the selection waits for it (meter(), at most a window): the
   // time it was found.
   std::optional<std::int64_t> reselect_after_window_ns_;
-  // No feedback window has closed at the target since the last selection (feed_back).
-  bool first_window_since_selection_ = false;
   bool exploring_ = false;  // drawing the cheapest configuration until a window measures it
   bool explored_ = false;   // once per run
 
