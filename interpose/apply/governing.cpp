@@ -642,7 +642,6 @@ bool governor_start() {
     settings.transition_s = o.transition_s;
     settings.feedback.enabled = o.feedback;
     settings.feedback.own_residuals = o.feedback_own;
-    settings.feedback.counted_spread = o.feedback_counted;
     settings.explore_when_held = o.explore_held;
     settings.measured_at_windows = o.measured_at_windows;
     settings.best_band = o.best_band;

@@ -40,7 +40,6 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_TRANSITION_S",
     "GLBUDGET_FEEDBACK",
     "GLBUDGET_FEEDBACK_OWN",
-    "GLBUDGET_FEEDBACK_COUNTED",
     "GLBUDGET_LEVEL_INTERACTIONS",
     "GLBUDGET_ERROR_FEEDBACK",
     "GLBUDGET_PROBE_STRETCH",
@@ -243,8 +242,6 @@ Options parse_options(char** env, std::string* warnings) {
       parse_switch(name, value, o.feedback, warnings);
     } else if (name == "GLBUDGET_FEEDBACK_OWN") {
       parse_switch(name, value, o.feedback_own, warnings);
-    } else if (name == "GLBUDGET_FEEDBACK_COUNTED") {
-      parse_switch(name, value, o.feedback_counted, warnings);
     } else if (name == "GLBUDGET_EXPLORE_HELD") {
       parse_switch(name, value, o.explore_held, warnings);
     } else if (name == "GLBUDGET_MEASURED_AT_WINDOWS") {

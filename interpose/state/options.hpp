@@ -62,10 +62,6 @@ struct Options {
   // GLBUDGET_FEEDBACK_OWN=1: a measured configuration's correction moves from the additive fit
   // towards its own windows' residual (loop/power_feedback.hpp, own_residuals)
   bool feedback_own = false;
-  // GLBUDGET_FEEDBACK_COUNTED=0: the margin's spread is that of windows about their
-  // configuration's recent residual alone, not also about the power the selection counted on
-  // (loop/power_feedback.hpp, counted_spread)
-  bool feedback_counted = true;
   // GLBUDGET_EXPLORE_HELD=0: a run held over a power budget at a measured configuration, where
   // the range says the cheapest draws less, stays held rather than drawing the cheapest for one
   // window (loop/governor.hpp, explore_when_held)

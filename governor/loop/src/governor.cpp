@@ -349,10 +349,6 @@ bool Governor::select(const FrameRecord& record) {
     chosen_index_ = space_.index_of(chosen);
     exploring_ = explored_ = true;
   }
-  // What the budget was kept for, over the model's prediction (power_ less the correction):
-  // the windows are held to it until the next selection.
-  if (aim_ == Aim::power && chosen_index_ < power_.size())
-    feedback_.count_on(chosen, measured_weighed_w(chosen_index_) - (power_[chosen_index_] - feedback_.bias(chosen)));
   if (chosen == target_) return explore;
   // A new target mid-transition starts from where the transition has got to (and a target
   // that is where it has got to ends it).

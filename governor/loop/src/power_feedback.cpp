@@ -15,8 +15,6 @@ namespace {
 // time: over 16 windows the spread fell to a third of the run's in quiet stretches, and the
 // windows after one went over the budget.
 constexpr std::size_t kSpreadWindows = 64;
-// Windows about the power counted on before their spread counts: one or two say little of it.
-constexpr std::size_t kCountedWindows = 4;
 
 }  // namespace
 
@@ -53,12 +51,6 @@ std::optional<PowerFeedback::Window> PowerFeedback::add(const model::Configurati
   // are correlated; the comparison between windows replaces it as soon as it exists.
   const double frame_var = std::max(0.0, done.frame_residual_sq / n - r * r);
   within_sq_ = frame_var / n;
-
-  if (counted_on_ && counted_on_->first == done.configuration) {
-    const double deviation = r - counted_on_->second;
-    counted_sq_ += (deviation * deviation - counted_sq_) /
-                   static_cast<double>(std::min<std::size_t>(++counted_count_, kSpreadWindows));
-  }
 
   // Surprise fades with every window, so that a run whose predictions have since improved may
   // try configurations it has not measured again.
@@ -106,20 +98,10 @@ void PowerFeedback::rebase(const model::Configuration& configuration, double cha
   } else {
     open_.reset();
   }
-  if (counted_on_ && counted_on_->first == configuration) counted_on_->second -= change_w;
   const auto it = residuals_.find(configuration);
   if (it == residuals_.end()) return;
   it->second.value -= change_w;
   fit();
-}
-
-void PowerFeedback::count_on(const model::Configuration& configuration, double correction_w) {
-  // One never measured was counted on at the additive fit's correction: how far its windows
-  // miss that is a surprise, which unmeasured_margin_w keeps for.
-  if (std::isfinite(correction_w) && measured(configuration))
-    counted_on_.emplace(configuration, correction_w);
-  else
-    counted_on_.reset();
 }
 
 double PowerFeedback::residual(const model::Configuration& configuration) const {
@@ -223,12 +205,7 @@ void PowerFeedback::fit() {
 
 double PowerFeedback::spread_w() const {
   if (!settings_.enabled || windows_ == 0) return 0.0;
-  return std::max(std::sqrt(between_count_ > 0 ? between_sq_ : within_sq_), counted_spread_w());
-}
-
-double PowerFeedback::counted_spread_w() const {
-  if (!settings_.enabled || !settings_.counted_spread || counted_count_ < kCountedWindows) return 0.0;
-  return std::sqrt(counted_sq_);
+  return std::sqrt(between_count_ > 0 ? between_sq_ : within_sq_);
 }
 
 double PowerFeedback::margin_w() const { return z_ * spread_w(); }

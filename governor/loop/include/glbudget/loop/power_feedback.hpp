@@ -18,9 +18,8 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <map>
 #include <optional>
-#include <utility>
+#include <map>
 #include <vector>
 
 #include "glbudget/model/configuration_space.hpp"
@@ -77,16 +76,6 @@ struct FeedbackSettings {
   // kept as many windows within the budget as the fit alone, within their scatter
   // (docs/evaluation/feedback/own-residuals.md).
   bool own_residuals = false;
-  // The spread is at least that of windows about the correction the last selection counted on
-  // for its configuration (count_on), besides that of windows about their configuration's
-  // recent residual. A selection is kept for up to select_frames frames, and the cpu estimate's level
-  // moves by watts over tens of frames: the residual follows the move within a few windows, so
-  // windows agree with it, while the budget was kept for the power counted on. In three
-  // evaluations (runs ZV, ZW, ZX: 1931 windows) the windows about their selection's weighed power
-  // spread by 0.2-2.0 W a run, about twice the spread the margin was kept for, and went over its
-  // margin in 13 % of windows where it aims at 2 % (docs/evaluation/budgets.md).
-  // false (GLBUDGET_FEEDBACK_COUNTED=0): the residual's spread alone.
-  bool counted_spread = true;
 };
 
 class PowerFeedback {
@@ -118,14 +107,6 @@ class PowerFeedback {
   // does the window open at it. A window open at another configuration, or a change that is
   // not finite, drops the open window and moves nothing.
   void rebase(const model::Configuration& configuration, double change_w);
-  // A selection counts on `correction_w` over the model's prediction of `configuration` (its
-  // corrected prediction, or what its windows measured, less what the model predicted) until
-  // the next: the residual of each window closed at it deviates from that (counted_spread). The
-  // model's own prediction follows the scene's load; what it does not is the deviation. A
-  // refit's change of the configuration's prediction (rebase) moves the correction counted on
-  // by as much. A configuration never measured, or drawn before any selection, counts on
-  // nothing.
-  void count_on(const model::Configuration& configuration, double correction_w);
   // Frames taken into windows so far, and windows opened so far: what add() did with a frame
   // (taken or not; into the window open before it or a new one).
   std::uint64_t frames_taken() const { return frames_taken_; }
@@ -143,10 +124,6 @@ class PowerFeedback {
   // window has closed.
   double margin_w() const;
   double spread_w() const;
-  // The root mean square of windows' deviation from the correction counted on for them
-  // (count_on), over the last minute's windows; 0 before kCountedWindows of them
-  // (counted_spread).
-  double counted_spread_w() const;
   // What a selection keeps under the budget beyond margin_w() for a configuration never
   // measured: z * the typical surprise of first windows, less margin_w(), never negative. 0
   // until a configuration measured after the first has closed a window.
@@ -207,11 +184,6 @@ class PowerFeedback {
   std::size_t between_count_ = 0;
   double within_sq_ = 0.0;
   std::size_t windows_ = 0;
-  // The correction the last selection counted on, and the mean square of windows' deviation
-  // from it (count_on).
-  std::optional<std::pair<model::Configuration, double>> counted_on_;
-  double counted_sq_ = 0.0;
-  std::size_t counted_count_ = 0;
   // The remembered mean square of first windows' surprises (unmeasured_margin_w).
   double surprise_sq_ = 0.0;
   std::size_t surprises_ = 0;
