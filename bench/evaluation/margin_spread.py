@@ -32,13 +32,14 @@ def normal_quantile(p):
 def run_rows(log):
     """(drawn before, d, scatter margin) of each window with a selection in force and frames
     without a probe."""
-    frames = frames_of(log)
+    first_drawn = {}
+    for f, r in sorted(frames_of(log).items()):
+        first_drawn.setdefault(r["configuration"], f)
     rows = []
     for numbers, power, budget, sel, at, probes, base in windows_of(log):
         if base != base:
             continue
-        configuration = sel["configuration"]
-        drawn = any(r["configuration"] == configuration for f, r in frames.items() if f < at)
+        drawn = first_drawn.get(sel["configuration"], at) < at
         probe_margin = float(sel["probe_margin_w"]) if sel.get("probe_margin_w") else 0.0
         rows.append((drawn, base - float(sel["weighed_w"]), float(sel["margin_w"]) - probe_margin))
     return rows
