@@ -494,7 +494,6 @@ class GovernorThread {
                             governor_.probe_streams_fit());
     set_probe_selection_due(governor_.next_selection_frame(), governor_.settings().select_frames,
                             governor_.transitioning());
-    set_probes_held(governor_.probes_held());
     // Observing only for the probes, the governor has nothing to tell.
     if (governor_.governing())
       for (; notes_said_ < governor_.notes().size(); ++notes_said_) say(governor_.notes()[notes_said_]);
@@ -647,7 +646,6 @@ bool governor_start() {
     settings.measured_at_windows = o.measured_at_windows;
     settings.best_band = o.best_band;
     settings.meter_windows = o.meter_windows;
-    settings.check_first_selection = o.first_check;
     settings.level_interactions = o.level_interactions;
     settings.error_feedback.enabled = o.error_feedback;
     settings.feedback.keep_share = o.keep_share;

@@ -64,7 +64,6 @@ std::atomic<bool> g_bursts_spaced{false};
 std::atomic<int> g_streams_fit{0};
 std::atomic<uint64_t> g_selection_due{0}, g_select_frames{0};  // set_probe_selection_due
 std::atomic<bool> g_transitioning{false};
-std::atomic<bool> g_probes_held{false};  // set_probes_held
 std::atomic<int> g_sweep_streams{0}, g_sweepable_streams{0};
 std::atomic<float> g_pass_error[kMaxPasses];  // set_probe_pass_error
 }  // namespace
@@ -79,7 +78,6 @@ void set_probe_period_wanted(uint64_t frames, bool bursts_too, int streams_fit) 
   g_bursts_spaced.store(bursts_too, std::memory_order_relaxed);
   g_streams_fit.store(streams_fit, std::memory_order_relaxed);
 }
-void set_probes_held(bool held) { g_probes_held.store(held, std::memory_order_relaxed); }
 uint64_t probe_period_in_force() { return g_period_in_force.load(std::memory_order_relaxed); }
 int probe_sweep_streams() { return g_sweep_streams.load(std::memory_order_relaxed); }
 int probe_sweepable_streams() { return g_sweepable_streams.load(std::memory_order_relaxed); }
@@ -1805,7 +1803,6 @@ void ProbeFrames::after_swap(uint64_t next) {
   // longer also waits a whole period after the last probe tried; the age bound, counted from
   // the last probe tried, holds whatever frame number that falls on.
   if (period == 0 || next < 3) return;
-  if (settings.stretchable && g_probes_held.load(std::memory_order_relaxed)) return;
   if (sweeping) {
     if (!p.sweep_due(settings, settled_period, next)) return;
   } else if (round_frames) {

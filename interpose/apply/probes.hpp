@@ -180,10 +180,6 @@ int probe_sweep_streams();
 // The streams a sweep would draw where the user asked for sweeps, whether or not the governor
 // has the shim sweep now (streams_fit above); 0: not asked.
 int probe_sweepable_streams();
-// Governor thread: hold the probes the shim would plan from now on, until told otherwise (the
-// first selection's configuration is being measured: Governor::probes_held). Not where the user
-// gave GLBUDGET_PROBE_PERIOD: the probes come at it.
-void set_probes_held(bool held);
 // Governor thread: the frame its next selection is due at, and the frames between selections
 // (GLBUDGET_PROBE_SWEEP: settled probe frames measure every pass just ahead of it; 0: none due),
 // and whether it is moving to the configuration it selected (a sweep at the longest gap waits

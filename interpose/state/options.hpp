@@ -77,10 +77,6 @@ struct Options {
   // GLBUDGET_METER_WINDOWS=1: a window of the settled configuration read as a meter reads it,
   // probes included, over the budget selects again at once (loop/governor.hpp, meter_windows)
   bool meter_windows = true;
-  // GLBUDGET_FIRST_CHECK=1: quality probes wait until the first selection's configuration has
-  // closed a window, which selects again at once where it drew more than that selection weighed
-  // it at beyond the sensor's scatter (loop/governor.hpp, check_first_selection)
-  bool first_check = true;
   // GLBUDGET_LEVEL_INTERACTIONS=calibrated|additive|model|scaled: where `glbudget calibrate --app`
   // measured each level alone, how a combination of levels is predicted (loop/governor.hpp,
   // level_interactions; model/additive_levels.hpp)

@@ -278,7 +278,6 @@ bool Governor::select(const FrameRecord& record) {
 
   start = Clock::now();
   margin_w_ = 0.0;
-  double scatter_margin_w = 0.0;  // of margin_w_, the sensor's scatter's and the windows' overshoot
   double budget_w = std::numeric_limits<double>::infinity();
   if (aim_ == Aim::power) {
     model_power_.assign(power_.begin(), power_.end());
@@ -293,7 +292,6 @@ bool Governor::select(const FrameRecord& record) {
     // Besides the spread's margin and the windows' overshoot, what the quality probes add to
     // the windows: the model's predictions leave them out, the user's meter not.
     const double margin_without_probes_w = feedback_.margin_w() + overshoot_w_;
-    scatter_margin_w = whole_range ? 0.0 : margin_without_probes_w;
     // Until a probe shown away from the best is measured, it is taken to draw one frame of the
     // best configuration above idle more than those measured (probe_overhead.hpp).
     const std::size_t best = space_.index_of(model::Configuration(space_.pass_count(), 0));
@@ -351,11 +349,6 @@ bool Governor::select(const FrameRecord& record) {
     chosen_index_ = space_.index_of(chosen);
     exploring_ = explored_ = true;
   }
-  first_check_.reset();
-  if (aim_ == Aim::power && settings_.check_first_selection && selections_ == 1 && !explore &&
-      feedback_.settings().enabled && margin_w_ > 0.0 && chosen_index_ < guarded_.size() &&
-      !feedback_.measured(chosen) && std::isfinite(guarded_[chosen_index_]))
-    first_check_ = FirstCheck{chosen, guarded_[chosen_index_], scatter_margin_w, record.frame};
   if (chosen == target_) return explore;
   // A new target mid-transition starts from where the transition has got to (and a target
   // that is where it has got to ends it).
@@ -590,14 +583,6 @@ void Governor::feed_back(const FrameRecord& record, Decision& decision) {
       // for them. Never negative: it never admits more than the predictions do.
       overshoot_w_ = std::clamp(overshoot_w_ + (measured_w - budget_w_), 0.0, std::max(0.0, budget_w_ - p_min_w_));
     }
-  }
-  // The first selection's configuration measured (check_first_selection): weighed too low by
-  // more than the margin kept for the sensor's scatter, it is weighed again at what it drew.
-  // Compared in watts, not as a residual: a refit between the selection and the window moves
-  // the model's prediction of the configuration, not what the selection counted on.
-  if (window && first_check_ && window->configuration == first_check_->configuration) {
-    if (window->measured_w - first_check_->weighed_w > first_check_->scatter_margin_w) reselect_now_ = true;
-    first_check_.reset();
   }
   if (std::isfinite(decision.predicted_w)) decision.predicted_w += feedback_.bias(record.configuration);
 }
@@ -871,11 +856,6 @@ Decision Governor::on_frame(const FrameRecord& frame) {
   }
 
   meter(frame);
-  // The first selection's check waits a selection period at most (a window that never closes:
-  // power missing, the configuration left), and ends with a hold.
-  if (first_check_ &&
-      (holding_ || record.frame < first_check_->frame || record.frame - first_check_->frame > settings_.select_frames))
-    first_check_.reset();
   if (!holding_) {
     feed_back(record, decision);
     const bool over = !record.probe && settled_at_target(record.configuration) && std::isfinite(budget_w_) &&

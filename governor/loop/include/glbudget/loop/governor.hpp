@@ -102,18 +102,6 @@ struct GovernorSettings {
   // finish them included (MeterWindow); one over the budget selects again at once. false: a
   // window selects again when its frames without probes plus the probes' mean are over.
   bool meter_windows = true;
-  // Beyond the paper: the run's first selection moves to a configuration never drawn, weighed by
-  // a model fitted on the frames of the one the app started in, beside a margin for the sensor's
-  // scatter that only that configuration's windows have measured. Over five evaluations (runs
-  // ZV-ZZ) the windows under the first selection went over the budget in 17 of 290 (5.9 %)
-  // against 30 of 2604 (1.2 %) under later ones, most where the configuration drew 0.7-3 W over
-  // what it was weighed at and a quality probe sat on top (docs/evaluation/budgets.md). So until
-  // the first window at the first selection's configuration closes, the shim holds its quality
-  // probes (probes_held), and a window that drew more over what the selection weighed it at than
-  // the selection kept for the sensor's scatter selects again at once, with the configuration
-  // now measured. At most select_frames frames. false: the probes go on, and the first
-  // selection's configuration is kept until the next selection is due.
-  bool check_first_selection = true;
   // Beyond the paper: the best configuration's power now, the top of a share's range, stays
   // within this share of what its own windows measured above P_m; its prediction moves it no
   // further. The app starts at its best and leaves it at the first selection, and once the
@@ -267,9 +255,6 @@ class Governor {
   bool governing() const { return governing_; }
   bool holding() const { return holding_; }
   bool transitioning() const { return transitioning_; }
-  // The shim is to hold its quality probes for now: the first selection's configuration has not
-  // been measured yet (GovernorSettings::check_first_selection).
-  bool probes_held() const { return first_check_.has_value(); }
   std::size_t selections() const { return selections_; }
   // The last selection's configuration (before the first: the first frame's).
   const model::Configuration& target() const { return target_; }
@@ -404,16 +389,6 @@ class Governor {
   // configuration is still open: the selection waits for it (meter(), at most a window): the
   // time it was found.
   std::optional<std::int64_t> reselect_after_window_ns_;
-  // The first selection's configuration until its first window closes (check_first_selection):
-  // the power it was weighed at, the part of the margin kept for the sensor's scatter, and the
-  // frame of the selection.
-  struct FirstCheck {
-    model::Configuration configuration;
-    double weighed_w = 0.0;
-    double scatter_margin_w = 0.0;
-    std::uint64_t frame = 0;
-  };
-  std::optional<FirstCheck> first_check_;
   bool exploring_ = false;  // drawing the cheapest configuration until a window measures it
   bool explored_ = false;   // once per run
 
