@@ -646,7 +646,6 @@ bool governor_start() {
     settings.measured_at_windows = o.measured_at_windows;
     settings.best_band = o.best_band;
     settings.meter_windows = o.meter_windows;
-    settings.joint_probe_margin = o.joint_margin;
     settings.level_interactions = o.level_interactions;
     settings.error_feedback.enabled = o.error_feedback;
     settings.feedback.keep_share = o.keep_share;

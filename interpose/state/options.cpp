@@ -50,7 +50,6 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_MEASURED_AT_WINDOWS",
     "GLBUDGET_BEST_BAND",
     "GLBUDGET_METER_WINDOWS",
-    "GLBUDGET_JOINT_MARGIN",
     "GLBUDGET_WARM_BLITS",
     "GLBUDGET_DUMP_PROBES",
     "GLBUDGET_PROBE_SCALE",
@@ -249,8 +248,6 @@ Options parse_options(char** env, std::string* warnings) {
       parse_switch(name, value, o.measured_at_windows, warnings);
     } else if (name == "GLBUDGET_METER_WINDOWS") {
       parse_switch(name, value, o.meter_windows, warnings);
-    } else if (name == "GLBUDGET_JOINT_MARGIN") {
-      parse_switch(name, value, o.joint_margin, warnings);
     } else if (name == "GLBUDGET_LEVEL_INTERACTIONS") {
       using L = loop::LevelInteractions;
       parse_choice<L>(

@@ -77,9 +77,6 @@ struct Options {
   // GLBUDGET_METER_WINDOWS=1: a window of the settled configuration read as a meter reads it,
   // probes included, over the budget selects again at once (loop/governor.hpp, meter_windows)
   bool meter_windows = true;
-  // GLBUDGET_JOINT_MARGIN=1: where most windows hold a quality probe, keep the probe and the
-  // sensor's scatter together under the budget (loop/governor.hpp, joint_probe_margin)
-  bool joint_margin = true;
   // GLBUDGET_LEVEL_INTERACTIONS=calibrated|additive|model|scaled: where `glbudget calibrate --app`
   // measured each level alone, how a combination of levels is predicted (loop/governor.hpp,
   // level_interactions; model/additive_levels.hpp)

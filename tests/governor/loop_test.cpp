@@ -853,59 +853,6 @@ TEST_CASE("probe overhead: where every window holds a probe, each fits all but t
   CHECK(rare.whole_excess_margin_w(1.0) == Approx(rare_largest / 10.0).epsilon(0.02));
 }
 
-TEST_CASE("probe overhead: a window holding a probe keeps the probe and the sensor's scatter together",
-          "[loop][extremes]") {
-  // As above: 10 frames a second at 20 W, a probe every 12 frames (every 1-s window holds one),
-  // each probe's excess between 10 and 20 W x frames.
-  const auto excess_of = [](int k) { return 10.0 + static_cast<double>((k * 7) % 11); };
-  ProbeOverhead o;
-  o.set_keep_share(0.98);
-  // Before eight probes are measured: nothing to read a spread from.
-  int probes = 0;
-  int k = 0;
-  for (; probes < 7; ++k) {
-    const bool probe = k % 12 == 6;
-    o.add(probe, probe ? 20.0 + excess_of(probes++) : 20.0, k * 100'000'000LL);
-  }
-  CHECK(std::isnan(o.joint_window_margin_w(1.0, 0.5)));
-  for (; k < 480; ++k) {
-    const bool probe = k % 12 == 6;
-    o.add(probe, probe ? 20.0 + excess_of(probes++) : 20.0, k * 100'000'000LL);
-  }
-  double mean = 0.0, squares = 0.0;
-  for (int j = probes - 16; j < probes; ++j) mean += excess_of(j) / 16.0;
-  for (int j = probes - 16; j < probes; ++j) squares += (excess_of(j) - mean) * (excess_of(j) - mean);
-  const double spread_w = std::sqrt(squares / 15.0) / 10.0;  // over a window's ten frames
-  // Every window holds one: the 99th percentile (2.326) of the sum.
-  const auto joint = [&](double sigma) { return mean / 10.0 + 2.326 * std::sqrt(sigma * sigma + spread_w * spread_w); };
-  // No scatter: the probes' own quantile, as whole_excess_margin_w keeps it.
-  CHECK(o.joint_window_margin_w(1.0, 0.0) == Approx(joint(0.0)).epsilon(0.01));
-  CHECK(o.joint_window_margin_w(1.0, 0.0) == Approx(o.whole_excess_margin_w(1.0)).epsilon(0.01));
-  // With a scatter as large as the probes' spread: less than the two margins added up, more
-  // than either alone.
-  const double sigma = spread_w;
-  INFO("joint " << o.joint_window_margin_w(1.0, sigma) << " W, added " << o.whole_excess_margin_w(1.0) + 2.326 * sigma);
-  CHECK(o.joint_window_margin_w(1.0, sigma) == Approx(joint(sigma)).epsilon(0.01));
-  CHECK(o.joint_window_margin_w(1.0, sigma) < o.whole_excess_margin_w(1.0) + 2.326 * sigma - 0.1 * sigma);
-  CHECK(o.joint_window_margin_w(1.0, sigma) > o.whole_excess_margin_w(1.0));
-  // A scatter far over the probes': the scatter's margin plus the probes' mean.
-  CHECK(o.joint_window_margin_w(1.0, 100.0) == Approx(mean / 10.0 + 232.6).epsilon(0.001));
-  // Not a number, no frame rate, a share of 1: nothing.
-  CHECK(std::isnan(o.joint_window_margin_w(1.0, kNaN)));
-  CHECK(std::isnan(ProbeOverhead().joint_window_margin_w(1.0, 0.5)));
-  ProbeOverhead all = o;
-  all.set_keep_share(1.0);
-  CHECK(std::isnan(all.joint_window_margin_w(1.0, 0.5)));
-  // Probes rare enough that the windows keep their mean: nothing.
-  ProbeOverhead rare;
-  rare.set_keep_share(0.98);
-  for (int j = 0; j < 24000; ++j) {
-    const bool probe = j % 1200 == 6;
-    rare.add(probe, probe ? 20.0 + excess_of(j / 1200) : 20.0, j * 100'000'000LL);
-  }
-  CHECK(std::isnan(rare.joint_window_margin_w(1.0, 0.5)));
-}
-
 TEST_CASE("probe overhead: a probe shown at the best draws one stream fewer than one shown elsewhere",
           "[loop][extremes]") {
   // 10 frames a second at 20 W. A probe shown at the best configuration draws no stream of

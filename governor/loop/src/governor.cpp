@@ -20,12 +20,6 @@ using Clock = std::chrono::steady_clock;
 // configuration to be taken for telling the configurations apart (explore_cheapest, within_band).
 constexpr double kUnseenSaving = 0.05;
 
-// Windows' deviation from the power their selection counted on (joint_probe_margin): the mean
-// square of the last minute's, as the feedback's spread (power_feedback.cpp), counted once four
-// are measured (one or two say little of it).
-constexpr std::size_t kCountedSpreadWindows = 64;
-constexpr std::size_t kLeastCountedWindows = 4;
-
 // The configuration of the space with every pass at its best level: probes shown there draw one
 // stream fewer (probe_overhead.hpp).
 bool is_best(const model::ConfigurationSpace& space, const model::Configuration& configuration) {
@@ -304,17 +298,6 @@ bool Governor::select(const FrameRecord& record) {
     if (best < power_.size()) probe_overhead_.set_best_stream_w(power_[best] - p_min_w_);
     probe_margin_w_ = whole_range ? std::numeric_limits<double>::infinity() : probe_window_margin_w();
     best_probe_margin_w_ = probe_window_margin_w(true);
-    if (!whole_range && settings_.joint_probe_margin) {
-      // Where most windows hold a probe: its excess and the frames' scatter together, of which
-      // the scatter's own margin is already kept.
-      const double sigma_w = counted_spread_w();
-      for (const bool at_best : {false, true}) {
-        const double joint_w = probe_overhead_.joint_window_margin_w(settings_.feedback.window_s, sigma_w, at_best);
-        if (std::isfinite(joint_w))
-          (at_best ? best_probe_margin_w_ : probe_margin_w_) =
-              std::max(0.0, joint_w + overshoot_w_ - margin_without_probes_w);
-      }
-    }
     margin_w_ = whole_range ? 0.0 : margin_without_probes_w + probe_margin_w_;
     guard_unmeasured(whole_range ? 0.0 : feedback_.unmeasured_margin_w(), !whole_range);
     const bool probes_were_rare = probe_period_wanted_ > 0, bursts_were_rare = probe_bursts_spaced_;
@@ -366,9 +349,6 @@ bool Governor::select(const FrameRecord& record) {
     chosen_index_ = space_.index_of(chosen);
     exploring_ = explored_ = true;
   }
-  counted_configuration_ = chosen;
-  counted_w_ = aim_ == Aim::power && chosen_index_ < guarded_.size() ? guarded_[chosen_index_]
-                                                                     : std::numeric_limits<double>::quiet_NaN();
   if (chosen == target_) return explore;
   // A new target mid-transition starts from where the transition has got to (and a target
   // that is where it has got to ends it).
@@ -604,11 +584,6 @@ void Governor::feed_back(const FrameRecord& record, Decision& decision) {
       overshoot_w_ = std::clamp(overshoot_w_ + (measured_w - budget_w_), 0.0, std::max(0.0, budget_w_ - p_min_w_));
     }
   }
-  if (window && std::isfinite(counted_w_) && window->configuration == counted_configuration_) {
-    const double deviation = window->measured_w - counted_w_;
-    counted_sq_ += (deviation * deviation - counted_sq_) /
-                   static_cast<double>(std::min<std::size_t>(++counted_windows_, kCountedSpreadWindows));
-  }
   if (std::isfinite(decision.predicted_w)) decision.predicted_w += feedback_.bias(record.configuration);
 }
 
@@ -761,12 +736,6 @@ bool Governor::probes_outgrew_margin() const {
   constexpr double kRise = 0.25;  // of a probe's whole excess in a window: not the excess's own drift
   return probe_window_margin_w() >
          probe_margin_w_ + kRise * probe_overhead_.whole_excess_margin_w(settings_.feedback.window_s);
-}
-
-double Governor::counted_spread_w() const {
-  const double spread_w = feedback_.spread_w();
-  if (counted_windows_ < kLeastCountedWindows) return spread_w;
-  return std::max(spread_w, std::sqrt(counted_sq_));
 }
 
 double Governor::probe_window_margin_w(bool shown_best) const {

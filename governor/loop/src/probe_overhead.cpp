@@ -92,10 +92,9 @@ double ProbeOverhead::Record::largest(int streams) const {
   return out;
 }
 
-std::pair<double, double> ProbeOverhead::Record::mean_and_spread(int streams) const {
+double ProbeOverhead::Record::quantile(double z, int streams) const {
   const std::size_t n = std::min(measured, recent.size());
-  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-  if (n < kLeastForSpread) return {kNaN, kNaN};
+  if (n < kLeastForSpread) return std::numeric_limits<double>::quiet_NaN();
   std::array<double, 16> excess{};
   double mean = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -104,12 +103,7 @@ std::pair<double, double> ProbeOverhead::Record::mean_and_spread(int streams) co
   }
   double squares = 0.0;
   for (std::size_t i = 0; i < n; ++i) squares += (excess[i] - mean) * (excess[i] - mean);
-  return {mean, std::sqrt(squares / static_cast<double>(n - 1))};
-}
-
-double ProbeOverhead::Record::quantile(double z, int streams) const {
-  const auto [mean, spread] = mean_and_spread(streams);
-  return mean + z * spread;
+  return mean + z * std::sqrt(squares / static_cast<double>(n - 1));
 }
 
 void ProbeOverhead::set_sweep_streams(int streams) { planned_streams_ = streams > 0 ? streams : kOnePassStreams; }
@@ -244,25 +238,6 @@ double ProbeOverhead::whole_excess_margin_w(double window_s, bool shown_best) co
     }
   }
   return excess / frames;
-}
-
-double ProbeOverhead::joint_window_margin_w(double window_s, double sigma_w, bool shown_best) const {
-  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-  const double frames = frames_per_window(window_s);
-  const auto [record, stream_w] = source(shown_best);
-  if (!record || frames <= 0.0 || !(keep_share_ < 1.0) || !std::isfinite(sigma_w)) return kNaN;
-  const double per_window = std::min(1.0, probes_per_window(frames));
-  if (!(per_window > kProbeShareOfOver * (1.0 - keep_share_))) return kNaN;  // each window keeps the mean
-  const double over = kProbeShareOfOver * (1.0 - std::max(0.0, keep_share_)) / per_window;
-  const auto [mean, spread] = record->mean_and_spread(planned_streams_);
-  if (!std::isfinite(mean) || !std::isfinite(spread)) return kNaN;
-  const double z = std::max(0.0, normal_quantile(1.0 - over));
-  // A window holds one probe, or as many as the share puts in it: their excesses add up, and
-  // their spreads as independent draws. A mean under nothing (probes drawing less than the
-  // frames they stand beside) is kept: the windows holding them go over less often.
-  const double probes = std::max(1.0, share() * frames);
-  const double spread_w = std::sqrt(probes) * spread / frames;
-  return probes * (mean + stream_w) / frames + z * std::sqrt(sigma_w * sigma_w + spread_w * spread_w);
 }
 
 double ProbeOverhead::rare_gap(double window_s, double keep_share) const {

@@ -102,15 +102,6 @@ struct GovernorSettings {
   // finish them included (MeterWindow); one over the budget selects again at once. false: a
   // window selects again when its frames without probes plus the probes' mean are over.
   bool meter_windows = true;
-  // Beyond the paper: where most windows hold a quality probe, the selection keeps for them the
-  // probe and the sensor's scatter together (ProbeOverhead::joint_window_margin_w) rather than
-  // a margin for each added up, with the scatter measured as windows fell from the power their
-  // selection weighed them at (over the last 64 windows, once 4 are measured; at least the
-  // feedback's spread). Over runs ZV-ZZ that deviation spread by 0.9-1.1 W where the feedback's
-  // spread, of windows about their configuration's recent residual, said 0.4 W: the residual
-  // follows the cpu estimate's slow moves within a few windows, while a selection holds its
-  // configuration for a selection period. false: the two margins added up.
-  bool joint_probe_margin = true;
   // Beyond the paper: the best configuration's power now, the top of a share's range, stays
   // within this share of what its own windows measured above P_m; its prediction moves it no
   // further. The app starts at its best and leaves it at the first selection, and once the
@@ -398,15 +389,6 @@ class Governor {
   // configuration is still open: the selection waits for it (meter(), at most a window): the
   // time it was found.
   std::optional<std::int64_t> reselect_after_window_ns_;
-  // The configuration the last selection chose and the power it weighed it at, and the mean
-  // square of windows' deviation from that power (joint_probe_margin).
-  model::Configuration counted_configuration_;
-  double counted_w_ = std::numeric_limits<double>::quiet_NaN();
-  double counted_sq_ = 0.0;
-  std::size_t counted_windows_ = 0;
-  // A window's deviation from the power its selection counted on: that spread, at least the
-  // feedback's, once enough windows are measured; else the feedback's.
-  double counted_spread_w() const;
   bool exploring_ = false;  // drawing the cheapest configuration until a window measures it
   bool explored_ = false;   // once per run
 

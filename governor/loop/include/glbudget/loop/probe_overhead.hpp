@@ -133,18 +133,6 @@ class ProbeOverhead {
   // run, each holding a probe whose excess was over that largest, by 0.3-0.9 W).
   double whole_excess_margin_w(double window_s, bool shown_best = false) const;
   double largest_recent_excess_w(bool shown_best = false) const;
-  // What a window holding a probe must keep under the budget for the probe and the sensor's
-  // scatter together, where windows hold probes at the recent share: the mean excess of the
-  // probes a window holds (one, or the share's number where that is more) spread over its
-  // frames plus z times the root of the sum of the two variances, the scatter's (sigma_w, a
-  // window's deviation from the power its selection counted on) and that of the probes' excess
-  // (from the last 16 probes) over a window's frames, z the normal quantile that
-  // leaves over the budget no more than the probes' half of 1 - keep_share of all windows. A
-  // probe's excess and the window's frames go over together far less often than each goes
-  // over its own margin: added, the two margins kept more than the windows needed where the
-  // scatter is small and less where it is large. NaN where the frame rate or fewer than eight
-  // probes are known, or where so few windows hold one that each keeps only the probes' mean.
-  double joint_window_margin_w(double window_s, double sigma_w, bool shown_best = false) const;
   // The share of windows to keep within the budget (FeedbackSettings::keep_share) for
   // whole_excess_margin_w's quantile; 1 (the default): the largest of the last four alone.
   void set_keep_share(double keep_share) { keep_share_ = keep_share; }
@@ -182,8 +170,6 @@ class ProbeOverhead {
     double largest(int streams) const;  // of the last four (may be negative; requires measured > 0)
     // Mean + z * spread of the recent ones; NaN under eight.
     double quantile(double z, int streams) const;
-    // The mean and the standard deviation of the recent ones (quantile()'s); NaN under eight.
-    std::pair<double, double> mean_and_spread(int streams) const;
   };
   void close_span();
   // The record a read of what probes cost takes (watts()): at the best its own where measured,
