@@ -607,6 +607,29 @@ SelectingRun valley_selecting(const std::string& log, int frames, const std::pai
   return run;
 }
 
+// The selections due by the period (60 frames after the one before) that come after `from`.
+int selections_due(const std::set<long>& selections, long from) {
+  int due = 0;
+  for (auto it = std::next(selections.begin()); it != selections.end(); ++it)
+    due += *it - *std::prev(it) == 60 && *std::prev(it) >= from;
+  return due;
+}
+
+// valley_selecting until a run has at least two selections due by the period after frame 40
+// (where the first sweep or round is done), up to three runs. Under ctest -j2's load the cpu
+// estimate's scatter can put nearly every window over the budget: one run selected 1-32 frames
+// apart and never 60, which leaves a case about what comes ahead of those selections nothing
+// to look at.
+SelectingRun valley_selecting_on_period(const std::string& log, int frames,
+                                        const std::pair<std::string, std::string>& setting) {
+  SelectingRun run;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    run = valley_selecting(log, frames, setting);
+    if (selections_due(run.selections, 40) >= 2) break;
+  }
+  return run;
+}
+
 }  // namespace
 
 TEST_CASE(
@@ -760,7 +783,7 @@ TEST_CASE("sweeps measure every pass in the scene in one probe frame, just ahead
   // GLBUDGET_PROBE_STRETCH=0 (governed_demo): the governor asks nothing of the probes, so it
   // never has the passes probed in turn, several at a time, where a sweep's margin would not fit
   // or would cost the image shown (the loop tests weigh that).
-  const SelectingRun selecting = valley_selecting(log, 440, {"GLBUDGET_PROBE_SWEEP", "1"});
+  const SelectingRun selecting = valley_selecting_on_period(log, 440, {"GLBUDGET_PROBE_SWEEP", "1"});
   const std::set<long>& selections = selecting.selections;
   const ProbedPasses& run = selecting.probes;
   INFO(selecting.text);
@@ -803,7 +826,7 @@ TEST_CASE("probes of one pass a frame come in rounds just ahead of the governor'
   // the last kSweepLead (5) ahead of it, so that every pass's error is at most a few windows old
   // when the governor selects (without rounds: up to the 10-s bound, 100 frames).
   const std::string log = temp_path("valley_rounds.csv");
-  const SelectingRun selecting = valley_selecting(log, 320, {"GLBUDGET_PROBE_PASSES", "1"});
+  const SelectingRun selecting = valley_selecting_on_period(log, 320, {"GLBUDGET_PROBE_PASSES", "1"});
   const std::set<long>& selections = selecting.selections;
   const ProbedPasses& run = selecting.probes;
   INFO(selecting.text);
