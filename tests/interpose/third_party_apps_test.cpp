@@ -170,11 +170,13 @@ TEST_CASE("glmark2 under the shim: 33 scenes, each frame counted per pass, every
     CHECK(*f.rbegin() == long(f.size()));  // frames 1..n, none missing
     // glmark2's rate (a whole number) is its frames over the time from its first to its last
     // one, which is the duration or a little past it: the last frame ends it, and a busy
-    // machine can delay that frame (420 frames at 1373 fps was seen: 6 ms past). So the log
-    // may not have fewer frames than the rate over the duration, and not many more than over
-    // a quarter more: frames lost, counted twice or given to the wrong context show.
+    // machine can delay that frame (420 frames at 1373 fps was seen: 6 ms past; in the
+    // AddressSanitizer build beside another test, 103 frames at 242 fps over 0.3 s: 0.13 s
+    // past). So the log may not have fewer frames than the rate over the duration, and not
+    // more than over half as long again: frames lost, counted twice or given to the wrong
+    // context show.
     CHECK(double(f.size()) >= fps[i] * duration_s - 1.5);
-    CHECK(double(f.size()) <= (fps[i] + 1) * duration_s * 1.25 + 2);
+    CHECK(double(f.size()) <= (fps[i] + 1) * duration_s * 1.5 + 2);
     size_t most = 0;
     for (auto& [frame, n] : passes[contexts[i]]) most = std::max(most, n), rows += n;
     multipass += most >= 3;
