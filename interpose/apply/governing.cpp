@@ -645,6 +645,7 @@ bool governor_start() {
     settings.explore_when_held = o.explore_held;
     settings.measured_at_windows = o.measured_at_windows;
     settings.best_band = o.best_band;
+    settings.paced_fps = o.fps;
     settings.meter_windows = o.meter_windows;
     settings.level_interactions = o.level_interactions;
     settings.error_feedback.enabled = o.error_feedback;

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "glbudget/loop/budget_watch.hpp"
 #include "glbudget/loop/error_selection.hpp"
 #include "glbudget/loop/error_table.hpp"
 #include "glbudget/model/variant_table.hpp"
@@ -1267,6 +1268,95 @@ TEST_CASE("meter window: each frame's power over its own interval, frames withou
   REQUIRE(w);
   CHECK(w->watts == Approx(7.0));
   CHECK(w->probes == 0);
+}
+
+TEST_CASE("budget watch: told once, when 8 of the last 10 windows measured over the budget", "[loop][extremes]") {
+  const std::int64_t ms = 1'000'000;
+  SECTION("every window over: the verdict with the tenth, then never again") {
+    BudgetWatch watch;
+    std::optional<BudgetWatch::Verdict> v;
+    std::int64_t t = 0;
+    for (; t <= 10'000 * ms && !v; t += 50 * ms) v = watch.add(t, 30.0, 25.0);
+    REQUIRE(v);
+    CHECK(t - 50 * ms == 10'000 * ms);  // the tenth window closes at 10 s
+    CHECK(v->over == 10);
+    CHECK(v->of == 10);
+    CHECK(v->measured_w == Approx(30.0));
+    CHECK(v->budget_w == 25.0);
+    CHECK(v->frames_per_s == Approx(20.0));
+    for (; t < 30'000 * ms; t += 50 * ms) CHECK_FALSE(watch.add(t, 30.0, 25.0));
+  }
+  SECTION("7 of every 10 windows over: never") {
+    BudgetWatch watch;
+    for (std::int64_t t = 0; t < 60'000 * ms; t += 100 * ms)
+      CHECK_FALSE(watch.add(t, (t / (1000 * ms)) % 10 < 7 ? 30.0 : 20.0, 25.0));
+  }
+  SECTION("each window against the budget in force when it closed") {
+    BudgetWatch watch;
+    std::optional<BudgetWatch::Verdict> v;
+    // 30 W throughout; the budget is 35 W for 3 s and 25 W after: windows 4-11 are over, and
+    // the verdict gives their mean budget.
+    std::int64_t t = 0;
+    for (; t < 20'000 * ms && !v; t += 100 * ms) v = watch.add(t, 30.0, t <= 3000 * ms ? 35.0 : 25.0);
+    REQUIRE(v);
+    CHECK(t - 100 * ms == 11'000 * ms);
+    CHECK(v->over == 8);
+    CHECK(v->budget_w == Approx((2 * 35.0 + 8 * 25.0) / 10));
+  }
+  SECTION("a window's budget is its frames' mean; within 3 % of it is not over") {
+    BudgetWatch watch;
+    // Half of each window's frames under a budget of 20 W and half under 40 W: 30 W is within.
+    for (std::int64_t t = 0; t < 20'000 * ms; t += 100 * ms)
+      CHECK_FALSE(watch.add(t, 30.0, (t / (100 * ms)) % 2 ? 20.0 : 40.0));
+    for (std::int64_t t = 20'000 * ms; t < 40'000 * ms; t += 100 * ms) CHECK_FALSE(watch.add(t, 30.8, 30.0));
+    std::optional<BudgetWatch::Verdict> v;
+    for (std::int64_t t = 40'000 * ms; t < 60'000 * ms && !v; t += 100 * ms) v = watch.add(t, 31.0, 30.0);
+    REQUIRE(v);  // 30.8 W is within 3 % of 30 W, 31 W is not: the eighth window at 31 W tells
+    CHECK(v->over == 8);
+    CHECK(v->measured_w == Approx((2 * 30.8 + 8 * 31.0) / 10).margin(0.01));  // a frame of 30.8 W in a window at 31
+  }
+  SECTION("no budget in force, windows without power, a new clock") {
+    BudgetWatch watch;
+    const double inf = std::numeric_limits<double>::infinity();
+    for (std::int64_t t = 0; t < 20'000 * ms; t += 100 * ms) CHECK_FALSE(watch.add(t, 30.0, t % 2 ? kNaN : inf));
+    // Frames without power measure nothing: their windows are not over.
+    for (std::int64_t t = 0; t < 20'000 * ms; t += 100 * ms) CHECK_FALSE(watch.add(t, kNaN, 25.0));
+    // 9 windows over, then a clock from before them: the open window starts afresh, the nine
+    // are kept, and the next window over is the tenth.
+    BudgetWatch again;
+    for (std::int64_t t = 0; t <= 9000 * ms; t += 100 * ms) CHECK_FALSE(again.add(t, 30.0, 25.0));
+    CHECK_FALSE(again.add(500 * ms, 30.0, 25.0));
+    std::optional<BudgetWatch::Verdict> v;
+    for (std::int64_t t = 600 * ms; t <= 1500 * ms && !v; t += 100 * ms) v = again.add(t, 30.0, 25.0);
+    REQUIRE(v);
+    CHECK(v->over == 10);
+  }
+}
+
+TEST_CASE("a budget no configuration reaches: the governor says so once, and whether unpaced frames may be why",
+          "[loop]") {
+  // The synthetic app draws 60 frames a second: paced by the shim at 60, not paced, or paced
+  // at a rate its frames do not keep up with.
+  for (const double paced_fps : {60.0, 0.0, 100.0}) {
+    INFO("paced at " << paced_fps);
+    GovernorSettings settings = power_budget("10W");
+    settings.paced_fps = paced_fps;
+    App app(settings);
+    app.run(30 * kFps);
+    std::size_t told = 0;
+    for (const std::string& note : app.governor().notes()) told += note.find("not being kept") != std::string::npos;
+    CHECK(told == 1);
+    CHECK(has_note(app.governor(), "against 10.0 W) at 60 frames a second"));
+    CHECK(has_note(app.governor(), "raise the budget") == (paced_fps == 60.0));
+    CHECK(has_note(app.governor(), "give --fps N") == (paced_fps == 0.0));
+    CHECK(has_note(app.governor(), "give a lower --fps") == (paced_fps == 100.0));
+  }
+  // A budget kept says nothing.
+  GovernorSettings settings = power_budget("50%");
+  settings.paced_fps = 0.0;
+  App app(settings);
+  app.run(30 * kFps);
+  CHECK_FALSE(has_note(app.governor(), "not being kept"));
 }
 
 TEST_CASE("a meter's window over the budget selects again at once (meter_windows), and one under it does not",

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 #include "glbudget/loop/error_selection.hpp"
@@ -619,6 +620,30 @@ void Governor::meter(const FrameRecord& frame) {
   }
 }
 
+void Governor::watch_budget(const FrameRecord& frame) {
+  const double budget_w = aim_ == Aim::power && selections_ > 0 ? budget_w_ : std::numeric_limits<double>::quiet_NaN();
+  const std::optional<BudgetWatch::Verdict> v = budget_watch_.add(frame.time_ns, frame.power_w, budget_w);
+  if (!v) return;
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(1) << "the power budget is not being kept: " << v->over << " of the last "
+       << v->of << " s measured over it (" << v->measured_w << " W against " << v->budget_w << " W) at "
+       << std::setprecision(0) << v->frames_per_s << " frames a second. ";
+  // Frames drawn as fast as they can be turn what a cheaper configuration saves into more
+  // frames at the same power. Those paced come within a few percent of the pace.
+  constexpr double kBehindPace = 0.9;
+  if (!(settings_.paced_fps > 0.0))
+    text << "glbudget does not pace these frames (no --fps, GLBUDGET_FPS): an app that draws as fast as it can "
+            "turns a cheaper configuration into more frames at the same power, not less power; give --fps N, the "
+            "frame rate to keep";
+  else if (v->frames_per_s < kBehindPace * settings_.paced_fps)
+    text << "The frames do not keep up with the pace asked for (" << settings_.paced_fps
+         << " a second): drawn as fast as they can be, a cheaper configuration turns into more frames at the same "
+            "power, not less power; give a lower --fps, or draw a smaller window";
+  else
+    text << "The configurations drawn do not reach it: raise the budget, or give the manifest cheaper levels";
+  notes_.push_back(text.str());
+}
+
 // Counts of frames with non-finite counts are not summed; their window's mean is then not kept.
 void Governor::count_window_frame(const FrameRecord& record, bool taken, bool new_window,
                                   const std::optional<PowerFeedback::Window>& closed) {
@@ -856,6 +881,7 @@ Decision Governor::on_frame(const FrameRecord& frame) {
   }
 
   meter(frame);
+  watch_budget(frame);
   if (!holding_) {
     feed_back(record, decision);
     const bool over = !record.probe && settled_at_target(record.configuration) && std::isfinite(budget_w_) &&

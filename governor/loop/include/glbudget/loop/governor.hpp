@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "glbudget/loop/budget_watch.hpp"
 #include "glbudget/loop/error_feedback.hpp"
 #include "glbudget/loop/error_table.hpp"
 #include "glbudget/loop/level_interactions.hpp"
@@ -115,6 +116,10 @@ struct GovernorSettings {
   // the top follow a scene that grows or shrinks the best's power by up to the share; windows
   // measured at the best again move its centre. Infinite: no bound.
   double best_band = 0.1;
+  // The frame rate the shim paces the app's frames to (GLBUDGET_FPS); 0: not paced by the shim.
+  // When a power budget is not kept (BudgetWatch), the note says whether frames drawn as fast
+  // as they can be may be why: none paced, or too slow for the pace.
+  double paced_fps = 60.0;
   model::FitSettings fit = {};
   model::HistorySettings history = {};
 };
@@ -282,6 +287,9 @@ class Governor {
   }
   // The frame as it was measured, probes included, into the meter's window (meter_windows).
   void meter(const FrameRecord& frame);
+  // Every frame after the first selection into budget_watch_, which tells once when the budget
+  // is not kept.
+  void watch_budget(const FrameRecord& frame);
   double initial_budget_w() const;
   void want_probe_period(double budget_w, double margin_without_probes_w);
   // What turns the probes' excess read now into that of probes drawing `streams` streams, and
@@ -379,6 +387,7 @@ class Governor {
   ErrorFeedback error_feedback_;
   ProbeOverhead probe_overhead_;
   MeterWindow meter_;
+  BudgetWatch budget_watch_;
   std::uint64_t probe_period_wanted_ = 0;
   bool probe_bursts_spaced_ = false;
   int probe_streams_fit_ = 0;
