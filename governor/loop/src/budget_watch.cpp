@@ -34,8 +34,8 @@ std::optional<BudgetWatch::Verdict> BudgetWatch::add(std::int64_t time_ns, doubl
   }
   const double span = static_cast<double>(time_ns - window_start_ns_) * 1e-9;
   if (span < window_s_) return std::nullopt;
-  windows_.push_back({seconds_ > 0.0 ? energy_j_ / seconds_ : std::numeric_limits<double>::quiet_NaN(),
-                      frames_ / span, budget_sum_w_ / frames_});
+  windows_.push_back({seconds_ > 0.0 ? energy_j_ / seconds_ : std::numeric_limits<double>::quiet_NaN(), frames_ / span,
+                      budget_sum_w_ / frames_});
   restart(time_ns);
   if (static_cast<int>(windows_.size()) > of_) windows_.pop_front();
   if (static_cast<int>(windows_.size()) < of_) return std::nullopt;
