@@ -142,22 +142,32 @@ TEST_CASE("under an error budget, the probes' error of the image shown corrects 
   auto run = [&](const std::string& name, const char* feedback) {
     const std::string log = temp_path(name);
     unlink(log.c_str());
-    const ProcessResult r = run_process(
-        {DEMO_PATH, "--scene", "subway", "--detail", "0.2", "--width", "320", "--height", "180", "--frames", "240"},
-        {{"LD_PRELOAD", shim_path()},
-         {"GLBUDGET_CONFIG", source("testapps/demo/glbudget.toml")},
-         // The levels' costs, so that the power the selection weighs does not hang on one fit
-         // of the cpu estimate (a fit that saw no saving keeps the best configuration).
-         {"GLBUDGET_COSTS", source("tests/data/logs/demo_subway.variants.json")},
-         {"GLBUDGET_ERROR", std::to_string(kBudget)},
-         {"GLBUDGET_PROFILE", kProfile},
-         {"GLBUDGET_SENSOR", "cpu"},
-         {"GLBUDGET_FPS", "20"},
-         {"GLBUDGET_PROBE_PERIOD", "5"},
-         {"GLBUDGET_SELECT_FRAMES", "100000"},
-         {"GLBUDGET_TRANSITION_S", "0.5"},
-         {"GLBUDGET_ERROR_FEEDBACK", feedback},
-         {"GLBUDGET_LOG", log}});
+    const std::vector<std::string> argv = {DEMO_PATH, "--scene",  "subway", "--detail", "0.2", "--width",
+                                           "320",     "--height", "180",    "--frames", "240"};
+    const std::map<std::string, std::string> env = {
+        {"LD_PRELOAD", shim_path()},
+        {"GLBUDGET_CONFIG", source("testapps/demo/glbudget.toml")},
+        // The levels' costs, so that the power the selection weighs does not hang on one fit
+        // of the cpu estimate (a fit that saw no saving keeps the best configuration).
+        {"GLBUDGET_COSTS", source("tests/data/logs/demo_subway.variants.json")},
+        {"GLBUDGET_ERROR", std::to_string(kBudget)},
+        {"GLBUDGET_PROFILE", kProfile},
+        {"GLBUDGET_SENSOR", "cpu"},
+        {"GLBUDGET_FPS", "20"},
+        {"GLBUDGET_PROBE_PERIOD", "5"},
+        {"GLBUDGET_SELECT_FRAMES", "100000"},
+        {"GLBUDGET_TRANSITION_S", "0.5"},
+        {"GLBUDGET_ERROR_FEEDBACK", feedback},
+        {"GLBUDGET_LOG", log}};
+    ProcessResult r = run_process(argv, env);
+    // This run has died of llvmpipe's fence race now and then (Mesa 22.3: a rasterizer thread
+    // unlocks a fence the demo's own draw has freed; the heap is corrupted, the shim on neither
+    // stack; README, "Seen and not understood"). Such a run is run once more, and says so.
+    if (r.exit_code == 128 + 11 || r.exit_code == 128 + 6) {
+      WARN(name << " died of signal " << r.exit_code - 128 << "; run again");
+      unlink(log.c_str());
+      r = run_process(argv, env);
+    }
     INFO(r.err);
     REQUIRE(r.exit_code == 0);
     std::map<long, Row> rows;
