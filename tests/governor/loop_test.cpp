@@ -1263,6 +1263,9 @@ TEST_CASE("meter window: each frame's power over its own interval, frames withou
   REQUIRE(w);
   CHECK(w->watts == Approx(20.0));
   CHECK(w->probes == 0);
+  CHECK(w->frames == 10);
+  CHECK(w->span_s == Approx(1.0));
+  CHECK(std::isnan(w->budget_w));  // no budget given
   // A probe frame that lasts three slots counts three: 300 ms at 40 W and 700 ms at 10 W.
   CHECK_FALSE(meter.add(1300 * ms, 40.0, true));
   for (int k = 1; k < 7; ++k) CHECK_FALSE(meter.add((1300 + 100 * k) * ms, 10.0, false));
@@ -1277,7 +1280,12 @@ TEST_CASE("meter window: each frame's power over its own interval, frames withou
   REQUIRE(w);
   CHECK(w->watts == Approx(30.0));
   for (int k = 1; k <= 6; ++k) CHECK_FALSE(meter.add((3000 + 100 * k) * ms, kNaN, false));
-  for (int k = 7; k <= 10; ++k) CHECK_FALSE(meter.add((3000 + 100 * k) * ms, 30.0, false));
+  for (int k = 7; k < 10; ++k) CHECK_FALSE(meter.add((3000 + 100 * k) * ms, 30.0, false));
+  w = meter.add(4000 * ms, 30.0, false);
+  REQUIRE(w);  // closed, but not a meter's reading
+  CHECK_FALSE(w->measured());
+  CHECK(w->frames == 10);
+  CHECK(w->span_s == Approx(1.0));
   // A frame handed over out of order is skipped, the window kept: 500 ms at 8 W, 500 ms at 12 W.
   for (int k = 1; k <= 5; ++k) CHECK_FALSE(meter.add((4000 + 100 * k) * ms, 8.0, false));
   CHECK_FALSE(meter.add(4450 * ms, 1000.0, false));
@@ -1285,6 +1293,7 @@ TEST_CASE("meter window: each frame's power over its own interval, frames withou
   w = meter.add(5000 * ms, 12.0, false);
   REQUIRE(w);
   CHECK(w->watts == Approx(10.0));
+  CHECK(w->frames == 10);  // the one out of order not among them
   // Interrupted, or a clock from before the window (a new clock): the next frame starts afresh.
   meter.add(5100 * ms, 5.0, true);
   meter.interrupt();
@@ -1295,6 +1304,12 @@ TEST_CASE("meter window: each frame's power over its own interval, frames withou
   REQUIRE(w);
   CHECK(w->watts == Approx(7.0));
   CHECK(w->probes == 0);
+  // A window's budget is the mean of its frames' given ones, frames without one left out.
+  for (int k = 1; k < 10; ++k)
+    CHECK_FALSE(meter.add((9000 + 100 * k) * ms, 7.0, false, k <= 3 ? 20.0 : k <= 6 ? kNaN : 30.0));
+  w = meter.add(10'000 * ms, 7.0, false, 30.0);
+  REQUIRE(w);
+  CHECK(w->budget_w == Approx((3 * 20.0 + 4 * 30.0) / 7));
 }
 
 TEST_CASE("budget watch: told once, when 8 of the last 10 windows measured over the budget", "[loop][extremes]") {
@@ -1348,6 +1363,9 @@ TEST_CASE("budget watch: told once, when 8 of the last 10 windows measured over 
     for (std::int64_t t = 0; t < 20'000 * ms; t += 100 * ms) CHECK_FALSE(watch.add(t, 30.0, t % 2 ? kNaN : inf));
     // Frames without power measure nothing: their windows are not over.
     for (std::int64_t t = 0; t < 20'000 * ms; t += 100 * ms) CHECK_FALSE(watch.add(t, kNaN, 25.0));
+    // Nor do those with power for less than half of them, as a meter reads them (MeterWindow).
+    for (std::int64_t t = 20'000 * ms; t < 40'000 * ms; t += 100 * ms)
+      CHECK_FALSE(watch.add(t, (t / (100 * ms)) % 10 < 4 ? 30.0 : kNaN, 25.0));
     // 9 windows over, then a clock from before them: the open window starts afresh, the nine
     // are kept, and the next window over is the tenth.
     BudgetWatch again;

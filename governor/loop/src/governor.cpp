@@ -608,7 +608,7 @@ void Governor::meter(const FrameRecord& frame) {
     return;
   }
   const std::optional<MeterWindow::Reading> window = meter_.add(frame.time_ns, frame.power_w, frame.probe);
-  if (!window || !(window->watts > budget_w_)) return;
+  if (!window || !window->measured() || !(window->watts > budget_w_)) return;
   // A window holding a probe is over the budget by design where the last selection kept only
   // the probes' mean under it (probes rare enough that few windows hold one; ProbeOverhead's
   // window_margin_w): selecting again would find the same. Where it kept a probe's whole excess,

@@ -4,11 +4,13 @@
 #include <deque>
 #include <optional>
 
+#include "glbudget/loop/meter_window.hpp"
+
 namespace glbudget::loop {
 
 // Beyond the paper: whether a power budget is being kept at all, as a meter on the wall reads
 // the run. Every frame after the first selection, whatever it drew (transitions, probes and
-// explorations included), falls in wall-clock windows of window_s; once `over` of the last `of`
+// explorations included), falls in a MeterWindow's wall-clock windows of window_s; once `over` of the last `of`
 // windows measured more than their budget (the mean of their frames': a selection may move it
 // several times a second), the run is not keeping its budget, and the user is told once
 // (Governor::notes). The usual causes: a budget under what the cheapest configuration draws,
@@ -27,7 +29,7 @@ class BudgetWatch {
   };
 
   explicit BudgetWatch(double window_s = 1.0, int of = 10, int over = 8)
-      : window_s_(window_s), of_(of), over_needed_(over) {}
+      : of_(of), over_needed_(over), meter_(window_s) {}
 
   static constexpr double kTolerance = 0.03;
 
@@ -37,25 +39,11 @@ class BudgetWatch {
   std::optional<Verdict> add(std::int64_t time_ns, double power_w, double budget_w);
 
  private:
-  struct Window {
-    double watts;  // NaN: no frame with power
-    double frames_per_s;
-    double budget_w;  // its frames' mean
-  };
-  void restart(std::int64_t time_ns);
-
-  double window_s_;
   int of_;
   int over_needed_;
   bool said_ = false;
-  bool started_ = false;
-  std::int64_t last_ns_ = 0;
-  std::int64_t window_start_ns_ = 0;
-  double energy_j_ = 0.0;
-  double seconds_ = 0.0;  // of intervals with power
-  double budget_sum_w_ = 0.0;
-  int frames_ = 0;
-  std::deque<Window> windows_;
+  MeterWindow meter_;
+  std::deque<MeterWindow::Reading> windows_;
 };
 
 }  // namespace glbudget::loop
