@@ -1375,6 +1375,17 @@ TEST_CASE("budget watch: told once, when 8 of the last 10 windows measured over 
     for (std::int64_t t = 600 * ms; t <= 1500 * ms && !v; t += 100 * ms) v = again.add(t, 30.0, 25.0);
     REQUIRE(v);
     CHECK(v->over == 10);
+    // A frame handed over out of order inside a window is skipped as a meter skips it: the
+    // window is kept, and the tenth closes at 10 s.
+    BudgetWatch skips;
+    v.reset();
+    std::int64_t t = 0;
+    for (; t <= 10'000 * ms && !v; t += 100 * ms) {
+      v = skips.add(t, 30.0, 25.0);
+      if (t == 9500 * ms) CHECK_FALSE(skips.add(9450 * ms, 30.0, 25.0));
+    }
+    REQUIRE(v);
+    CHECK(t - 100 * ms == 10'000 * ms);
   }
 }
 
