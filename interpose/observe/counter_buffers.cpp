@@ -63,7 +63,17 @@ void CounterBuffers::bind(uint64_t key, const std::vector<std::string>& program_
 void CounterBuffers::forget(uint64_t key) {
   auto it = entries_.find(key);
   if (it == entries_.end()) return;
-  release(it->second);
+  Entry& e = it->second;
+  // What the program drew since the last harvest is read before its buffer goes, waiting for
+  // the GPU (a link is no place an app expects speed): a program relinked, or a name that
+  // glDeleteProgram freed and the next glCreateProgram reuses (glmark2 between its scenes),
+  // otherwise lost its last frames' counts, and all of them where it drew for fewer frames
+  // than a copy takes to come back on a busy machine.
+  if (e.counters && (e.fence || e.drawn_since_copy)) {
+    harvest(e, e.counters);
+    dump_registry::write_changed();
+  }
+  release(e);
   entries_.erase(it);
 }
 

@@ -22,7 +22,7 @@ class CounterBuffers {
   // The draws that follow use `key`'s counters, credited in the dump to `program_hashes` (a
   // pipeline's programs: each reads the words of its own stages).
   void bind(uint64_t key, const std::vector<std::string>& program_hashes);
-  // A relinked program starts a new count: its buffer is dropped (what was read back stays).
+  // A relinked program starts a new count: its buffer is read a last time and dropped.
   void forget(uint64_t key);
   // At each swap: harvests finished copies, starts new ones every few frames. Never waits.
   void poll(uint64_t frame);
