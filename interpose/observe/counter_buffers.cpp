@@ -66,11 +66,11 @@ void CounterBuffers::forget(uint64_t key) {
   Entry& e = it->second;
   // What the program drew since the last harvest is read before its buffer goes, waiting for
   // the GPU (a link is no place an app expects speed): a program relinked, or a name that
-  // glDeleteProgram freed and the next glCreateProgram reuses (glmark2 between its scenes),
-  // otherwise lost its last frames' counts, and all of them where it drew for fewer frames
-  // than a copy takes to come back on a busy machine.
+  // glDeleteProgram freed and the next glCreateProgram may reuse (an app's scenes one after
+  // another), otherwise lost its last frames' counts, and all of them where it drew for fewer
+  // frames than a copy takes to come back on a busy machine.
   if (e.counters && (e.fence || e.drawn_since_copy)) {
-    harvest(e, e.counters);
+    read_now(e);
     dump_registry::write_changed();
   }
   release(e);
@@ -130,16 +130,17 @@ void CounterBuffers::poll(uint64_t frame) {
   if (harvested) dump_registry::write_changed();
 }
 
-void CounterBuffers::read_all_now() {
-  const GlCalls& g = gl();
-  for (auto& [key, e] : entries_) {
-    if (!e.counters) continue;
-    if (e.fence) {
-      g.DeleteSync(e.fence);
-      e.fence = nullptr;
-    }
-    harvest(e, e.counters);  // mapping waits for the draws that write it
+void CounterBuffers::read_now(Entry& e) {
+  if (e.fence) {
+    gl().DeleteSync(e.fence);
+    e.fence = nullptr;
   }
+  harvest(e, e.counters);  // mapping waits for the draws that write it
+}
+
+void CounterBuffers::read_all_now() {
+  for (auto& [key, e] : entries_)
+    if (e.counters) read_now(e);
   dump_registry::write_changed();
 }
 

@@ -41,6 +41,8 @@ class CounterBuffers {
   bool create(Entry& e);
   void start_copy(Entry& e);
   void harvest(Entry& e, GLuint buffer);
+  // The counters themselves, waiting for the GPU; a pending copy is dropped.
+  void read_now(Entry& e);
   void release(Entry& e);
 
   int binding_;
