@@ -321,8 +321,8 @@ TEST_CASE("every demo shader instruments and the metals quality levels order by 
 TEST_CASE("a program relinked before its counters came back keeps what it drew", "[integration][instrumentation]") {
   // probe_relink relinks its one program at frames 1, 3 and 4 (versions 2, 4, then 1 again):
   // versions 2 and 4 each draw for two or three frames, fewer than a counter copy is started
-  // for. The counts were dropped with the buffer at the relink; glmark2, whose scenes free
-  // program names that the next scene's programs reuse, lost whole programs so on a busy machine.
+  // for. The counts were dropped with the buffer at the relink (and, where a freed program name
+  // is reused, with it: the likely way a loaded CI run lost five glmark2 programs' counts).
   const fs::path dir = temp_path("probe_relink_dump");
   std::error_code ignored;
   fs::remove_all(dir, ignored);

@@ -10,10 +10,10 @@ namespace glbudget::loop {
 
 // Beyond the paper: whether a power budget is being kept at all, as a meter on the wall reads
 // the run. Every frame after the first selection, whatever it drew (transitions, probes and
-// explorations included), falls in a MeterWindow's wall-clock windows of window_s; once `over` of the last `of`
-// windows measured more than their budget (the mean of their frames': a selection may move it
-// several times a second), the run is not keeping its budget, and the user is told once
-// (Governor::notes). The usual causes: a budget under what the cheapest configuration draws,
+// explorations included), falls in a MeterWindow's wall-clock windows of window_s; once `over`
+// of the last `of` windows measured more than their budget (the mean of their frames': a
+// selection may move it several times a second), the run is not keeping its budget, and the
+// user is told once (Governor::notes). The usual causes: a budget under what the cheapest configuration draws,
 // and frames that nothing paces, where a cheaper configuration turns the time it saves into
 // more frames at the same power. A window counts as over by more than kTolerance of its
 // budget: the cpu estimate scatters by 2-6 % between identical runs, and an app idle at its
