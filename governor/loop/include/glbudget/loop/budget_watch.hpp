@@ -13,8 +13,8 @@ namespace glbudget::loop {
 // explorations included), falls in a MeterWindow's wall-clock windows of window_s; once `over`
 // of the last `of` windows measured more than their budget (the mean of their frames': a
 // selection may move it several times a second), the run is not keeping its budget, and the
-// user is told once (Governor::notes). The usual causes: a budget under what the cheapest configuration draws,
-// and frames that nothing paces, where a cheaper configuration turns the time it saves into
+// user is told once (Governor::notes). The usual causes: a budget under what the cheapest
+// configuration draws, and frames that nothing paces, where a cheaper configuration turns the time it saves into
 // more frames at the same power. A window counts as over by more than kTolerance of its
 // budget: the cpu estimate scatters by 2-6 % between identical runs, and an app idle at its
 // pace has a range that narrow (glxgears at 10 fps: 10.5-10.8 W).
