@@ -89,10 +89,50 @@ std::span<const ConfiguredSample> RunTimeModel::recent_history() const {
   return std::span<const ConfiguredSample>(history_).last(kept);
 }
 
+void RunTimeModel::remember(const FrameSample& frame, const Configuration& configuration) {
+  if (history_settings_.remembered_frames == 0) return;
+  Remembered& r = remembered_[configuration];
+  const double weight = 1.0 / static_cast<double>(std::min(++r.frames, history_settings_.remembered_frames));
+  const auto blend = [weight](double& mean, double value) { mean += weight * (value - mean); };
+  blend(r.mean.power_w, frame.power_w);
+  // A pass this frame did not draw drew nothing in it.
+  for (PassFrame& mean : r.mean.passes) {
+    const auto drawn =
+        std::find_if(frame.passes.begin(), frame.passes.end(), [&](const PassFrame& p) { return p.pass == mean.pass; });
+    const PassCounts counts = drawn == frame.passes.end() ? PassCounts{} : drawn->counts;
+    blend(mean.counts.batches, counts.batches);
+    blend(mean.counts.vertices, counts.vertices);
+    blend(mean.counts.fragments, counts.fragments);
+  }
+  for (const PassFrame& p : frame.passes) {
+    const auto known = std::find_if(r.mean.passes.begin(), r.mean.passes.end(),
+                                    [&](const PassFrame& mean) { return mean.pass == p.pass; });
+    if (known != r.mean.passes.end()) continue;
+    r.mean.passes.push_back(
+        {p.pass, {weight * p.counts.batches, weight * p.counts.vertices, weight * p.counts.fragments}});
+  }
+}
+
+std::span<const ConfiguredSample> RunTimeModel::history_to_fit() {
+  const std::span<const ConfiguredSample> recent = recent_history();
+  std::set<Configuration> held;
+  for (const ConfiguredSample& s : recent) held.insert(s.configuration);
+  fit_samples_.clear();
+  for (const auto& [configuration, r] : remembered_) {
+    if (held.count(configuration)) continue;
+    if (fit_samples_.empty()) fit_samples_.assign(recent.begin(), recent.end());
+    const std::size_t copies = std::min(r.frames, history_settings_.remembered_frames);
+    for (std::size_t i = 0; i < copies; ++i) fit_samples_.push_back({r.mean, configuration});
+  }
+  if (fit_samples_.empty()) return recent;
+  return fit_samples_;
+}
+
 OnlineFitter::Event RunTimeModel::learn(const FrameSample& frame, const Configuration& configuration,
                                         double predicted_w) {
   if (is_usable(frame) && space_.contains(configuration)) {
     history_.push_back({frame, configuration});
+    remember(frame, configuration);
     if (history_.size() > 2 * history_settings_.frames) {
       history_.erase(history_.begin(), history_.end() - static_cast<std::ptrdiff_t>(history_settings_.frames));
     }
@@ -116,7 +156,7 @@ OnlineFitter::Event RunTimeModel::learn(const FrameSample& frame, const Configur
   // Beyond it: with several configurations in the history, one fit over all of them.
   if (history_settings_.enabled) {
     std::set<Configuration> seen;
-    const std::span<const ConfiguredSample> samples = recent_history();
+    const std::span<const ConfiguredSample> samples = history_to_fit();
     for (const ConfiguredSample& s : samples) seen.insert(s.configuration);
     if (seen.size() > 1) {
       if (auto fit = fit_history(samples, space_, model, configuration, reuse_, configuration, history_settings_.fit)) {

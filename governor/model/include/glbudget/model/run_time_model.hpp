@@ -5,6 +5,7 @@
 // beyond the paper, refits over the recent frames of every configuration seen once there is
 // more than one (history_fit.hpp).
 #include <cstddef>
+#include <map>
 #include <optional>
 #include <set>
 #include <span>
@@ -20,6 +21,14 @@ namespace glbudget::model {
 struct HistorySettings {
   bool enabled = true;
   std::size_t frames = 300;  // usable frames kept, newest last
+  // Beyond the history: a configuration whose frames have all left it is remembered by the mean
+  // of its last frames (their counts and power, an exponential average over this many), and
+  // enters every history fit as this many frames. Without it, once the app's best
+  // configuration had been left for 300 frames no frame said what its levels cost: on the
+  // demo's Subway at 60 %, drawn at a quarter of its fragments since, a refit predicted the best
+  // at 28.5 W where it had measured 40 W, and a configuration near it, predicted 25 W, drew
+  // 38-40 W (docs/evaluation/budgets.md, run D). 0: forgotten.
+  std::size_t remembered_frames = 30;
   HistoryFitSettings fit;
 };
 
@@ -62,6 +71,10 @@ class RunTimeModel {
   void anchor_to_recent(PowerModel& model, const Configuration& configuration) const;
   // The last HistorySettings::frames usable frames, oldest first.
   std::span<const ConfiguredSample> recent_history() const;
+  void remember(const FrameSample& frame, const Configuration& configuration);
+  // What a history fit reads: the recent history, then each remembered configuration it no
+  // longer holds as remembered_frames copies of its mean (in fit_samples_).
+  std::span<const ConfiguredSample> history_to_fit();
 
   ConfigurationSpace space_;
   HistorySettings history_settings_;
@@ -69,6 +82,12 @@ class RunTimeModel {
   // Kept contiguous so a fit reads it in place; trimmed to `frames` only once it holds twice
   // as many, so a frame costs no shift of the whole history.
   std::vector<ConfiguredSample> history_;
+  struct Remembered {
+    FrameSample mean;
+    std::size_t frames = 0;
+  };
+  std::map<Configuration, Remembered> remembered_;
+  std::vector<ConfiguredSample> fit_samples_;
   PowerModel model_;
   std::optional<ConfigurationPredictor> predictor_;
   mutable std::optional<ConfigurationPredictor> scratch_;  // predictor_for()
