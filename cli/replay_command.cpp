@@ -7,6 +7,7 @@
 // beside the noise floor of the recording (see replay.hpp).
 //
 // Usage in print_help().
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -45,10 +46,22 @@ T parse_or_keep(const char* flag, const char* text, T fallback) {
   return static_cast<T>(value);
 }
 
+// A whole number, 0 included; the fallback for anything else, with a message.
+std::size_t parse_count(const char* flag, const char* text, std::size_t fallback) {
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long value = std::strtoull(text, &end, 10);
+  if (end == text || *end != '\0' || errno != 0 || text[0] == '-') {
+    std::cerr << "glbudget: " << flag << " needs a whole number, not \"" << text << "\"; using " << fallback << "\n";
+    return fallback;
+  }
+  return static_cast<std::size_t>(value);
+}
+
 constexpr const char* kUsage =
     "usage: glbudget replay LOG.csv --profile PROFILE.json [--variants VARIANTS.json]\n"
     "                       [--fit-window N] [--check-window N] [--threshold SHARE] [--average N]\n"
-    "                       [--paper] [--frames-csv PATH]\n";
+    "                       [--paper] [--remember N] [--frames-csv PATH]\n";
 
 void print_help() {
   std::printf("%s\n", kUsage);
@@ -62,6 +75,8 @@ void print_help() {
       "programs are which level of which pass (tests/data/logs/README.md). Options:\n"
       "  --fit-window N, --check-window N, --threshold SHARE   the online fitter's (30, 10, 0.1)\n"
       "  --paper            the paper's path only: no fit over several configurations\n"
+      "  --remember N       a configuration whose frames have left the history enters its fits as\n"
+      "                     N frames of their mean (30); 0: forgotten\n"
       "  --frames-csv PATH  every scored frame: measured power and both predictions\n");
 }
 
@@ -95,6 +110,8 @@ int replay_main(std::span<char* const> args) {
       settings.refit_threshold = parse_or_keep("--threshold", args[++i], settings.refit_threshold);
     else if (arg == "--paper")
       options.history.enabled = false;
+    else if (arg == "--remember" && has_value)
+      options.history.remembered_frames = parse_count("--remember", args[++i], options.history.remembered_frames);
     else if (arg == "--frames-csv" && has_value)
       frames_csv = args[++i];
     else if (arg == "--average" && has_value)
