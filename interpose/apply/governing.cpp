@@ -644,6 +644,7 @@ bool governor_start() {
     settings.feedback.own_residuals = o.feedback_own;
     settings.explore_when_held = o.explore_held;
     settings.measured_at_windows = o.measured_at_windows;
+    if (o.remember_frames >= 0) settings.history.remembered_frames = static_cast<size_t>(o.remember_frames);
     settings.best_band = o.best_band;
     settings.paced_fps = o.fps;
     settings.meter_windows = o.meter_windows;

@@ -49,6 +49,7 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_EXPLORE_HELD",
     "GLBUDGET_MEASURED_AT_WINDOWS",
     "GLBUDGET_BEST_BAND",
+    "GLBUDGET_REMEMBER_FRAMES",
     "GLBUDGET_METER_WINDOWS",
     "GLBUDGET_WARM_BLITS",
     "GLBUDGET_DUMP_PROBES",
@@ -179,6 +180,12 @@ Options parse_options(char** env, std::string* warnings) {
         o.select_frames = *n;
       else
         warn(warnings, "GLBUDGET_SELECT_FRAMES='" + value + "' is not a number of frames in [1, 1000000]; 200");
+    } else if (name == "GLBUDGET_REMEMBER_FRAMES") {
+      if (const auto n = whole_number(value, 0, 100000))
+        o.remember_frames = static_cast<int64_t>(*n);
+      else
+        warn(warnings,
+             "GLBUDGET_REMEMBER_FRAMES='" + value + "' is not a number of frames in [0, 100000]; the model's default");
     } else if (name == "GLBUDGET_TRANSITION_S") {
       if (const auto t = seconds(value, 3600))
         o.transition_s = *t;

@@ -70,6 +70,10 @@ struct Options {
   // an end of a share's range, at its windows' measured power moved by the model's change between
   // their counts and the frame's (loop/governor.hpp, measured_at_windows)
   bool measured_at_windows = false;
+  // GLBUDGET_REMEMBER_FRAMES=N: a configuration whose frames have left the model's history enters
+  // its fits as N frames of their mean; 0: forgotten; -1: not given, the model's default
+  // (model/run_time_model.hpp, remembered_frames)
+  int64_t remember_frames = -1;
   // GLBUDGET_BEST_BAND=S: under a share of the range, the top (the best configuration's power now)
   // stays within S of its windows' measured power above P_m, a measured cheapest within S of its
   // own (loop/governor.hpp, best_band); `off`: no bound

@@ -231,6 +231,20 @@ TEST_CASE("GLBUDGET_BEST_BAND: a share in [0, 1] or off; anything else said once
   CHECK(w == "glbudget: GLBUDGET_BEST_BAND='wide' is not a share in [0, 1] (0.1 or 10%) or off; 0.1\n");
 }
 
+TEST_CASE("GLBUDGET_REMEMBER_FRAMES: frames in [0, 100000]; anything else said once, the model's", "[unit]") {
+  std::string w;
+  CHECK(parse_env({}, &w).remember_frames == -1);
+  CHECK(parse_env({"GLBUDGET_REMEMBER_FRAMES=0"}, &w).remember_frames == 0);
+  CHECK(parse_env({"GLBUDGET_REMEMBER_FRAMES=100000"}, &w).remember_frames == 100000);
+  CHECK(w.empty());
+  CHECK(parse_env({"GLBUDGET_REMEMBER_FRAMES=100001"}, &w).remember_frames == -1);
+  CHECK(w ==
+        "glbudget: GLBUDGET_REMEMBER_FRAMES='100001' is not a number of frames in [0, 100000]; the model's default\n");
+  w.clear();
+  CHECK(parse_env({"GLBUDGET_REMEMBER_FRAMES=-3"}, &w).remember_frames == -1);
+  CHECK(w == "glbudget: GLBUDGET_REMEMBER_FRAMES='-3' is not a number of frames in [0, 100000]; the model's default\n");
+}
+
 TEST_CASE("GLBUDGET_METER_WINDOWS: on unless 0 or off; anything else said once, on", "[unit]") {
   std::string w;
   CHECK(parse_env({}, &w).meter_windows);
