@@ -538,7 +538,7 @@ TEST_CASE("the probes' extra power is kept under the budget with the frames'", "
   // that windows of all frames, probes included, stay as far within it as windows without
   // probes do.
   struct Run {
-    double within = 0.0, mean_excess_w = 0.0, overhead_w = 0.0, margin_w = 0.0;
+    double within = 0.0, mean_excess_w = 0.0, overhead_w = 0.0, margin_w = 0.0, probe_margin_w = 0.0;
   };
   auto run = [](bool probes) {
     App app(power_budget("50%"), Configuration(6, 0), 7, 1 << 20);  // a still camera
@@ -547,6 +547,7 @@ TEST_CASE("the probes' extra power is kept under the budget with the frames'", "
     Run r;
     r.overhead_w = app.governor().probe_overhead().watts();
     r.margin_w = app.governor().last_selection().margin_w;
+    r.probe_margin_w = app.governor().last_selection().probe_margin_w;
     int windows = 0, within = 0;
     for (std::size_t start = 30 * kFps; start + kFps <= steps.size(); start += kFps) {
       double power = 0.0, limit = 0.0;
@@ -569,7 +570,10 @@ TEST_CASE("the probes' extra power is kept under the budget with the frames'", "
                                      << without.margin_w << " W)");
   CHECK(without.overhead_w == 0.0);
   CHECK(with.overhead_w == Approx(0.1 * 0.2 * 48.0).epsilon(0.25));  // a tenth of the frames, 0.2 x ~48 W
-  CHECK(with.margin_w >= without.margin_w + 0.8 * with.overhead_w);
+  // Kept beside the spread's margin, which differs between the two runs as their windows do.
+  CHECK(without.probe_margin_w == 0.0);
+  CHECK(with.probe_margin_w >= 0.8 * with.overhead_w);
+  CHECK(with.margin_w >= with.probe_margin_w);
   // Left out, the probes would put every window about overhead_w further over the budget.
   CHECK(with.mean_excess_w <= without.mean_excess_w + 0.3 * with.overhead_w);
   CHECK(with.within >= without.within - 0.1);
@@ -2627,6 +2631,10 @@ TEST_CASE("a refit leaves the corrected prediction of the configuration drawn wh
   auto run = [&](bool rebase, double* jump, double* error) {
     GovernorSettings settings = power_budget("50%");
     settings.feedback.rebase_on_refit = rebase;
+    // The refits that move a prediction most are those whose history has forgotten the
+    // configurations the run left: remembering them (run_time_model.hpp, the default) leaves
+    // steps of 0.6 W here without the rebase, against 1.0 W forgotten.
+    settings.history.remembered_frames = 0;
     App app(settings, Configuration(6, 0), 7, 64, unseen);
     const std::vector<Step> steps = app.run(90 * kFps);
     // The step: the mean prediction of the 10 frames after the refit against the 10 before
