@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <deque>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -29,6 +30,7 @@
 #include "glbudget/model/selection.hpp"
 #include "glbudget/model/variant_table.hpp"
 #include "glbudget/sensors/profile_path.hpp"
+#include "glbudget/sensors/sensor.hpp"
 #include "options.hpp"
 #include "probes.hpp"
 #include "signals_blocked.hpp"
@@ -189,7 +191,12 @@ class GovernorThread {
 
   // From a signal handler that ends the process: every frame handed over is decided and its
   // rows (held ones too) go to the log, within `limit`. Waits by polling, never by a lock.
+  // Probes still waiting are measured for the first half of it only: up to kProbeBacklog of
+  // them can take longer than the limit where the SSIM is slow (a loaded CPU), and their
+  // errors would steer no later frame, while the rows behind them are what the log must keep
+  // (those of a probe left unmeasured go out without its probe_error).
   void drain_from_signal(std::chrono::nanoseconds limit) {
+    measure_until_ns_.store(sensors::monotonic_now_ns() + limit.count() / 2, std::memory_order_release);
     drained_.store(false, std::memory_order_release);
     drain_asked_.store(true, std::memory_order_release);
     const timespec step{0, 1'000'000};
@@ -289,7 +296,7 @@ class GovernorThread {
         ++it;
         continue;
       }
-      measure(p);
+      if (sensors::monotonic_now_ns() < measure_until_ns_.load(std::memory_order_acquire)) measure(p);
       unmeasured_bytes_.fetch_sub(image_bytes(p), std::memory_order_relaxed);
       unmeasured_.fetch_sub(1, std::memory_order_relaxed);
       it = pending_.erase(it);
@@ -581,6 +588,8 @@ class GovernorThread {
   std::deque<ProbeCapture> probes_;
   std::atomic<size_t> unmeasured_{0}, unmeasured_bytes_{0};  // probes pushed, not yet measured
   std::atomic<bool> drain_asked_{false}, drained_{false};    // drain_from_signal()
+  // Probes are measured until then (monotonic ns): drain_from_signal() sets it.
+  std::atomic<int64_t> measure_until_ns_{std::numeric_limits<int64_t>::max()};
   static constexpr std::chrono::milliseconds kDrainPoll{20};
   std::mutex waiting_mu_;
   std::vector<Frame> waiting_frames_;
