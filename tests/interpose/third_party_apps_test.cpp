@@ -252,8 +252,9 @@ TEST_CASE("glxgears probed at its full size: no GL error", "[integration]") {
 // grew without bound (the log of glxgears under the sanitized shim stopped at frame 30 of
 // thousands, and its memory grew by gigabytes). The eight probes let wait take 3.2 s to
 // measure, more than the signal's drain may take: it measures them for its first second only,
-// and every frame still reaches the log (measuring them all, a loaded CI machine's log lost
-// the last 0.7 s at 100 ms a probe; at 400 ms every machine's lost seconds).
+// and every frame still reaches the log. When the drain measured them all, a loaded CI
+// machine's log lost its last 0.7 s at 100 ms a probe, and at 400 ms every machine's log lost
+// its last second or more.
 TEST_CASE("glxgears probed faster than its probes are measured: the log keeps up", "[integration]") {
   const std::string log = temp_path("glxgears_slow_measure.csv");
   unlink(log.c_str());
