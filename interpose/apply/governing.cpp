@@ -661,6 +661,7 @@ bool governor_start() {
     settings.error_feedback.enabled = o.error_feedback;
     settings.feedback.keep_share = o.keep_share;
     settings.feedback.first_saving_discount = o.first_saving_discount;
+    settings.feedback.surprise_floor_share = o.surprise_floor;
     if (!o.probe_stretch) settings.probe_stretch_gain = 0.0;
     const std::string path = default_profile_path();
     std::optional<model::PlatformProfile> profile;

@@ -46,6 +46,7 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_PROBE_MAX_AGE_S",
     "GLBUDGET_KEEP_SHARE",
     "GLBUDGET_FIRST_SAVING_DISCOUNT",
+    "GLBUDGET_SURPRISE_FLOOR",
     "GLBUDGET_EXPLORE_HELD",
     "GLBUDGET_MEASURED_AT_WINDOWS",
     "GLBUDGET_BEST_BAND",
@@ -216,6 +217,14 @@ Options parse_options(char** env, std::string* warnings) {
         o.first_saving_discount = *d;
       else
         warn(warnings, "GLBUDGET_FIRST_SAVING_DISCOUNT='" + value + "' is not a share in [0, 0.9] (0.25 or 25%); 0");
+    } else if (name == "GLBUDGET_SURPRISE_FLOOR") {
+      if (value == "off") {
+        o.surprise_floor = 0.0;
+      } else if (const auto f = share(value, 0.0, 0.5)) {
+        o.surprise_floor = *f;
+      } else {
+        warn(warnings, "GLBUDGET_SURPRISE_FLOOR='" + value + "' is not a share in [0, 0.5] (0.02 or 2%) or off; 0");
+      }
     } else if (name == "GLBUDGET_PROBE_PERIOD") {
       if (const auto n = whole_number(value, 0, 1000000))
         o.probe_period = static_cast<int64_t>(*n);

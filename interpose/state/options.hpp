@@ -108,6 +108,10 @@ struct Options {
   // the governor does not count on until it has measured a configuration beyond the one the
   // app started in (loop/power_feedback.hpp, first_saving_discount); 0, the default: off.
   double first_saving_discount = 0.0;
+  // GLBUDGET_SURPRISE_FLOOR: the least share of the power the governor takes a configuration
+  // never measured to draw over its corrected prediction (loop/power_feedback.hpp,
+  // surprise_floor_share); 0 or off, the default: only what the run's first windows showed.
+  double surprise_floor = 0.0;
   // GLBUDGET_WARM_BLITS=0: the blits a switch of scale makes are not made once ahead on tiny
   // images (apply/blit_warmup.cpp); the first switch to each scale then pays the driver's
   // shader builds for them.

@@ -2463,7 +2463,9 @@ TEST_CASE("power feedback: the frames it takes and the windows it opens are coun
 
 TEST_CASE("power feedback: a first window's surprise is kept for the configurations not measured, and fades",
           "[loop][feedback]") {
-  PowerFeedback feedback{FeedbackSettings{}};
+  FeedbackSettings no_floor;
+  no_floor.surprise_floor_share = 0.0;  // the surprises alone (the floor: the next test)
+  PowerFeedback feedback{no_floor};
   const Configuration a{0, 0}, b{1, 0};
   std::int64_t t = 0;
   auto window = [&](const Configuration& c, double measured, double predicted) {
@@ -2502,6 +2504,58 @@ TEST_CASE("power feedback: a first window's surprise is kept for the configurati
     for (int k = 0; k <= 10; ++k, t += 100'000'000) unguarded.add(c, t, m, 10.0);
   }
   CHECK(unguarded.unmeasured_margin_w() == 0.0);
+}
+
+TEST_CASE("power feedback: the typical surprise is at least its floor's share of the power", "[loop][feedback]") {
+  FeedbackSettings settings;
+  settings.surprise_floor_share = 0.02;
+  PowerFeedback feedback{settings};
+  const Configuration a{0, 0}, b{1, 0}, c{0, 1};
+  std::int64_t t = 0;
+  // Windows whose frames scatter by +-s about `measured`, so that the spread is not 0.
+  auto window = [&](const Configuration& at, double measured, double predicted, double s) {
+    feedback.interrupt();
+    std::optional<PowerFeedback::Window> closed;
+    for (int k = 0; k <= 10; ++k, t += 100'000'000)
+      closed = feedback.add(at, t, measured + (k % 2 ? s : -s), predicted);
+    REQUIRE(closed);
+  };
+  constexpr double z = 1.6449;
+  CHECK(feedback.typical_surprise_w() == 0.0);  // no window yet: nothing to take a share of
+  CHECK(feedback.unmeasured_margin_w() == 0.0);
+  // One window at 20 W, whose frames scatter little: the floor, 0.4 W, is the typical surprise,
+  // before any configuration measured after the first has surprised.
+  window(a, 20.0, 20.0, 0.05);
+  CHECK(feedback.surprises() == 0);
+  CHECK(feedback.typical_surprise_w() == Approx(0.4).epsilon(1e-3));
+  CHECK(feedback.unmeasured_margin_w() ==
+        Approx(z * feedback.typical_surprise_w() - feedback.margin_w()).epsilon(1e-3));
+  CHECK(feedback.unmeasured_margin_w() > 0.5);
+  // Two configurations that met their predictions: still the floor, not 0.
+  window(b, 20.0 + feedback.bias(b), 20.0, 0.05);
+  window(c, 20.0 + feedback.bias(c), 20.0, 0.05);
+  CHECK(feedback.surprises() == 2);
+  CHECK(feedback.typical_surprise_w() == Approx(0.4).epsilon(0.02));
+  // A surprise beyond the floor is taken as it is.
+  window(Configuration{1, 1}, 20.0 + feedback.bias(Configuration{1, 1}) + 3.0, 20.0, 0.05);
+  CHECK(feedback.typical_surprise_w() > 1.0);
+  // Where the spread's margin already covers z times the floor, nothing is added.
+  PowerFeedback noisy{settings};
+  t = 0;
+  for (int w = 0; w < 3; ++w) {
+    noisy.interrupt();
+    for (int k = 0; k <= 10; ++k, t += 100'000'000) noisy.add(a, t, (w % 2 ? 23.0 : 17.0), 20.0);
+  }
+  CHECK(noisy.margin_w() > z * 0.4);
+  CHECK(noisy.unmeasured_margin_w() == 0.0);
+  // 0: no floor, as before it.
+  FeedbackSettings off = settings;
+  off.surprise_floor_share = 0.0;
+  PowerFeedback unfloored{off};
+  t = 0;
+  for (int k = 0; k <= 10; ++k, t += 100'000'000) unfloored.add(a, t, 20.0, 20.0);
+  CHECK(unfloored.typical_surprise_w() == 0.0);
+  CHECK(unfloored.unmeasured_margin_w() == 0.0);
 }
 
 TEST_CASE("configurations never measured are kept further under the budget once one surprised", "[loop][feedback]") {

@@ -210,14 +210,13 @@ double PowerFeedback::spread_w() const {
 
 double PowerFeedback::margin_w() const { return z_ * spread_w(); }
 
-double PowerFeedback::unmeasured_margin_w() const {
-  if (!settings_.enabled || !settings_.guard_unmeasured || surprises_ == 0) return 0.0;
-  return std::max(0.0, z_ * std::sqrt(surprise_sq_) - margin_w());
-}
+double PowerFeedback::unmeasured_margin_w() const { return std::max(0.0, z_ * typical_surprise_w() - margin_w()); }
 
 double PowerFeedback::typical_surprise_w() const {
-  if (!settings_.enabled || !settings_.guard_unmeasured || surprises_ == 0) return 0.0;
-  return std::sqrt(surprise_sq_);
+  if (!settings_.enabled || !settings_.guard_unmeasured || windows_ == 0) return 0.0;
+  const double measured = surprises_ > 0 ? std::sqrt(surprise_sq_) : 0.0;
+  const double floor = std::max(0.0, settings_.surprise_floor_share) * mean_power_w_;
+  return std::isfinite(floor) ? std::max(measured, floor) : measured;
 }
 
 std::vector<model::Configuration> PowerFeedback::measured_configurations() const {
