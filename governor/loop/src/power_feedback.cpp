@@ -214,9 +214,8 @@ double PowerFeedback::unmeasured_margin_w() const { return std::max(0.0, z_ * ty
 
 double PowerFeedback::typical_surprise_w() const {
   if (!settings_.enabled || !settings_.guard_unmeasured || windows_ == 0) return 0.0;
-  const double measured = surprises_ > 0 ? std::sqrt(surprise_sq_) : 0.0;
-  const double floor = std::max(0.0, settings_.surprise_floor_share) * mean_power_w_;
-  return std::isfinite(floor) ? std::max(measured, floor) : measured;
+  // surprise_sq_ is 0 until the first surprise; mean_power_w_ averages finite windows only.
+  return std::max(std::sqrt(surprise_sq_), std::max(0.0, settings_.surprise_floor_share) * mean_power_w_);
 }
 
 std::vector<model::Configuration> PowerFeedback::measured_configurations() const {
