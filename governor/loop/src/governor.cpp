@@ -282,6 +282,10 @@ bool Governor::select(const FrameRecord& record) {
   double budget_w = std::numeric_limits<double>::infinity();
   const std::size_t best = space_.index_of(model::Configuration(space_.pass_count(), 0));
   double best_discount_w = 0.0;  // what the best's weight was lowered by for its cheaper probes
+  // 0 % of the range is the cheapest configuration's own prediction (range_ends): no guard for
+  // the configurations never measured, which would raise the cheapest over a dearer one measured.
+  const bool range_bottom =
+      aim_ == Aim::power && settings_.power.kind == model::Budget::Kind::ShareOfRange && settings_.power.value <= 0.0;
   if (aim_ == Aim::power) {
     model_power_.assign(power_.begin(), power_.end());
     const bool share = settings_.power.kind == model::Budget::Kind::ShareOfRange;
@@ -301,7 +305,7 @@ bool Governor::select(const FrameRecord& record) {
     probe_margin_w_ = whole_range ? std::numeric_limits<double>::infinity() : probe_window_margin_w();
     best_probe_margin_w_ = probe_window_margin_w(true);
     margin_w_ = whole_range ? 0.0 : margin_without_probes_w + probe_margin_w_;
-    guard_unmeasured(whole_range ? 0.0 : feedback_.unmeasured_margin_w(), !whole_range);
+    guard_unmeasured(whole_range || range_bottom ? 0.0 : feedback_.unmeasured_margin_w(), !whole_range);
     const bool probes_were_rare = probe_period_wanted_ > 0, bursts_were_rare = probe_bursts_spaced_;
     if (!whole_range) {
       want_probe_period(budget_w, margin_without_probes_w);
@@ -344,7 +348,8 @@ bool Governor::select(const FrameRecord& record) {
     guarded_[best] += best_discount_w;
     selection = model::select_configuration(guarded_, error_, budget_w, margin_w_);
   }
-  if (aim_ == Aim::power) selection = select_at_expected_power(selection, budget_w, feedback_.unmeasured_margin_w());
+  if (aim_ == Aim::power && !range_bottom)
+    selection = select_at_expected_power(selection, budget_w, feedback_.unmeasured_margin_w());
   times_.select.add(microseconds_since(start));
 
   ++selections_;
