@@ -223,7 +223,8 @@ Options parse_options(char** env, std::string* warnings) {
       } else if (const auto f = share(value, 0.0, 0.5)) {
         o.surprise_floor = *f;
       } else {
-        warn(warnings, "GLBUDGET_SURPRISE_FLOOR='" + value + "' is not a share in [0, 0.5] (0.02 or 2%) or off; 0");
+        warn(warnings, "GLBUDGET_SURPRISE_FLOOR='" + value +
+                           "' is not a share in [0, 0.5] (0.02 or 2%) or off; the default, 0.02");
       }
     } else if (name == "GLBUDGET_PROBE_PERIOD") {
       if (const auto n = whole_number(value, 0, 1000000))

@@ -110,8 +110,8 @@ struct Options {
   double first_saving_discount = 0.0;
   // GLBUDGET_SURPRISE_FLOOR: the least share of the power the governor takes a configuration
   // never measured to draw over its corrected prediction (loop/power_feedback.hpp,
-  // surprise_floor_share); 0 or off, the default: only what the run's first windows showed.
-  double surprise_floor = 0.0;
+  // surprise_floor_share); 0.02 by default; 0 or off: only what the run's first windows showed.
+  double surprise_floor = 0.02;
   // GLBUDGET_WARM_BLITS=0: the blits a switch of scale makes are not made once ahead on tiny
   // images (apply/blit_warmup.cpp); the first switch to each scale then pays the driver's
   // shader builds for them.

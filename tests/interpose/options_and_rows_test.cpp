@@ -335,9 +335,10 @@ TEST_CASE("GLBUDGET_KEEP_SHARE: a share of windows in [0.5, 0.999], as a fractio
   }
 }
 
-TEST_CASE("GLBUDGET_SURPRISE_FLOOR: a share in [0, 0.5], as a fraction or a percentage, or off; 0", "[unit]") {
+TEST_CASE("GLBUDGET_SURPRISE_FLOOR: a share in [0, 0.5], as a fraction or a percentage, or off; 0.02 by default",
+          "[unit]") {
   std::string w;
-  CHECK(parse_env({}, &w).surprise_floor == 0.0);
+  CHECK(parse_env({}, &w).surprise_floor == 0.02);
   CHECK(parse_env({"GLBUDGET_SURPRISE_FLOOR=0.05"}, &w).surprise_floor == 0.05);
   CHECK(parse_env({"GLBUDGET_SURPRISE_FLOOR=3%"}, &w).surprise_floor == Approx(0.03));
   CHECK(parse_env({"GLBUDGET_SURPRISE_FLOOR=0"}, &w).surprise_floor == 0.0);
@@ -346,9 +347,9 @@ TEST_CASE("GLBUDGET_SURPRISE_FLOOR: a share in [0, 0.5], as a fraction or a perc
   for (const char* bad : {"-0.1", "0.6", "51%", "x", "", "nan", "inf"}) {
     INFO(bad);
     w.clear();
-    CHECK(parse_env({std::string("GLBUDGET_SURPRISE_FLOOR=") + bad}, &w).surprise_floor == 0.0);
+    CHECK(parse_env({std::string("GLBUDGET_SURPRISE_FLOOR=") + bad}, &w).surprise_floor == 0.02);
     CHECK(w == std::string("glbudget: GLBUDGET_SURPRISE_FLOOR='") + bad +
-                   "' is not a share in [0, 0.5] (0.02 or 2%) or off; 0\n");
+                   "' is not a share in [0, 0.5] (0.02 or 2%) or off; the default, 0.02\n");
   }
 }
 
