@@ -18,6 +18,12 @@ A second table combines the governor's single-pass errors otherwise than by thei
 Minkowski sum (sum e_i^p)^(1/p), p = 1.25, 1.5, 2; 1 - prod(1 - e_i), as SSIMs multiply) and gives
 each form's rho and its worst selection regret at 30-70 % of the table's predicted range, the
 regret as error_estimates.py takes it.
+A third table, where the run's log lies beside the table (DIR/SCENE.csv and its selections),
+tries one factor per render-scale level by which that level masks the other passes' errors,
+estimate = e_scale + m(scale level) * sum of the others, fitted by least squares to the errors the
+probes measured of the configurations shown up to the last selection (each probe frame draws the
+best beside the configuration shown), shrunk toward 1 by MASK_PRIOR_PROBES probes and held in
+[0.5, 1.5].
 
     python3 bench/evaluation/estimate_losses.py DIR/SCENE.truth.csv...
 """
@@ -116,6 +122,62 @@ def forms_table(rows):
         print(f"| {name} | " + " | ".join(cells) + " |")
 
 
+MASK_PRIOR_PROBES = 4.0
+
+
+def shown_errors(log_path, last_frame):
+    """(configuration, measured error) of each probe frame's shown configuration up to last_frame."""
+    by_frame = {}
+    with open(log_path) as f:
+        for row in csv.DictReader(f):
+            if row.get("probe") and row.get("probe_error") and int(row["frame"]) <= last_frame:
+                by_frame[int(row["frame"])] = (tuple(int(v) for v in row["configuration"].split(":")),
+                                               float(row["probe_error"]))
+    return [by_frame[frame] for frame in sorted(by_frame)]
+
+
+def masking_factors(table, shown, lmax0):
+    """m per render-scale level (the first pass), m(0) = 1."""
+    factors = [1.0]
+    for level in range(1, lmax0 + 1):
+        num = den = 0.0
+        count = 0
+        for levels, measured in shown:
+            if levels[0] != level:
+                continue
+            others = sum(table[i][l] for i, l in enumerate(levels) if i)
+            num += (measured - table[0][level]) * others
+            den += others * others
+            count += 1
+        fitted = min(1.5, max(0.5, num / den)) if den > 0 else 1.0
+        factors.append(1.0 + (fitted - 1.0) * count / (count + MASK_PRIOR_PROBES))
+    return factors
+
+
+def masking_table(rows):
+    """rows: (name, truth, single-pass table, power, path); the sum against the masked sum."""
+    print()
+    print("| table | probes of shown configurations | m per scale level | sum: rho / worst regret | masked |")
+    print("|---|---:|---|---:|---:|")
+    for name, truth, table, power, path in rows:
+        base = path[: -len(".truth.csv")]
+        log, selections = base + ".csv", base + ".csv.selections.csv"
+        if not (os.path.exists(log) and os.path.exists(selections)):
+            continue
+        with open(selections) as f:
+            last = max(int(row["frame"]) for row in csv.DictReader(f))
+        shown = shown_errors(log, last)
+        lmax0 = max(c[0] for c in truth)
+        m = masking_factors(table, shown, lmax0)
+        cells = []
+        for factors in ([1.0] * (lmax0 + 1), m):
+            estimated = {c: table[0][c[0]] + factors[c[0]] * sum(table[i][l] for i, l in enumerate(c) if i)
+                         for c in truth}
+            rho = spearman([estimated[c] for c in truth], list(truth.values()))
+            cells.append(f"{rho:.3f} / {worst_regret(estimated, truth, power):.4f}")
+        print(f"| {name} | {len(shown)} | " + ", ".join(f"{f:.2f}" for f in m) + " | " + " | ".join(cells) + " |")
+
+
 def main():
     paths = sys.argv[1:]
     if not paths:
@@ -138,9 +200,10 @@ def main():
         print(f"| {table_name(path)} | {own:.3f} | {rho_of(fresh, truth):.3f} | "
               f"{rho_of(rescaled(fresh, governor, lmax), truth):.3f} | "
               f"{rho_of(rescaled(governor, fresh, lmax), truth):.3f} |")
-        forms.append((table_name(path), truth, governor, power))
+        forms.append((table_name(path), truth, governor, power, path))
     if forms:
-        forms_table(forms)
+        forms_table([row[:4] for row in forms])
+        masking_table(forms)
     return 0
 
 
