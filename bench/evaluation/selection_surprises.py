@@ -8,7 +8,10 @@ of the first ten frames drawn at the chosen configuration after it and before th
 selection's weighed_w for it. Selections followed by fewer than eight such frames are skipped.
 Grouped by whether the configuration had been drawn before in the run, else by the number of
 passes in which it differs from the nearest configuration drawn before. A guard on configurations
-never measured aims at the upper quantile of the new groups' spread.
+never measured aims at the upper quantile of the new groups' spread. "Past the room" counts the
+first frames that drew more over their weighed power than the selection's margin less its part
+for the probes (margin_w - probe_margin_w: the spread's and the windows' overshoot, which is what
+the frames without probes had to fit in).
 
     python3 bench/evaluation/selection_surprises.py DIR... [--list 1.0]
 
@@ -54,7 +57,10 @@ def surprises(log):
             passes = min((distance(configuration, b) for b in before), default=0)
             group = f"new, {passes} pass{'es' if passes != 1 else ''} from the nearest drawn" if passes < 3 \
                 else "new, 3 passes or more from the nearest drawn"
-        out.append((group, first - weighed, whole - weighed, frame, configuration))
+        room = number(row["margin_w"])
+        if room is not None and number(row.get("probe_margin_w", "")) is not None:
+            room -= number(row["probe_margin_w"])
+        out.append((group, first - weighed, whole - weighed, frame, configuration, room))
     return out
 
 
@@ -71,17 +77,18 @@ def main():
     if not rows:
         print("glbudget: no governed logs with selections under " + ", ".join(a.dirs), file=sys.stderr)
         return 1
-    print("| chosen configuration | selections | mean (W) | standard deviation (W) | largest (W) |")
-    print("|---|---:|---:|---:|---:|")
+    print("| chosen configuration | selections | mean (W) | standard deviation (W) | largest (W) | past the room |")
+    print("|---|---:|---:|---:|---:|---:|")
     for group in sorted({r[1] for r in rows}):
         values = [r[2] for r in rows if r[1] == group]
+        past = sum(1 for r in rows if r[1] == group and r[6] is not None and r[2] > r[6])
         print(f"| {group} | {len(values)} | {statistics.mean(values):+.2f} | {statistics.pstdev(values):.2f} | "
-              f"{max(values):+.2f} |")
+              f"{max(values):+.2f} | {past} ({past / len(values):.0%}) |")
     if a.list is not None:
         print()
         print("| run | selection | configuration | group | first frames − weighed (W) | period − weighed (W) |")
         print("|---|---:|---|---|---:|---:|")
-        for log, group, first, whole, frame, configuration in rows:
+        for log, group, first, whole, frame, configuration, _ in rows:
             if first > a.list:
                 print(f"| {log} | {frame} | `{configuration}` | {group} | {first:+.2f} | {whole:+.2f} |")
     return 0
