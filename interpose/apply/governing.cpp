@@ -657,7 +657,6 @@ bool governor_start() {
     settings.best_band = o.best_band;
     settings.paced_fps = o.fps;
     settings.meter_windows = o.meter_windows;
-    settings.scale_factors = o.scale_factors;
     settings.level_interactions = o.level_interactions;
     settings.error_feedback.enabled = o.error_feedback;
     settings.feedback.keep_share = o.keep_share;

@@ -52,7 +52,6 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_BEST_BAND",
     "GLBUDGET_REMEMBER_FRAMES",
     "GLBUDGET_METER_WINDOWS",
-    "GLBUDGET_SCALE_FACTORS",
     "GLBUDGET_WARM_BLITS",
     "GLBUDGET_DUMP_PROBES",
     "GLBUDGET_PROBE_SCALE",
@@ -266,8 +265,6 @@ Options parse_options(char** env, std::string* warnings) {
       parse_switch(name, value, o.measured_at_windows, warnings);
     } else if (name == "GLBUDGET_METER_WINDOWS") {
       parse_switch(name, value, o.meter_windows, warnings);
-    } else if (name == "GLBUDGET_SCALE_FACTORS") {
-      parse_switch(name, value, o.scale_factors, warnings);
     } else if (name == "GLBUDGET_LEVEL_INTERACTIONS") {
       using L = loop::LevelInteractions;
       parse_choice<L>(

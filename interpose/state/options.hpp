@@ -81,10 +81,6 @@ struct Options {
   // GLBUDGET_METER_WINDOWS=1: a window of the settled configuration read as a meter reads it,
   // probes included, over the budget selects again at once (loop/governor.hpp, meter_windows)
   bool meter_windows = true;
-  // GLBUDGET_SCALE_FACTORS=1: the error estimate weighs the other passes' errors by a factor per
-  // render-scale level fitted from the probes' measurements of what is shown
-  // (loop/scale_factors.hpp); off by default.
-  bool scale_factors = false;
   // GLBUDGET_LEVEL_INTERACTIONS=calibrated|additive|model|scaled: where `glbudget calibrate --app`
   // measured each level alone, how a combination of levels is predicted (loop/governor.hpp,
   // level_interactions; model/additive_levels.hpp)

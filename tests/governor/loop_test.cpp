@@ -405,41 +405,6 @@ TEST_CASE("under an error budget, the errors probes measure of what is shown cor
   }
 }
 
-TEST_CASE("with scale factors on, the errors probes measure of what is shown set how the render scale weighs the rest",
-          "[loop][scale-factors]") {
-  // The truth: at a lowered render scale the other passes' errors count 0.6 of their sum (the
-  // scale masks them). Probes measure every 10th frame's configuration shown.
-  auto run = [](bool on) {
-    GovernorSettings settings = power_budget("40%");
-    settings.scale_factors = on;
-    App app(settings);
-    const ErrorTable table = test_errors(app.governor().space());
-    auto truth = [&](const Configuration& c) {
-      const double own = table.error(0, c[0]);
-      return own + (c[0] > 0 ? 0.6 : 1.0) * (table.sum(c) - own);
-    };
-    int lowered = 0;
-    for (int k = 0; k < 60 * kFps; ++k) {
-      const Step step = app.step();
-      if (k % 10 != 0) continue;
-      app.governor().shown_error(step.record.configuration, truth(step.record.configuration));
-      lowered += step.record.configuration[0] > 0;
-    }
-    const Configuration probe{1, 2, 2, 0, 0, 1};
-    const double own = app.governor().errors().error(0, 1);
-    const double others = app.governor().errors().sum(probe) - own;
-    return std::tuple{lowered, (app.governor().errors().estimate(probe) - own) / others};
-  };
-  const auto [lowered_on, factor_on] = run(true);
-  const auto [lowered_off, factor_off] = run(false);
-  INFO("probes at a lowered scale " << lowered_on << " / " << lowered_off << "; the others' weight at scale level 1 "
-                                    << factor_on << " on, " << factor_off << " off");
-  REQUIRE(lowered_on >= 10);
-  CHECK(factor_off == Approx(1.0));
-  CHECK(factor_on < 0.8);
-  CHECK(factor_on >= 0.6);
-}
-
 TEST_CASE("select_within_error: ties, NaN and nothing admitted", "[loop][extremes]") {
   const std::vector<double> power{30.0, 25.0, 25.0, kNaN, 20.0};
   const std::vector<double> error{0.0, 0.02, 0.01, 0.0, kNaN};

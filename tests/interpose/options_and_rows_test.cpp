@@ -256,17 +256,6 @@ TEST_CASE("GLBUDGET_METER_WINDOWS: on unless 0 or off; anything else said once, 
   CHECK(w == "glbudget: GLBUDGET_METER_WINDOWS='always' is not 0/1/on/off; on\n");
 }
 
-TEST_CASE("GLBUDGET_SCALE_FACTORS: off unless 1 or on; anything else said once, off", "[unit]") {
-  std::string w;
-  CHECK_FALSE(parse_env({}, &w).scale_factors);
-  CHECK(parse_env({"GLBUDGET_SCALE_FACTORS=1"}, &w).scale_factors);
-  CHECK(parse_env({"GLBUDGET_SCALE_FACTORS=on"}, &w).scale_factors);
-  CHECK_FALSE(parse_env({"GLBUDGET_SCALE_FACTORS=off"}, &w).scale_factors);
-  CHECK(w.empty());
-  CHECK_FALSE(parse_env({"GLBUDGET_SCALE_FACTORS=yes"}, &w).scale_factors);
-  CHECK(w == "glbudget: GLBUDGET_SCALE_FACTORS='yes' is not 0/1/on/off; off\n");
-}
-
 TEST_CASE("GLBUDGET_PROBE_FOLLOW: on unless 0 or off; anything else said once, on", "[unit]") {
   std::string w;
   CHECK(parse_env({}, &w).probe_follow);

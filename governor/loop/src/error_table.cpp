@@ -66,27 +66,11 @@ bool ErrorTable::fits(const model::ConfigurationSpace& space) const {
   return true;
 }
 
-bool ErrorTable::set_scale_factors(std::size_t pass, std::vector<double> factors) {
-  if (pass >= passes_.size() || factors.size() != passes_[pass].error.size()) return false;
-  for (double m : factors)
-    if (!std::isfinite(m) || m < 0.0) return false;
-  scale_pass_ = pass;
-  scale_factors_ = std::move(factors);
-  return true;
-}
-
-double ErrorTable::sum(const model::Configuration& configuration) const {
+double ErrorTable::estimate(const model::Configuration& configuration) const {
   if (configuration.size() != passes_.size()) return std::numeric_limits<double>::quiet_NaN();
   double sum = 0.0;
   for (std::size_t i = 0; i < passes_.size(); ++i) sum += error(i, configuration[i]);
   return sum;
-}
-
-double ErrorTable::estimate(const model::Configuration& configuration) const {
-  const double whole = sum(configuration);
-  if (scale_factors_.empty() || !std::isfinite(whole)) return whole;
-  const double own = error(scale_pass_, configuration[scale_pass_]);
-  return own + scale_factors_[static_cast<std::size_t>(configuration[scale_pass_])] * (whole - own);
 }
 
 std::size_t ErrorTable::size() const {
@@ -109,15 +93,6 @@ void ErrorTable::estimate_all(std::vector<double>& out) const {
       for (std::size_t l = levels; l-- > 0;) out[j * levels + l] = base + pass.error[l];
     }
     n *= levels;
-  }
-  if (scale_factors_.empty()) return;
-  // Row-major, last pass fastest: the scale pass's level steps every `stride` entries.
-  std::size_t stride = 1;
-  for (std::size_t i = scale_pass_ + 1; i < passes_.size(); ++i) stride *= passes_[i].error.size();
-  const std::vector<double>& own = passes_[scale_pass_].error;
-  for (std::size_t index = 0; index < out.size(); ++index) {
-    const std::size_t level = (index / stride) % own.size();
-    out[index] = own[level] + scale_factors_[level] * (out[index] - own[level]);
   }
 }
 

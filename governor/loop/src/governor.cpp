@@ -270,8 +270,6 @@ bool Governor::select(const FrameRecord& record) {
   times_.predict_all.add(microseconds_since(start));
 
   start = Clock::now();
-  if (const std::optional<std::size_t> pass = scale_pass())
-    errors_.set_scale_factors(*pass, scale_factors_.factors(errors_.level_count(*pass)));
   errors_.estimate_all(error_);
   // Under a power budget the selection ranks configurations by their estimates, and what the
   // correction would do to that ranking is not measured; the dual problem holds the estimate
@@ -975,20 +973,9 @@ double Governor::estimated_error(const model::Configuration& configuration) cons
 void Governor::shown_error(const model::Configuration& shown, double measured) {
   if (!space_.contains(shown)) return;
   error_feedback_.add(shown, errors_.estimate(shown), measured);
-  if (const std::optional<std::size_t> pass = scale_pass(); pass && *pass < shown.size()) {
-    const double own = errors_.error(*pass, shown[*pass]);
-    scale_factors_.add(shown[*pass], own, errors_.sum(shown) - own, measured);
-  }
   if (aim_ == Aim::error && error_feedback_.settings().enabled && selections_ > 0 && !transitioning_ &&
       shown == target_ && measured > *settings_.error_budget)
     reselect_now_ = true;
-}
-
-std::optional<std::size_t> Governor::scale_pass() const {
-  if (!settings_.scale_factors) return std::nullopt;
-  for (std::size_t i = 0; i < errors_.pass_count(); ++i)
-    if (errors_.pass_name(i) == "resolution") return i;
-  return std::nullopt;
 }
 
 }  // namespace glbudget::loop

@@ -40,14 +40,6 @@ class ErrorTable {
   // The same passes, by name and level count, in the same order as the space.
   bool fits(const model::ConfigurationSpace& space) const;
 
-  // Beyond the paper (scale_factors.hpp): the other passes' errors weighed by factors[l] where
-  // pass `pass` (the render scale) is at level l. False, and nothing changes, for a pass outside
-  // the table, a factor per level of another count, or a factor not finite or negative.
-  bool set_scale_factors(std::size_t pass, std::vector<double> factors);
-  void clear_scale_factors() { scale_factors_.clear(); }
-  // The sum of §6.2, without the scale factors.
-  double sum(const model::Configuration& configuration) const;
-
   // NaN for a configuration of another length or with a level outside the table.
   double estimate(const model::Configuration& configuration) const;
   // out[space.index_of(c)] = estimate(c), for the space this table fits (row-major, last
@@ -62,8 +54,6 @@ class ErrorTable {
     std::vector<bool> stand_in;  // [level]
   };
   std::vector<Pass> passes_;
-  std::size_t scale_pass_ = 0;
-  std::vector<double> scale_factors_;  // [level of scale_pass_]; empty: the sum
 };
 
 }  // namespace glbudget::loop

@@ -17,7 +17,6 @@
 
 #include "glbudget/loop/budget_watch.hpp"
 #include "glbudget/loop/error_feedback.hpp"
-#include "glbudget/loop/scale_factors.hpp"
 #include "glbudget/loop/error_table.hpp"
 #include "glbudget/loop/level_interactions.hpp"
 #include "glbudget/loop/meter_window.hpp"
@@ -104,10 +103,6 @@ struct GovernorSettings {
   // finish them included (MeterWindow); one over the budget selects again at once. false: a
   // window selects again when its frames without probes plus the probes' mean are over.
   bool meter_windows = true;
-  // Beyond the paper (scale_factors.hpp): the estimate weighs the other passes' errors by a
-  // factor per level of the pass named "resolution", fitted from the errors probes measure of
-  // the configurations shown. false (the default): §6.2's sum.
-  bool scale_factors = false;
   // Beyond the paper: the best configuration's power now, the top of a share's range, stays
   // within this share of what its own windows measured above P_m; its prediction moves it no
   // further. The app starts at its best and leaves it at the first selection, and once the
@@ -390,9 +385,6 @@ class Governor {
   bool within_budget_ = true;
   PowerFeedback feedback_;
   ErrorFeedback error_feedback_;
-  ScaleFactors scale_factors_;
-  // The pass named "resolution" in the error table, where settings_.scale_factors is on.
-  std::optional<std::size_t> scale_pass() const;
   ProbeOverhead probe_overhead_;
   MeterWindow meter_;
   BudgetWatch budget_watch_;
