@@ -23,7 +23,8 @@ tries one factor per render-scale level by which that level masks the other pass
 estimate = e_scale + m(scale level) * sum of the others, fitted by least squares to the errors the
 probes measured of the configurations shown up to the last selection (each probe frame draws the
 best beside the configuration shown), shrunk toward 1 by MASK_PRIOR_PROBES probes and held in
-[0.5, 1.5].
+[0.5, 1.5]. Fitted against the last selection's terms, it reads more than a running governor can:
+built into the governor (round 15, reverted) the factors ranked as the sum did.
 
     python3 bench/evaluation/estimate_losses.py DIR/SCENE.truth.csv...
 """
