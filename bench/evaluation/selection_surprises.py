@@ -57,9 +57,9 @@ def surprises(log):
             passes = min((distance(configuration, b) for b in before), default=0)
             group = f"new, {passes} pass{'es' if passes != 1 else ''} from the nearest drawn" if passes < 3 \
                 else "new, 3 passes or more from the nearest drawn"
-        room = number(row["margin_w"])
-        if room is not None and number(row.get("probe_margin_w", "")) is not None:
-            room -= number(row["probe_margin_w"])
+        room, for_probes = number(row["margin_w"]), number(row.get("probe_margin_w"))
+        if room is not None and for_probes is not None:
+            room -= for_probes
         out.append((group, first - weighed, whole - weighed, frame, configuration, room))
     return out
 

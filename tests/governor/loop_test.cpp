@@ -2576,6 +2576,13 @@ TEST_CASE("power feedback: the typical surprise is at least its floor's share of
 struct FirstWindows {
   int windows = 0, within = 0, firsts = 0, first_over = 0;
   double share_within() const { return windows ? static_cast<double>(within) / windows : 0.0; }
+  FirstWindows& operator+=(const FirstWindows& other) {
+    windows += other.windows;
+    within += other.within;
+    firsts += other.firsts;
+    first_over += other.first_over;
+    return *this;
+  }
 };
 
 FirstWindows first_windows(const std::vector<Step>& steps) {
@@ -2647,11 +2654,7 @@ TEST_CASE("a surprise floor keeps the first surprise's window under the budget",
         GovernorSettings settings = power_budget(budget);
         settings.feedback.surprise_floor_share = floor;
         App app(settings, Configuration(6, 0), seed, 64, unseen);
-        const FirstWindows counts = first_windows(app.run(60 * kFps));
-        total->windows += counts.windows;
-        total->within += counts.within;
-        total->firsts += counts.firsts;
-        total->first_over += counts.first_over;
+        *total += first_windows(app.run(60 * kFps));
       }
   };
   FirstWindows on, off;

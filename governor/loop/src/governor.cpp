@@ -282,13 +282,12 @@ bool Governor::select(const FrameRecord& record) {
   double budget_w = std::numeric_limits<double>::infinity();
   const std::size_t best = space_.index_of(model::Configuration(space_.pass_count(), 0));
   double best_discount_w = 0.0;  // what the best's weight was lowered by for its cheaper probes
+  const bool share = aim_ == Aim::power && settings_.power.kind == model::Budget::Kind::ShareOfRange;
   // 0 % of the range is the cheapest configuration's own prediction (range_ends): no guard for
   // the configurations never measured, which would raise the cheapest over a dearer one measured.
-  const bool range_bottom =
-      aim_ == Aim::power && settings_.power.kind == model::Budget::Kind::ShareOfRange && settings_.power.value <= 0.0;
+  const bool range_bottom = share && settings_.power.value <= 0.0;
   if (aim_ == Aim::power) {
     model_power_.assign(power_.begin(), power_.end());
-    const bool share = settings_.power.kind == model::Budget::Kind::ShareOfRange;
     set_calibrated_prior();
     feedback_.correct(space_, power_);
     hold_interactions();
