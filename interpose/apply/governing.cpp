@@ -649,6 +649,7 @@ bool governor_start() {
     if (!budget && !probes_asked) return;
     settings.select_frames = o.select_frames;
     settings.transition_s = o.transition_s;
+    settings.ordered_transition = o.transition_order;
     settings.feedback.enabled = o.feedback;
     settings.feedback.own_residuals = o.feedback_own;
     settings.explore_when_held = o.explore_held;

@@ -38,6 +38,7 @@ constexpr const char* kKnownVariables[] = {
     "GLBUDGET_PROBE_PERIOD",
     "GLBUDGET_SELECT_FRAMES",
     "GLBUDGET_TRANSITION_S",
+    "GLBUDGET_TRANSITION_ORDER",
     "GLBUDGET_FEEDBACK",
     "GLBUDGET_FEEDBACK_OWN",
     "GLBUDGET_LEVEL_INTERACTIONS",
@@ -257,6 +258,8 @@ Options parse_options(char** env, std::string* warnings) {
         warn(warnings, "GLBUDGET_PROBE_PASSES='" + value + "' is not a number of passes in [1, 64]; as many as fit");
     } else if (name == "GLBUDGET_FEEDBACK") {
       parse_switch(name, value, o.feedback, warnings);
+    } else if (name == "GLBUDGET_TRANSITION_ORDER") {
+      parse_switch(name, value, o.transition_order, warnings);
     } else if (name == "GLBUDGET_FEEDBACK_OWN") {
       parse_switch(name, value, o.feedback_own, warnings);
     } else if (name == "GLBUDGET_EXPLORE_HELD") {

@@ -58,6 +58,9 @@ struct Options {
   // passes in rounds ahead of each selection (apply/probes.cpp, round_frames). 0: as many as the
   // governor finds room for.
   int probe_passes = 0;
+  // GLBUDGET_TRANSITION_ORDER=0: the temporal filter blends the levels as the paper does,
+  // instead of taking its one-level steps cheapest first (loop/governor.hpp, ordered_transition)
+  bool transition_order = true;
   bool feedback = true;  // GLBUDGET_FEEDBACK=0: no correction from measured power (the paper's open loop)
   // GLBUDGET_FEEDBACK_OWN=1: a measured configuration's correction moves from the additive fit
   // towards its own windows' residual (loop/power_feedback.hpp, own_residuals)

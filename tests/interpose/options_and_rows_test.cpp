@@ -206,6 +206,16 @@ TEST_CASE("GLBUDGET_EXPLORE_HELD: on unless 0 or off; anything else said once, o
   CHECK(w == "glbudget: GLBUDGET_EXPLORE_HELD='sometimes' is not 0/1/on/off; on\n");
 }
 
+TEST_CASE("GLBUDGET_TRANSITION_ORDER: on unless 0 or off; anything else said once, on", "[unit]") {
+  std::string w;
+  CHECK(parse_env({}, &w).transition_order);
+  CHECK(parse_env({"GLBUDGET_TRANSITION_ORDER=1"}, &w).transition_order);
+  CHECK_FALSE(parse_env({"GLBUDGET_TRANSITION_ORDER=off"}, &w).transition_order);
+  CHECK(w.empty());
+  CHECK(parse_env({"GLBUDGET_TRANSITION_ORDER=cheapest"}, &w).transition_order);
+  CHECK(w == "glbudget: GLBUDGET_TRANSITION_ORDER='cheapest' is not 0/1/on/off; on\n");
+}
+
 TEST_CASE("GLBUDGET_MEASURED_AT_WINDOWS: off unless 1 or on; anything else said once, off", "[unit]") {
   std::string w;
   CHECK_FALSE(parse_env({}, &w).measured_at_windows);

@@ -372,6 +372,12 @@ bool Governor::select(const FrameRecord& record) {
   transition_from_ = current_;
   target_ = std::move(chosen);
   transition_start_ns_ = record.time_ns;
+  transition_path_ = {};
+  if (transitioning_ && settings_.ordered_transition)
+    transition_path_ = model::ordered_transition(transition_from_, target_, [this](const model::Configuration& c) {
+      return space_.contains(c) && space_.index_of(c) < guarded_.size() ? guarded_[space_.index_of(c)]
+                                                                        : std::numeric_limits<double>::quiet_NaN();
+    });
   return explore;
 }
 
@@ -917,7 +923,9 @@ Decision Governor::on_frame(const FrameRecord& frame) {
     }
     if (transitioning_) {
       const double t = static_cast<double>(record.time_ns - transition_start_ns_) * 1e-9;
-      current_ = model::blend_configurations(transition_from_, target_, t, settings_.transition_s);
+      current_ = transition_path_.configurations.empty()
+                     ? model::blend_configurations(transition_from_, target_, t, settings_.transition_s)
+                     : model::along_path(transition_path_, t, settings_.transition_s);
       if (!(t < settings_.transition_s)) {
         current_ = target_;
         transitioning_ = false;
