@@ -36,14 +36,14 @@ PASSES = 6
 BEST = ":".join(["0"] * PASSES)
 
 
-def selection_tables(path):
-    """{frame: ({configuration: predicted_w}, chosen configuration, the chosen row (its budget_w,
+def selection_tables(path, column="predicted_w"):
+    """{frame: ({configuration: its `column`}, chosen configuration, the chosen row (its budget_w,
     margin_w))}; chosen and its row None where the table marks none."""
     tables = {}
     with open(path) as f:
         for row in csv.DictReader(f):
             table, chosen = tables.setdefault(int(row["frame"]), ({}, [None]))
-            table[row["configuration"]] = float(row["predicted_w"])
+            table[row["configuration"]] = float(row[column])
             if row["selected"] == "1":
                 chosen[0] = row
     return {frame: (table, chosen[0] and chosen[0]["configuration"], chosen[0])

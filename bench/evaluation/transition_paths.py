@@ -14,31 +14,20 @@ the default from 2026-12-03) takes the same steps cheapest first.
 
 DIR is an evaluation's output whose logs were kept (`scripts/evaluate --keep-logs DIR/logs`).
 """
-import csv
 import glob
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from evaluate import frames_of, is_probe  # noqa: E402
-
-
-def weighed_tables(path):
-    """{frame: ({configuration: weighed_w}, the selected row)}."""
-    tables = {}
-    with open(path) as f:
-        for row in csv.DictReader(f):
-            table, chosen = tables.setdefault(int(row["frame"]), ({}, [None]))
-            table[row["configuration"]] = float(row["weighed_w"])
-            if row["selected"] == "1":
-                chosen[0] = row
-    return {frame: (table, chosen[0]) for frame, (table, chosen) in tables.items() if chosen[0]}
+from interactions import selection_tables  # noqa: E402
 
 
 def transitions(log):
     """[(intermediates, over the dearer end, over budget - spread margin)] per transition."""
     frames = frames_of(log)
-    tables = weighed_tables(log + ".selections.csv")
+    tables = {frame: (table, row) for frame, (table, _, row) in
+              selection_tables(log + ".selections.csv", "weighed_w").items() if row}
     starts = sorted(tables)
     out = []
     for k, start in enumerate(starts):
