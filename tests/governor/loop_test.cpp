@@ -528,6 +528,33 @@ TEST_CASE("an ordered transition changes as many levels as the blend at each mom
   }
 }
 
+TEST_CASE("under an error budget an ordered transition takes the steps that lose least image first", "[loop]") {
+  // The error budget holds the estimated error, not the power: the steps are ordered by it, so
+  // that no configuration on the way shows a worse image than the target's (the errors add over
+  // the passes, as the stand-in table's do).
+  GovernorSettings settings;
+  settings.error_budget = 0.05;
+  App app(settings, Configuration(6, 0));
+  for (int k = 0; k < 10 * kFps && app.governor().selections() == 0; ++k) app.step();
+  REQUIRE(app.governor().selections() == 1);
+  const model::TransitionPath& path = app.governor().transition_path();
+  REQUIRE(path.configurations.size() >= 3);
+  const Configuration& to = path.configurations.back();
+  const ErrorTable& errors = app.governor().errors();
+  for (std::size_t k = 1; k < path.configurations.size(); ++k) {
+    const Configuration& at = path.configurations[k - 1];
+    double least = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < at.size(); ++i) {
+      if (at[i] == to[i]) continue;
+      Configuration step = at;
+      step[i] += to[i] > at[i] ? 1 : -1;
+      least = std::min(least, errors.estimate(step));
+    }
+    CHECK(errors.estimate(path.configurations[k]) == Approx(least));
+    CHECK(errors.estimate(path.configurations[k]) <= errors.estimate(to) + 1e-12);
+  }
+}
+
 TEST_CASE("a transition of 0 s switches at once", "[loop][extremes]") {
   GovernorSettings settings = power_budget("0%");
   settings.transition_s = 0.0;
@@ -2904,6 +2931,9 @@ TEST_CASE("a refit leaves the corrected prediction of the configuration drawn wh
        << " W");
   // Over the three runs: 0.54 W moved against 0.69 W not, with the ordered transition (the
   // default); 0.41 W against 0.91 W with the paper's blend, whose runs refit in other places.
+  // The rebase takes less of the step off here than it did under the blend (a fifth against
+  // more than half), and the prediction error with it 0.72 W against 0.54 W: in this scene,
+  // whose knobs save almost nothing, the ordered runs measured fewer configurations.
   CHECK(jump_on < 0.8 * jump_off);
   CHECK(error_on < 0.9 * error_off);
 }

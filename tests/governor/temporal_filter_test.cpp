@@ -41,7 +41,7 @@ double additive_w(const Configuration& c, const std::vector<std::vector<double>>
 }  // namespace
 
 TEST_CASE("an ordered transition takes the blend's steps at its moments, cheapest first", "[model][filter]") {
-  // Pass 0 moves 2 -> 0 (dearer: 4 W, then 3 W more), pass 1 0 -> 2 (saves 5 W, then 1 W), pass
+  // Pass 0 moves 2 -> 0 (dearer: 3 W, then 4 W more), pass 1 0 -> 2 (saves 5 W, then 1 W), pass
   // 2 1 -> 0 (dearer by 0.5 W).
   const std::vector<std::vector<double>> watts{{10.0, 6.0, 3.0}, {10.0, 5.0, 4.0}, {10.0, 9.5, 9.0}};
   const auto power = [&](const Configuration& c) { return additive_w(c, watts); };

@@ -373,9 +373,12 @@ bool Governor::select(const FrameRecord& record) {
   target_ = std::move(chosen);
   transition_start_ns_ = record.time_ns;
   transition_path_ = {};
+  // Under a power budget the steps that save come first; under an error budget, whose selection
+  // holds the estimated error, the steps that lower it (the image's losses last).
+  const std::vector<double>& order_by = aim_ == Aim::error ? error_ : guarded_;
   if (transitioning_ && settings_.ordered_transition)
-    transition_path_ = model::ordered_transition(transition_from_, target_, [this](const model::Configuration& c) {
-      return space_.contains(c) && space_.index_of(c) < guarded_.size() ? guarded_[space_.index_of(c)]
+    transition_path_ = model::ordered_transition(transition_from_, target_, [&](const model::Configuration& c) {
+      return space_.contains(c) && space_.index_of(c) < order_by.size() ? order_by[space_.index_of(c)]
                                                                         : std::numeric_limits<double>::quiet_NaN();
     });
   return explore;
@@ -565,6 +568,7 @@ void Governor::hold(const FrameRecord& record) {
   holding_ = true;
   transitioning_ = false;
   target_ = current_;
+  transition_path_ = {};
   if (hold_noted_) return;
   hold_noted_ = true;
   notes_.push_back("no power measurement for " + std::to_string(missing_power_) + " frames (frame " +
@@ -929,6 +933,7 @@ Decision Governor::on_frame(const FrameRecord& frame) {
       if (!(t < settings_.transition_s)) {
         current_ = target_;
         transitioning_ = false;
+        transition_path_ = {};
       }
       if (decision.event == Event::none) decision.event = Event::transition;
     }

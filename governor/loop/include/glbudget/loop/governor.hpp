@@ -40,7 +40,8 @@ struct GovernorSettings {
   std::size_t select_frames = 200;     // frames between selections (paper §6.3)
   double transition_s = 2.0;           // the temporal filter's T (paper §6.2)
   // Beyond the paper: the filter's one-level steps, at the blend's moments, ordered by the power
-  // the selection weighed, savings first (model::ordered_transition); false: the paper's blend.
+  // the selection weighed, savings first (under an error budget by the estimated error, its
+  // reductions first; model::ordered_transition); false: the paper's blend.
   bool ordered_transition = true;
   std::size_t hold_after_missing_power = 30;  // consecutive frames without power before holding
   // Beyond the paper: select again at once after this many frames in a row whose chosen
@@ -264,8 +265,8 @@ class Governor {
   bool governing() const { return governing_; }
   bool holding() const { return holding_; }
   bool transitioning() const { return transitioning_; }
-  // The ordered transition's steps from where it started to the target (ordered_transition;
-  // empty where the filter blends, and before the first transition).
+  // The ordered transition under way: its steps from where it started to the target (empty
+  // where the filter blends, and when no transition is under way).
   const model::TransitionPath& transition_path() const { return transition_path_; }
   std::size_t selections() const { return selections_; }
   // The last selection's configuration (before the first: the first frame's).
@@ -374,7 +375,7 @@ class Governor {
   EndWindows best_windows_, cheapest_windows_;
   model::Configuration target_;
   model::Configuration transition_from_;
-  model::TransitionPath transition_path_;  // ordered_transition: from transition_from_ to target_
+  model::TransitionPath transition_path_;  // ordered_transition, while transitioning_
   std::int64_t transition_start_ns_ = 0;
   bool transitioning_ = false;
 
