@@ -235,6 +235,27 @@ void check_selections(const App& app, const Governor& governor, const std::vecto
   CHECK(checked >= 5);
 }
 
+// Levels changed from one configuration to another, summed over the passes.
+int levels_between(const Configuration& a, const Configuration& b) {
+  int moved = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) moved += std::abs(a[i] - b[i]);
+  return moved;
+}
+
+// The least weight among the one-level steps from `at` toward `to` (each pass that differs,
+// moved one level): what an ordered transition's next step weighs.
+double least_next_step(const Configuration& at, const Configuration& to,
+                       const std::function<double(const Configuration&)>& weigh) {
+  double least = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < at.size(); ++i) {
+    if (at[i] == to[i]) continue;
+    Configuration step = at;
+    step[i] += to[i] > at[i] ? 1 : -1;
+    least = std::min(least, weigh(step));
+  }
+  return least;
+}
+
 // How far a selection's table strays from its own levels' changes summed (additive_levels.hpp):
 // 0 where every configuration is the best plus its levels' changes alone.
 double largest_gap_from_levels_summed(const model::ConfigurationSpace& space, const std::vector<double>& power) {
@@ -480,11 +501,6 @@ TEST_CASE("an ordered transition changes as many levels as the blend at each mom
   std::optional<std::int64_t> start_ns;
   Configuration from, to;
   model::TransitionPath path;
-  const auto levels_between = [](const Configuration& a, const Configuration& b) {
-    int moved = 0;
-    for (std::size_t i = 0; i < a.size(); ++i) moved += std::abs(a[i] - b[i]);
-    return moved;
-  };
   std::vector<Configuration> seen;
   for (int k = 1; k < 10 * kFps; ++k) {
     const Step s = app.step();
@@ -515,17 +531,10 @@ TEST_CASE("an ordered transition changes as many levels as the blend at each mom
   // Each step is the one-level move toward the target that the truth says saves most (within
   // the predictions' error): the scene's predictions hold.
   const Truth truth(app.hidden(), previous.record.passes);
+  const auto true_power = [&](const Configuration& c) { return truth.power(c); };
   const auto& steps = path.configurations;
-  for (std::size_t k = 1; k < steps.size(); ++k) {
-    double cheapest_w = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < 6; ++i) {
-      if (steps[k - 1][i] == to[i]) continue;
-      Configuration step = steps[k - 1];
-      ++step[i];
-      cheapest_w = std::min(cheapest_w, truth.power(step));
-    }
-    CHECK(truth.power(steps[k]) <= cheapest_w + kToleranceW);
-  }
+  for (std::size_t k = 1; k < steps.size(); ++k)
+    CHECK(truth.power(steps[k]) <= least_next_step(steps[k - 1], to, true_power) + kToleranceW);
 }
 
 TEST_CASE("under an error budget an ordered transition takes the steps that lose least image first", "[loop]") {
@@ -541,16 +550,9 @@ TEST_CASE("under an error budget an ordered transition takes the steps that lose
   REQUIRE(path.configurations.size() >= 3);
   const Configuration& to = path.configurations.back();
   const ErrorTable& errors = app.governor().errors();
+  const auto estimate = [&](const Configuration& c) { return errors.estimate(c); };
   for (std::size_t k = 1; k < path.configurations.size(); ++k) {
-    const Configuration& at = path.configurations[k - 1];
-    double least = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < at.size(); ++i) {
-      if (at[i] == to[i]) continue;
-      Configuration step = at;
-      step[i] += to[i] > at[i] ? 1 : -1;
-      least = std::min(least, errors.estimate(step));
-    }
-    CHECK(errors.estimate(path.configurations[k]) == Approx(least));
+    CHECK(errors.estimate(path.configurations[k]) == Approx(least_next_step(path.configurations[k - 1], to, estimate)));
     CHECK(errors.estimate(path.configurations[k]) <= errors.estimate(to) + 1e-12);
   }
 }

@@ -38,6 +38,13 @@ double additive_w(const Configuration& c, const std::vector<std::vector<double>>
   return w;
 }
 
+// Levels changed from one configuration to another, summed over the passes.
+int levels_between(const Configuration& a, const Configuration& b) {
+  int moved = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) moved += std::abs(a[i] - b[i]);
+  return moved;
+}
+
 }  // namespace
 
 TEST_CASE("an ordered transition takes the blend's steps at its moments, cheapest first", "[model][filter]") {
@@ -57,22 +64,14 @@ TEST_CASE("an ordered transition takes the blend's steps at its moments, cheapes
   CHECK(path[2] == Configuration{2, 2, 1});
   CHECK(path[3] == Configuration{2, 2, 0});
   CHECK(path[4] == Configuration{1, 2, 0});
-  for (std::size_t k = 1; k < path.size(); ++k) {
-    int moved = 0;
-    for (std::size_t i = 0; i < from.size(); ++i) moved += std::abs(path[k][i] - path[k - 1][i]);
-    CHECK(moved == 1);
-  }
+  for (std::size_t k = 1; k < path.size(); ++k) CHECK(levels_between(path[k], path[k - 1]) == 1);
   // At every moment as many levels changed as the blend has changed, and (additive power,
   // here) never a dearer configuration than the blend's, nor one dearer than the dearer end.
   REQUIRE(ordered.progress.size() == 5);
   CHECK(std::is_sorted(ordered.progress.begin(), ordered.progress.end()));
   CHECK(power(from) == 22.5);
   CHECK(power(to) == 24.0);
-  const auto levels_from = [&](const Configuration& c) {
-    int moved = 0;
-    for (std::size_t i = 0; i < from.size(); ++i) moved += std::abs(c[i] - from[i]);
-    return moved;
-  };
+  const auto levels_from = [&](const Configuration& c) { return levels_between(c, from); };
   for (int k = 0; k <= 400; ++k) {
     const double t = 0.005 * k;
     INFO("t " << t);

@@ -378,8 +378,8 @@ bool Governor::select(const FrameRecord& record) {
   const std::vector<double>& order_by = aim_ == Aim::error ? error_ : guarded_;
   if (transitioning_ && settings_.ordered_transition)
     transition_path_ = model::ordered_transition(transition_from_, target_, [&](const model::Configuration& c) {
-      return space_.contains(c) && space_.index_of(c) < order_by.size() ? order_by[space_.index_of(c)]
-                                                                        : std::numeric_limits<double>::quiet_NaN();
+      const std::size_t i = space_.contains(c) ? space_.index_of(c) : order_by.size();
+      return i < order_by.size() ? order_by[i] : std::numeric_limits<double>::quiet_NaN();
     });
   return explore;
 }

@@ -30,9 +30,9 @@ TransitionPath ordered_transition(const Configuration& from, const Configuration
                                   const std::function<double(const Configuration&)>& power_w);
 
 // The configuration `t` seconds into a transition of T along `path`: every step whose progress
-// t / T has reached (the moments are exact; the blend's own arithmetic may round a t within a
-// few ulps of one the other way). t is clamped to [0, T]; T <= 0 (or NaN t): the path's end; an empty path:
-// {}.
+// t / T has reached. t is clamped to [0, T]; T <= 0 (or NaN t): the path's end; an empty path:
+// {}. The moments are exact; the blend's own arithmetic may round a t within a few ulps of one
+// the other way.
 Configuration along_path(const TransitionPath& path, double t, double T);
 
 }  // namespace glbudget::model
