@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <mutex>
 #include <optional>
 #include <stdexcept>
@@ -1439,9 +1440,10 @@ struct ProbeFrames::Impl {
   // The streams of a probe frame: s0, unless the frame is drawn in it, and s_i^lmax for a pass
   // that has levels and drew in the last probe frame: the next in turn (GLBUDGET_PROBE_ORDER=
   // weighted: until each has been probed, then the one whose error × age is largest; with
-  // `stalest`, the one probed longest ago), or with `sweep` every such pass, those probed longest
-  // ago first where they are more than the streams (max_streams, s0 counted whether it is drawn
-  // or shown).
+  // `stalest`, a round's, the one probed longest ago, or weighted the largest error × age), or
+  // with `sweep` every such pass, those probed longest ago first (weighted in a round: by error ×
+  // age) where they are more than the streams (max_streams, s0 counted whether it is drawn or
+  // shown).
   void plan(uint64_t next, bool sweep, int max_streams = kMaxStreams, bool stalest = false) {
     const manifest::Manifest& m = active_manifest();
     const int passes = std::min<int>(static_cast<int>(m.passes.size()), kMaxPasses);
@@ -1464,7 +1466,35 @@ struct ProbeFrames::Impl {
       if (!(probed == c.config)) streams[stream_count++].config = probed;
     };
     size_t pick = order.size();
-    if (sweep || stalest) {
+    // The candidates of the weighted order: each pair's pass's latest error and its last probe.
+    const auto weigh = [&] {
+      candidates.resize(order.size());
+      for (size_t k = 0; k < order.size(); ++k) {
+        const size_t i = order[k].first;
+        candidates[k] = {probeable(i) ? g_pass_error[i].load(std::memory_order_relaxed) : 0.0, pair_probed[k],
+                         probeable(i)};
+      }
+    };
+    if (stalest && options().probe_order_weighted) {
+      // A round's probe frame, weighted: its passes by error × age, each taken once (a round ahead
+      // of a selection may be cut short by one that comes early, and then what it had probed were
+      // the passes whose staleness moves the ranking most).
+      if (sweep) sweep_soon = false;
+      weigh();
+      // A pass probed longer ago than the whole age bound goes first, as one never probed: the
+      // bound is what brought this probe frame (round_due).
+      const uint64_t whole = age_bound_frames(probe_settings(), true);
+      for (size_t k = 0; k < order.size(); ++k)
+        if (whole && next > whole && pair_probed[k] < next - whole)
+          candidates[k].error = std::numeric_limits<double>::quiet_NaN();
+      for (int passes_left = sweep ? max_streams - 1 : 1; passes_left > 0 && stream_count < kMaxStreams;
+           --passes_left) {
+        const size_t k = loop::next_probe(candidates, next);
+        if (k >= order.size()) break;
+        candidates[k].in_scene = false;
+        probe_pair(k);
+      }
+    } else if (sweep || stalest) {
       if (sweep) sweep_soon = false;
       std::vector<size_t> taken;
       for (size_t k = 0; k < order.size(); ++k)
@@ -1476,12 +1506,7 @@ struct ProbeFrames::Impl {
       for (size_t k : taken)
         if (stream_count < kMaxStreams && passes_left-- > 0) probe_pair(k);
     } else if (options().probe_order_weighted && settled()) {
-      candidates.resize(order.size());
-      for (size_t k = 0; k < order.size(); ++k) {
-        const size_t i = order[k].first;
-        candidates[k] = {probeable(i) ? g_pass_error[i].load(std::memory_order_relaxed) : 0.0, pair_probed[k],
-                         probeable(i)};
-      }
+      weigh();
       pick = loop::next_probe(candidates, next);
     } else {
       for (size_t tries = 0; tries < order.size() && pick == order.size(); ++tries) {

@@ -590,10 +590,9 @@ struct SelectingRun {
   ProbedPasses probes;
   std::string text;  // the run's stderr, probe frames and selections, for the test's messages
 };
-SelectingRun valley_selecting(const std::string& log, int frames, const std::pair<std::string, std::string>& setting) {
-  const ProcessResult r = governed_demo(
-      "valley", frames, log,
-      {{"GLBUDGET_FPS", "10"}, {"GLBUDGET_SELECT_FRAMES", "60"}, {"GLBUDGET_METER_WINDOWS", "0"}, setting});
+SelectingRun valley_selecting(const std::string& log, int frames, std::map<std::string, std::string> settings) {
+  settings.insert({{"GLBUDGET_FPS", "10"}, {"GLBUDGET_SELECT_FRAMES", "60"}, {"GLBUDGET_METER_WINDOWS", "0"}});
+  const ProcessResult r = governed_demo("valley", frames, log, settings);
   SelectingRun run;
   run.text = r.err;
   INFO(r.err);
@@ -621,10 +620,10 @@ int selections_due(const std::set<long>& selections, long from) {
 // apart and never 60, which leaves a case about what comes ahead of those selections nothing
 // to look at.
 SelectingRun valley_selecting_on_period(const std::string& log, int frames,
-                                        const std::pair<std::string, std::string>& setting) {
+                                        const std::map<std::string, std::string>& settings) {
   SelectingRun run;
   for (int attempt = 0; attempt < 3; ++attempt) {
-    run = valley_selecting(log, frames, setting);
+    run = valley_selecting(log, frames, settings);
     if (selections_due(run.selections, 40) >= 2) break;
   }
   return run;
@@ -783,7 +782,7 @@ TEST_CASE("sweeps measure every pass in the scene in one probe frame, just ahead
   // GLBUDGET_PROBE_STRETCH=0 (governed_demo): the governor asks nothing of the probes, so it
   // never has the passes probed in turn, several at a time, where a sweep's margin would not fit
   // or would cost the image shown (the loop tests weigh that).
-  const SelectingRun selecting = valley_selecting_on_period(log, 440, {"GLBUDGET_PROBE_SWEEP", "1"});
+  const SelectingRun selecting = valley_selecting_on_period(log, 440, {{"GLBUDGET_PROBE_SWEEP", "1"}});
   const std::set<long>& selections = selecting.selections;
   const ProbedPasses& run = selecting.probes;
   INFO(selecting.text);
@@ -826,7 +825,7 @@ TEST_CASE("probes of one pass a frame come in rounds just ahead of the governor'
   // the last kSweepLead (5) ahead of it, so that every pass's error is at most a few windows old
   // when the governor selects (without rounds: up to the 10-s bound, 100 frames).
   const std::string log = temp_path("valley_rounds.csv");
-  const SelectingRun selecting = valley_selecting_on_period(log, 320, {"GLBUDGET_PROBE_PASSES", "1"});
+  const SelectingRun selecting = valley_selecting_on_period(log, 320, {{"GLBUDGET_PROBE_PASSES", "1"}});
   const std::set<long>& selections = selecting.selections;
   const ProbedPasses& run = selecting.probes;
   INFO(selecting.text);
@@ -859,6 +858,51 @@ TEST_CASE("probes of one pass a frame come in rounds just ahead of the governor'
     if (*it - *std::prev(it) == 60) CHECK(fresh == in_scene);
   }
   CHECK(fresh_at >= 1);
+}
+
+TEST_CASE("a weighted round takes the passes of largest error × age first, a pass past the age bound before them") {
+  if (kSanitizedRun) return;  // the governor's bookkeeping, as above
+  // As the case above, with GLBUDGET_PROBE_ORDER=weighted: once the four passes in the scene are
+  // probed, each round's probe frame takes the pass whose last error × frames since is largest
+  // (errors under a tenth of the largest count as a tenth, none under kErrorFloor), unless a pass
+  // is older than the age bound (10 s unshared: 100 frames at 10 fps), which goes first. Valley's
+  // errors (resolution and base shading about 0.02, shadows and antialiasing about 0.005) make the
+  // two orders differ: in turn every pass once a round, weighted the large ones again first.
+  const std::string log = temp_path("valley_weighted_rounds.csv");
+  const SelectingRun selecting =
+      valley_selecting_on_period(log, 320, {{"GLBUDGET_PROBE_PASSES", "1"}, {"GLBUDGET_PROBE_ORDER", "weighted"}});
+  const ProbedPasses& run = selecting.probes;
+  INFO(selecting.text);
+  REQUIRE(run.streams.size() >= 8);
+  const long settled = std::next(run.streams.begin(), 3)->first;
+  CHECK(settled == 40);
+  std::map<int, double> last;      // by pass
+  std::map<int, long> last_frame;  // by pass
+  int weighed = 0, not_stalest = 0;
+  for (const auto& [frame, pass_error] : run.probed) {
+    const auto [pass, error] = pass_error;
+    INFO("probe frame " << frame << ", pass " << pass << ", error " << error);
+    if (frame > settled && last.count(pass)) {
+      double largest = 0.0;
+      long stalest = frame;
+      for (const auto& [p, e] : last) {
+        largest = std::max(largest, e);
+        stalest = std::min(stalest, last_frame[p]);
+      }
+      const auto priority = [&](int p) { return std::max({last[p], largest / 10, 0.002}) * (frame - last_frame[p]); };
+      // Past the bound by the shim's frame time (paced at 10 fps; 70 frames leaves it room).
+      const bool overdue = frame - last_frame[pass] >= 70;
+      bool largest_priority = true;
+      for (const auto& [p, e] : last) largest_priority = largest_priority && priority(pass) >= priority(p) * (1 - 1e-3);
+      CHECK((overdue || largest_priority));
+      ++weighed;
+      not_stalest += last_frame[pass] > stalest;
+    }
+    last[pass] = error;
+    last_frame[pass] = frame;
+  }
+  CHECK(weighed >= 4);
+  CHECK(not_stalest >= 1);
 }
 
 TEST_CASE("bad probe settings are said once and the app runs on") {
