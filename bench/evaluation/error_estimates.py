@@ -22,10 +22,11 @@ Budgets are shares of the range of the selection's predictions (the cheapest to 
 
 Writes DIR/error-estimates.md and DIR/error_estimates.png, each governed run's log as
 DIR/SCENE.csv (with its .selections.csv), and every configuration's true and estimated error at
-the last selection as DIR/SCENE.truth.csv.
+the last selection as DIR/SCENE.truth.csv. With --selections all, every selection after the first
+is measured (steps 2-4 at its frame), each a row, its truth as DIR/SCENE.fFRAME.truth.csv.
 Usage: error_estimates.py BUILD_DIR --out DIR [--scenes hall,sponza,valley,subway]
        [--budget 50] [--regret-budgets 30,40,50,60,70] [--frames 200] [--fps 10] [--size 320x180]
-       [--detail 0.2] [--costs measure|off|PATH] [--quick]
+       [--detail 0.2] [--costs measure|off|PATH] [--selections last|all] [--quick]
 """
 import csv
 import os
@@ -40,16 +41,23 @@ from evaluate import (MANIFEST, PROFILE, KNOBS, Evaluation, mean, number, parse_
 BEST = "0:0:0:0:0:0"
 
 
+def selection_tables(selections_csv):
+    """{frame: {configuration: (predicted_w, est_error)}}, one table per selection in the log."""
+    tables = {}
+    with open(selections_csv) as f:
+        for r in csv.DictReader(f):
+            tables.setdefault(int(r["frame"]), {})[r["configuration"]] = (number(r["predicted_w"]),
+                                                                          number(r["est_error"]))
+    return tables
+
+
 def last_selection(selections_csv):
     """{configuration: (predicted_w, est_error)} at the log's last selection, and its frame."""
-    with open(selections_csv) as f:
-        rows = list(csv.DictReader(f))
-    if not rows:
+    tables = selection_tables(selections_csv)
+    if not tables:
         return {}, None
-    last = max(int(r["frame"]) for r in rows)
-    table = {r["configuration"]: (number(r["predicted_w"]), number(r["est_error"]))
-             for r in rows if int(r["frame"]) == last}
-    return table, last
+    last = max(tables)
+    return tables[last], last
 
 
 def regret(table, truth, share):
@@ -100,9 +108,17 @@ class Study(Evaluation):
         for suffix in ("", ".selections.csv"):
             if os.path.exists(log + suffix):
                 shutil.copyfile(log + suffix, os.path.join(a.out, f"{scene}.csv{suffix}"))
-        table, frame = last_selection(log + ".selections.csv")
-        if frame is None:
-            return {"scene": scene, "error": "no selection in the governed run"}
+        tables = selection_tables(log + ".selections.csv") if os.path.exists(log + ".selections.csv") else {}
+        if not tables:
+            return [{"scene": scene, "error": "no selection in the governed run"}]
+        # The last selection, or with --selections all every one after the first (the first weighs
+        # the first probes, all of one moment).
+        frames = sorted(tables)[1:] if getattr(a, "selections", "last") == "all" and len(tables) > 1 else [max(tables)]
+        return [self.at_selection(scene, frame, tables[frame], frame == max(tables)) for frame in frames]
+
+    def at_selection(self, scene, frame, table, last):
+        """The estimates of the selection at `frame` against that frame's truth."""
+        a = self.a
         # One folder per frame: a study that runs a scene again (probe_trades.py) must not mix
         # another frame's images into this one's truth.
         images = os.path.join(self.tmp, f"{scene}_all_f{frame}")
@@ -116,7 +132,7 @@ class Study(Evaluation):
         truth = {c: 0.0 if c == BEST else errors[path] for c, path in by_config.items() if c == BEST or path in errors}
         # Every configuration's true and estimated error at that frame beside the log, for studies
         # of the estimate's form offline (how the passes' errors combine).
-        with open(os.path.join(a.out, f"{scene}.truth.csv"), "w") as f:
+        with open(os.path.join(a.out, f"{scene}.truth.csv" if last else f"{scene}.f{frame}.truth.csv"), "w") as f:
             f.write("configuration,true_error,est_error,predicted_w\n")
             for c in sorted(truth):
                 predicted, estimated = table.get(c, (None, None))
@@ -140,7 +156,7 @@ def write(results, a, command):
     lines = ["# Error estimates against ground truth, every configuration", "", "```sh", command, "```", "",
              f"Each scene at {a.size}, detail {a.detail}{shadow_note(a)}, {a.frames} frames paced at {a.fps:g} fps under "
              f"`glbudget run --power {a.budget}%` (the cpu sensor, quality probes at the shim's default, level costs "
-             f"{a.costs}). At the governor's last selection every configuration's estimated error (additive over "
+             f"{a.costs}). At the governor's {'selections after the first' if a.selections == 'all' else 'last selection'} every configuration's estimated error (additive over "
              "passes from its latest probes, paper §6.2) against the true error of the demo's own image of that "
              "frame in that configuration (1 − SSIM against its best), all 729 configurations of "
              f"({KNOBS}).", "",
@@ -178,7 +194,7 @@ def plot(results, out):
             top = max(top, max(max(p) for p in r["pairs"]))
     ax.plot([0, top * 1.05 or 1], [0, top * 1.05 or 1], color="grey", lw=0.8)
     ax.set_xlabel("true error (1 - SSIM of the configuration's own image)")
-    ax.set_ylabel("estimated error (governor, last selection)")
+    ax.set_ylabel("estimated error (governor's selection)")
     ax.legend(fontsize=8, markerscale=3)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "error_estimates.png"), dpi=100)
@@ -189,25 +205,32 @@ def main():
     ap = study_arguments(__doc__.splitlines()[0], "hall,sponza,valley,subway")
     ap.add_argument("--budget", type=int, default=50, help="the governed run's power budget, %%")
     ap.add_argument("--regret-budgets", default="30,40,50,60,70")
+    ap.add_argument("--selections", default="last", choices=["last", "all"],
+                    help="the selections measured: the run's last, or every one after its first")
     a, command = parse_study_arguments(ap, "error_estimates.py")
     a.regret_budgets = [int(b) for b in a.regret_budgets.split(",")]
     results = []
     with tempfile.TemporaryDirectory() as tmp:
         study = Study(a, tmp)
         for scene in a.scenes.split(","):
-            r = study.scene(scene)
-            results.append(r)
-            if "error" in r:
-                print(f"{scene}: {r['error']}", flush=True)
-                continue
-            print(f"{scene}: frame {r['frame']}, {r['configurations']} configurations, rho {r['rho']:.3f}, "
-                  f"MAE {r['mae']:.4f}, regret " + ", ".join(f"{b} % {r['regret'][b]:.4f}" for b in a.regret_budgets) +
-                  f"; fresh single-pass errors: rho {r['rho_fresh']:.3f}, worst regret {r['regret_fresh']:.4f}",
-                  flush=True)
+            for r in study.scene(scene):
+                report(r, a.regret_budgets)
+                results.append(r)
     plot(results, a.out)
     write(results, a, command)
     print(f"error estimates: {os.path.join(a.out, 'error-estimates.md')}")
     return 0 if all("error" not in r for r in results) else 1
+
+
+def report(r, budgets):
+    scene = r["scene"]
+    if "error" in r:
+        print(f"{scene}: {r['error']}", flush=True)
+        return
+    print(f"{scene}: frame {r['frame']}, {r['configurations']} configurations, rho {r['rho']:.3f}, "
+          f"MAE {r['mae']:.4f}, regret " + ", ".join(f"{b} % {r['regret'][b]:.4f}" for b in budgets) +
+          f"; fresh single-pass errors: rho {r['rho_fresh']:.3f}, worst regret {r['regret_fresh']:.4f}",
+          flush=True)
 
 
 if __name__ == "__main__":

@@ -152,7 +152,7 @@ def main():
             for s in settings:
                 trades.governed_env = {k: v for k, v in trades.governed_env.items() if k not in KNOBS.values()}
                 trades.governed_env.update(setting_env(s))
-                r = trades.scene(scene)
+                r = trades.scene(scene)[-1]  # the last selection
                 row = {"scene": scene, "setting": s, "overhead": cost[s]}
                 if "error" in r:
                     row["error"] = r["error"]
