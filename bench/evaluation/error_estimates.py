@@ -23,7 +23,8 @@ Budgets are shares of the range of the selection's predictions (the cheapest to 
 Writes DIR/error-estimates.md and DIR/error_estimates.png, each governed run's log as
 DIR/SCENE.csv (with its .selections.csv), and every configuration's true and estimated error at
 the last selection as DIR/SCENE.truth.csv. With --selections all, every selection after the first
-is measured (steps 2-4 at its frame), each a row, its truth as DIR/SCENE.fFRAME.truth.csv.
+is measured (steps 2-4 at its frame; the only one where the run made one), each a row, its truth
+as DIR/SCENE.fFRAME.truth.csv.
 Usage: error_estimates.py BUILD_DIR --out DIR [--scenes hall,sponza,valley,subway]
        [--budget 50] [--regret-budgets 30,40,50,60,70] [--frames 200] [--fps 10] [--size 320x180]
        [--detail 0.2] [--costs measure|off|PATH] [--selections last|all] [--quick]
@@ -190,7 +191,7 @@ def plot(results, out):
     for r in results:
         if r.get("pairs"):
             ax.scatter([p[1] for p in r["pairs"]], [p[0] for p in r["pairs"]], s=4, alpha=0.5,
-                       label=f"{r['scene']} (ρ {r['rho']:.2f})")
+                       label=f"{r['scene']} f{r['frame']} (ρ {r['rho']:.2f})")
             top = max(top, max(max(p) for p in r["pairs"]))
     ax.plot([0, top * 1.05 or 1], [0, top * 1.05 or 1], color="grey", lw=0.8)
     ax.set_xlabel("true error (1 - SSIM of the configuration's own image)")

@@ -895,6 +895,8 @@ TEST_CASE("a weighted round takes the passes of largest error × age first, a pa
       bool largest_priority = true;
       for (const auto& [p, e] : last) largest_priority = largest_priority && priority(pass) >= priority(p) * (1 - 1e-3);
       CHECK((overdue || largest_priority));
+      // Nothing left far past the bound: a window past it at most (as the sweeps' case).
+      for (const auto& [p, e] : last) CHECK(frame - last_frame[p] <= 140);
       ++weighed;
       not_stalest += last_frame[pass] > stalest;
     }
